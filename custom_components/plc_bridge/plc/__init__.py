@@ -1,0 +1,52 @@
+"""PLC Bridge protocol layer: vendor-neutral clients for PLC network interfaces.
+
+Never imports Home Assistant; takes an injected `aiohttp.ClientSession` where the vendor is HTTP.
+"""
+
+from .client import PlcClient
+from .errors import (
+    PlcAddressError,
+    PlcAuthenticationError,
+    PlcConnectionError,
+    PlcError,
+    PlcProtocolError,
+    PlcTimeoutError,
+    PlcTlsError,
+    PlcValueError,
+    PlcWriteRefusedError,
+)
+from .types import (
+    BrowseItem,
+    ClientMetrics,
+    ConnectionConfig,
+    DeviceInfo,
+    PlcStatus,
+    Point,
+    PointResult,
+    ReadResult,
+    TlsMode,
+    Value,
+)
+
+__all__ = [
+    "BrowseItem",
+    "ClientMetrics",
+    "ConnectionConfig",
+    "DeviceInfo",
+    "PlcAddressError",
+    "PlcAuthenticationError",
+    "PlcClient",
+    "PlcConnectionError",
+    "PlcError",
+    "PlcProtocolError",
+    "PlcStatus",
+    "PlcTimeoutError",
+    "PlcTlsError",
+    "PlcValueError",
+    "PlcWriteRefusedError",
+    "Point",
+    "PointResult",
+    "ReadResult",
+    "TlsMode",
+    "Value",
+]

@@ -1,0 +1,143 @@
+"""The vendor-neutral client interface every vendor module implements."""
+
+from __future__ import annotations
+
+from abc import ABC, abstractmethod
+from collections.abc import Mapping, Sequence
+from datetime import datetime
+import math
+import time
+from typing import ClassVar
+
+import aiohttp
+
+from .errors import PlcError
+from .types import (
+    BrowseItem,
+    ClientMetrics,
+    ConnectionConfig,
+    DeviceInfo,
+    Point,
+    PointResult,
+    ReadResult,
+    TlsMode,
+    Value,
+)
+
+
+class PlcClient(ABC):
+    """One connection to one PLC.
+
+    A vendor subclass sets the class attributes and implements `validate_point`, `connect`,
+    `_read`, `_write`, `read_clock`, `set_clock` and `close`; `browse` where the PLC can list its
+    variables. Every request goes through one choke point in the vendor (usually
+    `HttpTransport.request`) that counts it in `metrics`.
+    """
+
+    vendor: ClassVar[str]
+    default_port: ClassVar[int]
+    default_tls: ClassVar[TlsMode] = TlsMode.NONE
+    tls_modes: ClassVar[tuple[TlsMode, ...]] = (TlsMode.NONE,)
+    needs_credentials: ClassVar[bool] = False
+    data_types: ClassVar[tuple[str, ...]]
+    default_scan_interval: ClassVar[float] = 5.0
+    max_points_per_request: ClassVar[int] = 0  # 0: the vendor packs by size, not count
+    request_interval: ClassVar[float] = 0.0  # pacing between requests, in seconds
+    can_browse: ClassVar[bool] = False
+
+    def __init__(
+        self, config: ConnectionConfig, session: aiohttp.ClientSession | None = None
+    ) -> None:
+        """Keep the settings and the injected session; nothing is opened until `connect`."""
+        self.config = config
+        self.metrics = ClientMetrics()
+        self._session = session
+        self._own_session = session is None
+
+    @property
+    def session(self) -> aiohttp.ClientSession:
+        """The injected aiohttp session, or one of the client's own made on first use."""
+        if self._session is None:
+            self._session = aiohttp.ClientSession()
+        return self._session
+
+    async def _close_own_session(self) -> None:
+        """Close the session the client made itself (never an injected one)."""
+        if self._own_session and self._session is not None:
+            await self._session.close()
+            self._session = None
+
+    @classmethod
+    @abstractmethod
+    def validate_point(cls, point: Point) -> Point:
+        """Return the point with its address normalized; raise PlcAddressError when invalid."""
+
+    @classmethod
+    def validate_value(cls, point: Point, value: Value) -> Value:
+        """Return the value coerced for the point; raise PlcValueError before anything is sent."""
+        return value
+
+    @classmethod
+    def requests_for(cls, points: Sequence[Point]) -> int:
+        """How many requests one poll of these points takes (the planner's count)."""
+        if not points:
+            return 0
+        if cls.max_points_per_request:
+            return math.ceil(len(points) / cls.max_points_per_request)
+        return 1
+
+    @classmethod
+    def min_scan_interval(cls, points: Sequence[Point]) -> float:
+        """The shortest poll interval that respects the vendor's advised request rate."""
+        return cls.request_interval * max(1, cls.requests_for(points))
+
+    @abstractmethod
+    async def connect(self) -> DeviceInfo:
+        """Open the connection, log in and return what the PLC says about itself."""
+
+    async def read(self, points: Sequence[Point]) -> ReadResult:
+        """Read every point in the fewest requests the vendor allows (one poll)."""
+        before = self.metrics.requests
+        started = time.perf_counter()
+        try:
+            return await self._read(points)
+        except PlcError:
+            self.metrics.errors += 1
+            raise
+        finally:
+            self.metrics.polls += 1
+            self.metrics.last_poll_requests = self.metrics.requests - before
+            self.metrics.last_poll_ms = (time.perf_counter() - started) * 1000
+
+    async def write(self, values: Mapping[Point, Value]) -> dict[Point, PointResult]:
+        """Write every value in as few requests as the vendor allows; a result per point."""
+        checked = {point: self.validate_value(point, value) for point, value in values.items()}
+        try:
+            return await self._write(checked)
+        except PlcError:
+            self.metrics.errors += 1
+            raise
+
+    @abstractmethod
+    async def _read(self, points: Sequence[Point]) -> ReadResult:
+        """Vendor part of `read`."""
+
+    @abstractmethod
+    async def _write(self, values: Mapping[Point, Value]) -> dict[Point, PointResult]:
+        """Vendor part of `write`; values are already validated."""
+
+    async def browse(self) -> list[BrowseItem]:
+        """List the variables the PLC publishes (empty where the vendor cannot)."""
+        return []
+
+    @abstractmethod
+    async def read_clock(self) -> datetime:
+        """Return the PLC's clock as a timezone-aware datetime."""
+
+    @abstractmethod
+    async def set_clock(self, when: datetime) -> None:
+        """Set the PLC's clock."""
+
+    @abstractmethod
+    async def close(self) -> None:
+        """Log out where the vendor has sessions and release the connection."""

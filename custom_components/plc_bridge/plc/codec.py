@@ -1,0 +1,97 @@
+"""Value checks and encodings shared by vendors: IEC integer ranges, REAL, BOOL, ASCII text."""
+
+from __future__ import annotations
+
+from decimal import Decimal
+import math
+
+from .errors import PlcValueError
+from .types import Value
+
+INTEGER_RANGES: dict[str, tuple[int, int]] = {
+    "BYTE": (0, 0xFF),
+    "WORD": (0, 0xFFFF),
+    "DWORD": (0, 0xFFFF_FFFF),
+    "LWORD": (0, 0xFFFF_FFFF_FFFF_FFFF),
+    "USINT": (0, 0xFF),
+    "UINT": (0, 0xFFFF),
+    "UDINT": (0, 0xFFFF_FFFF),
+    "ULINT": (0, 0xFFFF_FFFF_FFFF_FFFF),
+    "SINT": (-0x80, 0x7F),
+    "INT": (-0x8000, 0x7FFF),
+    "DINT": (-0x8000_0000, 0x7FFF_FFFF),
+    "LINT": (-0x8000_0000_0000_0000, 0x7FFF_FFFF_FFFF_FFFF),
+}
+"""Inclusive value range of each IEC 61131-3 integer and bit-string type."""
+
+REAL_MAX = 3.4028234663852886e38
+
+
+def integer_range(bits: int, *, signed: bool) -> tuple[int, int]:
+    """Return the inclusive range of a two's complement or unsigned integer of `bits` bits."""
+    if signed:
+        return -(1 << (bits - 1)), (1 << (bits - 1)) - 1
+    return 0, (1 << bits) - 1
+
+
+def check_integer(value: Value, low: int, high: int, what: str = "value") -> int:
+    """Return value as an int within [low, high]; refuse fractions, bools-as-text and overflow."""
+    if isinstance(value, bool):
+        number = int(value)
+    elif isinstance(value, int):
+        number = value
+    elif isinstance(value, float) and value.is_integer():
+        number = int(value)
+    elif isinstance(value, str) and value.strip().lstrip("+-").isdigit():
+        number = int(value.strip())
+    else:
+        raise PlcValueError(f"{what} must be a whole number, not {value!r}")
+    if not low <= number <= high:
+        raise PlcValueError(f"{what} {number} is outside {low}..{high}")
+    return number
+
+
+def check_float(value: Value, *, single: bool = True, what: str = "value") -> float:
+    """Return value as a finite float that fits a REAL (single) or LREAL."""
+    if isinstance(value, bool) or not isinstance(value, int | float | str):
+        raise PlcValueError(f"{what} must be a number, not {value!r}")
+    try:
+        number = float(value)
+    except ValueError as err:
+        raise PlcValueError(f"{what} must be a number, not {value!r}") from err
+    if not math.isfinite(number) or (single and abs(number) > REAL_MAX):
+        raise PlcValueError(f"{what} {value!r} does not fit a {'REAL' if single else 'LREAL'}")
+    return number
+
+
+def check_bool(value: Value, what: str = "value") -> bool:
+    """Return value as a bool; accept 0/1 and the usual words."""
+    if isinstance(value, bool):
+        return value
+    if isinstance(value, int | float) and value in (0, 1):
+        return bool(value)
+    if isinstance(value, str) and value.strip().lower() in _BOOL_WORDS:
+        return _BOOL_WORDS[value.strip().lower()]
+    raise PlcValueError(f"{what} must be true or false, not {value!r}")
+
+
+_BOOL_WORDS = {"1": True, "true": True, "on": True, "0": False, "false": False, "off": False}
+
+
+def check_ascii(value: Value, max_length: int, what: str = "value") -> str:
+    """Return value as printable ASCII text of at most max_length characters."""
+    if not isinstance(value, str):
+        raise PlcValueError(f"{what} must be text, not {value!r}")
+    if not value.isascii():
+        raise PlcValueError(f"{what} may contain ASCII characters only")
+    if len(value) > max_length:
+        raise PlcValueError(f"{what} is longer than {max_length} characters")
+    return value
+
+
+def plain_decimal(value: float) -> str:
+    """Format a float as a plain decimal, never in exponent form (1e-05 -> 0.00001)."""
+    if value.is_integer() and abs(value) < 1e16:
+        return str(int(value)) if value else "0"
+    text = format(Decimal(repr(value)), "f")
+    return text.rstrip("0").rstrip(".") if "." in text else text

@@ -1,0 +1,129 @@
+"""The one HTTP choke point the HTTP vendors share: TLS mode, timeout, pacing, error mapping."""
+
+from __future__ import annotations
+
+import asyncio
+from collections.abc import Mapping
+import hashlib
+import ssl
+import time
+from typing import Any
+
+import aiohttp
+
+from .errors import PlcConnectionError, PlcProtocolError, PlcTimeoutError, PlcTlsError
+from .types import ClientMetrics, ConnectionConfig, TlsMode
+
+
+def ssl_option(config: ConnectionConfig) -> aiohttp.Fingerprint | bool | None:
+    """Return the aiohttp `ssl=` argument for the configured TLS mode."""
+    if config.tls is TlsMode.PIN:
+        try:
+            return aiohttp.Fingerprint(bytes.fromhex(config.fingerprint))
+        except ValueError as err:
+            raise PlcTlsError("the pinned certificate fingerprint is not valid") from err
+    if config.tls is TlsMode.OFF:
+        return False
+    if config.tls is TlsMode.VERIFY:
+        return True
+    return None
+
+
+def base_url(config: ConnectionConfig) -> str:
+    """Return scheme://host:port for the configured TLS mode (IPv6 hosts bracketed)."""
+    scheme = "http" if config.tls is TlsMode.NONE else "https"
+    host = f"[{config.host}]" if ":" in config.host else config.host
+    return f"{scheme}://{host}:{config.port}"
+
+
+async def fetch_fingerprint(host: str, port: int, timeout: float = 10.0) -> str:
+    """Connect once without verification and return the SHA-256 hex of the server certificate."""
+    context = ssl.create_default_context()
+    context.check_hostname = False
+    context.verify_mode = ssl.CERT_NONE
+    try:
+        async with asyncio.timeout(timeout):
+            _reader, writer = await asyncio.open_connection(host, port, ssl=context)
+    except TimeoutError as err:
+        raise PlcTimeoutError(f"no answer from {host}:{port}") from err
+    except ssl.SSLError as err:
+        raise PlcTlsError(f"TLS handshake with {host}:{port} failed: {err.reason}") from err
+    except OSError as err:
+        raise PlcConnectionError(f"cannot connect to {host}:{port}: {err.strerror}") from err
+    try:
+        ssl_object = writer.get_extra_info("ssl_object")
+        der = ssl_object.getpeercert(binary_form=True) if ssl_object else None
+    finally:
+        writer.close()
+    if not der:
+        raise PlcTlsError(f"{host}:{port} presented no certificate")
+    return hashlib.sha256(der).hexdigest()
+
+
+def format_fingerprint(fingerprint: str) -> str:
+    """Return a fingerprint as colon-separated upper-case byte pairs, as browsers show it."""
+    return ":".join(fingerprint[i : i + 2] for i in range(0, len(fingerprint), 2)).upper()
+
+
+class HttpTransport:
+    """Sends every request of one client: one lock, one timeout, pacing and error mapping."""
+
+    def __init__(
+        self,
+        config: ConnectionConfig,
+        session: aiohttp.ClientSession,
+        metrics: ClientMetrics,
+        *,
+        request_interval: float = 0.0,
+    ) -> None:
+        """Bind the transport to a PLC, an aiohttp session and the client's metrics."""
+        self._config = config
+        self._session = session
+        self._metrics = metrics
+        self._ssl = ssl_option(config)
+        self._url = base_url(config)
+        self._lock = asyncio.Lock()
+        self._interval = request_interval
+        self._last = 0.0
+
+    async def request(
+        self,
+        method: str,
+        path: str,
+        *,
+        data: str | bytes | None = None,
+        headers: Mapping[str, str] | None = None,
+        **kwargs: Any,
+    ) -> tuple[int, Mapping[str, str], bytes]:
+        """Send one request and return status, headers and body; map every failure."""
+        async with self._lock:
+            wait = self._last + self._interval - time.monotonic()
+            if wait > 0:
+                await asyncio.sleep(wait)
+            self._metrics.requests += 1
+            try:
+                async with self._session.request(
+                    method,
+                    self._url + path,
+                    data=data,
+                    headers=headers,
+                    ssl=self._ssl if self._ssl is not None else True,
+                    timeout=aiohttp.ClientTimeout(total=self._config.timeout),
+                    **kwargs,
+                ) as response:
+                    body = await response.read()
+                    return response.status, response.headers, body
+            except aiohttp.ServerFingerprintMismatch as err:
+                raise PlcTlsError("the PLC presented a certificate other than the pinned one") from err
+            except aiohttp.ClientConnectorCertificateError as err:
+                raise PlcTlsError(f"the PLC certificate is not trusted: {err.certificate_error}") from err
+            except aiohttp.ClientSSLError as err:
+                raise PlcTlsError(f"TLS failed: {err}") from err
+            except TimeoutError as err:
+                raise PlcTimeoutError(f"no answer from {self._config.host} in time") from err
+            except aiohttp.ClientResponseError as err:
+                raise PlcProtocolError(f"malformed HTTP reply: {err.message}") from err
+            except (aiohttp.ClientError, OSError) as err:
+                raise PlcConnectionError(f"cannot reach {self._config.host}: {err}") from err
+            finally:
+                self._last = time.monotonic()

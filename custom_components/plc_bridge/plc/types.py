@@ -1,0 +1,127 @@
+"""Vendor-neutral data types shared by every vendor client and by Home Assistant."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from datetime import datetime
+from enum import StrEnum
+
+from .errors import PlcError
+
+type Value = bool | int | float | str | datetime | list[int]
+"""A decoded point value: BOOL, integers, REAL, STRING, date/time or raw bytes (list of ints)."""
+
+
+class TlsMode(StrEnum):
+    """How an HTTPS vendor checks the PLC's certificate."""
+
+    VERIFY = "verify"  # against the system CAs
+    PIN = "pin"  # the SHA-256 fingerprint the user confirmed at setup
+    OFF = "off"  # no check at all (explicit; Home Assistant raises a repair issue)
+    NONE = "none"  # plain HTTP or a non-TLS transport
+
+
+@dataclass(frozen=True, slots=True, kw_only=True)
+class ConnectionConfig:
+    """Where and how to reach one PLC; `options` holds vendor-only settings (rack, slot, TSAP)."""
+
+    host: str
+    port: int
+    username: str = ""
+    password: str = ""
+    tls: TlsMode = TlsMode.NONE
+    fingerprint: str = ""  # hex SHA-256 of the DER certificate, for TlsMode.PIN
+    timeout: float = 10.0
+    time_zone: str = "UTC"  # IANA name of the zone the PLC clock runs in (Home Assistant's)
+    options: dict[str, str | int | bool] = field(default_factory=dict)
+
+
+@dataclass(frozen=True, slots=True)
+class Point:
+    """One value in the PLC: the address (or variable path) and the vendor's type or mode key."""
+
+    address: str
+    data_type: str
+
+
+@dataclass(frozen=True, slots=True)
+class PointResult:
+    """The outcome for one point: a value, or the error that hides it."""
+
+    value: Value | None = None
+    error: PlcError | None = None
+
+    @property
+    def ok(self) -> bool:
+        """True when the point was read or written without error."""
+        return self.error is None
+
+
+@dataclass(frozen=True, slots=True, kw_only=True)
+class PlcStatus:
+    """What the PLC reports about itself beside the values (for diagnostic entities)."""
+
+    mode: str | None = None  # "RUN", "STOP", "HALT", ...
+    system: str | None = None  # "OK", "Error", ...
+    force: str | None = None  # "Forced", "Not Forced"
+    clock: datetime | None = None
+    extra: dict[str, str] = field(default_factory=dict)
+
+
+@dataclass(frozen=True, slots=True, kw_only=True)
+class ReadResult:
+    """The answer to one poll: a result for every requested point, and the PLC status."""
+
+    values: dict[Point, PointResult]
+    status: PlcStatus = field(default_factory=PlcStatus)
+
+
+@dataclass(frozen=True, slots=True, kw_only=True)
+class DeviceInfo:
+    """What the PLC says about itself at connect time."""
+
+    vendor: str
+    model: str
+    serial: str | None = None  # unique id source where the vendor reports one
+    mac: str | None = None
+    firmware: str | None = None
+    name: str | None = None
+    can_write: bool = True
+    extra: dict[str, str] = field(default_factory=dict)
+
+
+@dataclass(frozen=True, slots=True, kw_only=True)
+class BrowseItem:
+    """A variable the PLC publishes, offered in the point form instead of typing an address."""
+
+    address: str
+    data_type: str
+    name: str | None = None
+    unit: str | None = None
+    minimum: float | None = None
+    maximum: float | None = None
+    read_only: bool = False
+    platform: str | None = None  # suggested Home Assistant platform, when the PLC says
+
+
+@dataclass(slots=True)
+class ClientMetrics:
+    """Request counters the client keeps for diagnostics and benchmarks."""
+
+    requests: int = 0
+    errors: int = 0
+    session_renewals: int = 0  # re-logins after the PLC dropped the session or token
+    polls: int = 0
+    last_poll_requests: int = 0
+    last_poll_ms: float = 0.0
+
+    def as_dict(self) -> dict[str, float | int]:
+        """Return the counters as a plain dict."""
+        return {
+            "requests": self.requests,
+            "errors": self.errors,
+            "session_renewals": self.session_renewals,
+            "polls": self.polls,
+            "last_poll_requests": self.last_poll_requests,
+            "last_poll_ms": round(self.last_poll_ms, 3),
+        }

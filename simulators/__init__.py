@@ -1,0 +1,1 @@
+"""Faithful servers of each PLC vendor interface, for tests, the demo and the benchmarks."""

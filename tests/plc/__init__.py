@@ -1,0 +1,1 @@
+"""Protocol-layer tests: no Home Assistant, real loopback sockets to the simulators."""
