@@ -118,7 +118,7 @@ class HttpSimulator:
         await self._runner.setup()
         site = web.TCPSite(self._runner, host, port, ssl_context=self._ssl, reuse_address=True)
         await site.start()
-        server = site._server  # noqa: SLF001 - aiohttp exposes the bound port only here
+        server = site._server  # aiohttp exposes the bound port only here
         assert server is not None
         self.host = host
         self.port = server.sockets[0].getsockname()[1]

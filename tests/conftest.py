@@ -2,8 +2,6 @@
 
 from __future__ import annotations
 
-from collections.abc import Generator
-
 import pytest
 
 from custom_components.plc_bridge.plc.vendors import client_class, implemented
@@ -20,8 +18,7 @@ def loopback(socket_enabled: None) -> None:
 
 
 @pytest.fixture(autouse=True)
-def no_pacing(monkeypatch: pytest.MonkeyPatch) -> Generator[None]:
+def no_pacing(monkeypatch: pytest.MonkeyPatch) -> None:
     """Drop the vendors' advised pause between requests so tests run at full speed."""
     for vendor in implemented():
         monkeypatch.setattr(client_class(vendor), "request_interval", 0.0)
-    yield

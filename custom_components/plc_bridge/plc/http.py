@@ -114,9 +114,13 @@ class HttpTransport:
                     body = await response.read()
                     return response.status, response.headers, body
             except aiohttp.ServerFingerprintMismatch as err:
-                raise PlcTlsError("the PLC presented a certificate other than the pinned one") from err
+                raise PlcTlsError(
+                    "the PLC presented a certificate other than the pinned one"
+                ) from err
             except aiohttp.ClientConnectorCertificateError as err:
-                raise PlcTlsError(f"the PLC certificate is not trusted: {err.certificate_error}") from err
+                raise PlcTlsError(
+                    f"the PLC certificate is not trusted: {err.certificate_error}"
+                ) from err
             except aiohttp.ClientSSLError as err:
                 raise PlcTlsError(f"TLS failed: {err}") from err
             except TimeoutError as err:
