@@ -1,0 +1,157 @@
+"""The shared HTTP choke point: TLS modes, pinning, error mapping, pacing."""
+
+from __future__ import annotations
+
+import asyncio
+from collections.abc import AsyncGenerator
+import socket
+import time
+
+import aiohttp
+from aiohttp import web
+import pytest
+
+from custom_components.plc_bridge.plc import (
+    ClientMetrics,
+    ConnectionConfig,
+    PlcConnectionError,
+    PlcTimeoutError,
+    PlcTlsError,
+    TlsMode,
+)
+from custom_components.plc_bridge.plc.http import (
+    HttpTransport,
+    base_url,
+    fetch_fingerprint,
+    format_fingerprint,
+)
+from simulators.base import HttpSimulator
+
+
+class EchoSimulator(HttpSimulator):
+    """Answers /echo with the body it got, /slow after a pause."""
+
+    def build_app(self, app: web.Application) -> None:
+        async def echo(request: web.Request) -> web.Response:
+            return web.Response(body=await request.read())
+
+        async def slow(request: web.Request) -> web.Response:
+            await asyncio.sleep(1)
+            return web.Response(text="late")
+
+        app.router.add_post("/echo", echo)
+        app.router.add_get("/slow", slow)
+
+
+class TlsEchoSimulator(EchoSimulator):
+    """The same over HTTPS with a device-CA certificate."""
+
+    tls = True
+
+
+@pytest.fixture
+async def session() -> AsyncGenerator[aiohttp.ClientSession]:
+    async with aiohttp.ClientSession() as client_session:
+        yield client_session
+
+
+@pytest.fixture
+async def tls_sim() -> AsyncGenerator[TlsEchoSimulator]:
+    sim = TlsEchoSimulator()
+    await sim.start()
+    yield sim
+    await sim.stop()
+
+
+def _transport(
+    session: aiohttp.ClientSession, port: int, tls: TlsMode, fingerprint: str = "", **kw: float
+) -> tuple[HttpTransport, ClientMetrics]:
+    config = ConnectionConfig(
+        host="127.0.0.1", port=port, tls=tls, fingerprint=fingerprint, timeout=kw.pop("timeout", 5)
+    )
+    metrics = ClientMetrics()
+    return HttpTransport(config, session, metrics, **kw), metrics
+
+
+async def test_pinned_certificate_accepted(
+    session: aiohttp.ClientSession, tls_sim: TlsEchoSimulator
+) -> None:
+    assert tls_sim.fingerprint
+    transport, metrics = _transport(session, tls_sim.port, TlsMode.PIN, tls_sim.fingerprint)
+    status, _headers, body = await transport.request("POST", "/echo", data=b"hi")
+    assert (status, body, metrics.requests, tls_sim.requests) == (200, b"hi", 1, 1)
+
+
+async def test_changed_certificate_refused(
+    session: aiohttp.ClientSession, tls_sim: TlsEchoSimulator
+) -> None:
+    assert tls_sim.fingerprint
+    pinned = tls_sim.fingerprint
+    tls_sim.new_certificate()
+    await tls_sim.restart()
+    transport, _ = _transport(session, tls_sim.port, TlsMode.PIN, pinned)
+    with pytest.raises(PlcTlsError, match="pinned"):
+        await transport.request("POST", "/echo", data=b"secret")
+    assert tls_sim.requests == 0
+
+
+async def test_verify_refuses_device_ca(
+    session: aiohttp.ClientSession, tls_sim: TlsEchoSimulator
+) -> None:
+    transport, _ = _transport(session, tls_sim.port, TlsMode.VERIFY)
+    with pytest.raises(PlcTlsError):
+        await transport.request("POST", "/echo")
+
+
+async def test_tls_off_and_fingerprint_fetch(
+    session: aiohttp.ClientSession, tls_sim: TlsEchoSimulator
+) -> None:
+    transport, _ = _transport(session, tls_sim.port, TlsMode.OFF)
+    assert (await transport.request("POST", "/echo", data=b"x"))[2] == b"x"
+    assert await fetch_fingerprint("127.0.0.1", tls_sim.port) == tls_sim.fingerprint
+
+
+def test_bad_pinned_fingerprint() -> None:
+    config = ConnectionConfig(host="h", port=1, tls=TlsMode.PIN, fingerprint="zz")
+    with pytest.raises(PlcTlsError):
+        HttpTransport(config, None, ClientMetrics())  # type: ignore[arg-type]
+
+
+async def test_plain_http_timeout_and_pacing(session: aiohttp.ClientSession) -> None:
+    sim = EchoSimulator()
+    await sim.start()
+    try:
+        transport, _ = _transport(session, sim.port, TlsMode.NONE, request_interval=0.05)
+        started = time.monotonic()
+        await transport.request("POST", "/echo")
+        await transport.request("POST", "/echo")
+        assert time.monotonic() - started >= 0.05
+        slow, _ = _transport(session, sim.port, TlsMode.NONE, timeout=0.05)
+        with pytest.raises(PlcTimeoutError):
+            await slow.request("GET", "/slow")
+        with pytest.raises(PlcTlsError):
+            await fetch_fingerprint("127.0.0.1", sim.port)
+    finally:
+        await sim.stop()
+
+
+def _free_port() -> int:
+    with socket.socket() as sock:
+        sock.bind(("127.0.0.1", 0))
+        port: int = sock.getsockname()[1]
+        return port
+
+
+async def test_unreachable(session: aiohttp.ClientSession) -> None:
+    port = _free_port()
+    transport, _ = _transport(session, port, TlsMode.NONE)
+    with pytest.raises(PlcConnectionError):
+        await transport.request("GET", "/")
+    with pytest.raises(PlcConnectionError):
+        await fetch_fingerprint("127.0.0.1", port)
+
+
+def test_urls_and_formatting() -> None:
+    assert base_url(ConnectionConfig(host="::1", port=443, tls=TlsMode.PIN)) == "https://[::1]:443"
+    assert base_url(ConnectionConfig(host="plc", port=80)) == "http://plc:80"
+    assert format_fingerprint("ab01ff") == "AB:01:FF"
