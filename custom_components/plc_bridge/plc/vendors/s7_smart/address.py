@@ -1,0 +1,140 @@
+"""S7-200 SMART addresses: parse, check the range, and combine with a data mode."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+import re
+
+from ...errors import PlcAddressError
+
+MODES = ("signed", "unsigned", "float", "string", "raw")
+"""The Web API's data modes (manual 8.2), also the point form's data types."""
+
+BOOL = "bool"
+DATE = "date"
+
+# The largest memory of the family (CPU ST60/SR60); a smaller CPU answers 3004 per node.
+SIZES: dict[str, int] = {"V": 20480, "I": 32, "Q": 32, "M": 32, "SM": 1536, "AIW": 112, "AQW": 112}
+COUNTS: dict[str, tuple[int, int]] = {"T": (256, 16), "C": (256, 16), "HC": (6, 32)}
+NAMES: dict[str, str] = {
+    "V": "V memory",
+    "I": "process inputs (I)",
+    "Q": "process outputs (Q)",
+    "M": "M memory",
+    "SM": "special memory (SM)",
+    "AIW": "analog inputs (AIW)",
+    "AQW": "analog outputs (AQW)",
+    "T": "timers (T)",
+    "C": "counters (C)",
+    "HC": "high-speed counters (HC)",
+}
+_WIDTHS = {"B": 8, "W": 16, "D": 32}
+_PREFIX = {8: "B", 16: "W", 32: "D"}
+_PATTERN = re.compile(
+    r"(?P<area>SM|V|I|Q|M)(?:(?P<size>[BWD])(?P<index>\d+)|(?P<byte>\d+)\.(?P<bit>\d+))"
+    r"|(?P<analog>AIW|AQW)(?P<word>\d+)|(?P<counter>HC|T|C)(?P<number>\d+)|(?P<date>DATE)"
+)
+EXAMPLES = "V10.3, VB100, VW100, VD100, I0.0, QB0, MW4, SMB28, AIW16, T37, C10, HC0 or DATE"
+
+
+@dataclass(frozen=True, slots=True)
+class Address:
+    """One parsed address: memory area, byte offset (or T/C/HC number), bit, width in bits."""
+
+    area: str  # V, I, Q, M, SM, AIW, AQW, T, C, HC or DATE
+    index: int  # byte offset; the timer, counter or high-speed counter number for T, C, HC
+    bit: int | None = None
+    width: int = 0  # 1 for a bit, 8/16/32 for bytes, words and double words, 0 for DATE
+
+    @property
+    def text(self) -> str:
+        """The address as the PLC's documentation spells it (upper case, no leading zeros)."""
+        if self.area == "DATE":
+            return "DATE"
+        if self.bit is not None:
+            return f"{self.area}{self.index}.{self.bit}"
+        if self.area in COUNTS or self.area in ("AIW", "AQW"):
+            return f"{self.area}{self.index}"
+        return f"{self.area}{_PREFIX[self.width]}{self.index}"
+
+    @property
+    def is_byte_area(self) -> bool:
+        """True for V, I, Q, M and SM, the areas addressed by bit, byte, word or double word."""
+        return self.area in ("V", "I", "Q", "M", "SM")
+
+    @property
+    def room(self) -> int:
+        """How many bytes the memory area has from this address on (not for T, C, HC, DATE)."""
+        return SIZES[self.area] - self.index
+
+
+def parse_address(text: str) -> Address:
+    """Parse an address case-insensitively; raise PlcAddressError with a message for a form."""
+    match = _PATTERN.fullmatch(text.strip().upper())
+    if match is None:
+        raise PlcAddressError(f"{text!r} is not an S7-200 SMART address; try {EXAMPLES}")
+    if match["date"]:
+        return Address("DATE", 0)
+    if match["area"]:
+        area = match["area"]
+        if match["size"]:
+            address = Address(area, int(match["index"]), None, _WIDTHS[match["size"]])
+        else:
+            address = Address(area, int(match["byte"]), int(match["bit"]), 1)
+            if address.bit is not None and address.bit > 7:
+                raise PlcAddressError(
+                    f"{text.strip().upper()} names bit {address.bit}; bits are 0..7"
+                )
+    elif match["analog"]:
+        address = Address(match["analog"], int(match["word"]), None, 16)
+        if address.index % 2:
+            raise PlcAddressError(
+                f"{address.text} is not a word address; {NAMES[address.area]} "
+                f"are even numbers (0, 2, .. {SIZES[address.area] - 2})"
+            )
+    else:
+        count, width = COUNTS[match["counter"]]
+        address = Address(match["counter"], int(match["number"]), None, width)
+        if address.index >= count:
+            raise PlcAddressError(
+                f"{address.text} is outside {NAMES[address.area]} (0..{count - 1})"
+            )
+        return address
+    _check_range(address)
+    return address
+
+
+def _check_range(address: Address) -> None:
+    """Refuse an address that starts or ends outside its memory area."""
+    size = SIZES[address.area]
+    last = size - 2 if address.area in ("AIW", "AQW") else size - 1
+    if address.index > last:
+        raise PlcAddressError(f"{address.text} is outside {NAMES[address.area]} (0..{last})")
+    if address.room < max(1, address.width // 8):
+        raise PlcAddressError(
+            f"{address.text} runs past the end of {NAMES[address.area]} (0..{last}); "
+            f"it needs {address.width // 8} bytes"
+        )
+
+
+def point_kind(address: Address, mode: str) -> str:
+    """Return how a point is read and written: bool, date, or the checked data mode.
+
+    A bit is a BOOL and DATE is the clock whatever mode the point names (the device ignores it).
+    """
+    mode = mode.strip().lower()
+    if mode not in MODES:
+        raise PlcAddressError(f"unknown data type {mode!r}; use one of {', '.join(MODES)}")
+    if address.area == "DATE":
+        return DATE
+    if address.bit is not None:
+        return BOOL
+    if mode == "float" and (address.width != 32 or not address.is_byte_area):
+        raise PlcAddressError(
+            f"{address.text} cannot hold a float; a REAL needs a double word (VD, ID, QD, MD, SMD)"
+        )
+    if mode == "string" and (address.width != 8 or not address.is_byte_area):
+        raise PlcAddressError(
+            f"{address.text} cannot hold a string; strings start at a byte (VB, IB, QB, MB, SMB)"
+        )
+    return mode

@@ -1,0 +1,7 @@
+"""A Siemens S7-200 SMART Web API simulator: JSON-RPC 2.0 on POST /Web_api over HTTPS."""
+
+from .errors import ERRORS
+from .memory import Memory
+from .server import DEFAULT_PASSWORD, DEFAULT_USER, S7SmartSimulator
+
+__all__ = ["DEFAULT_PASSWORD", "DEFAULT_USER", "ERRORS", "Memory", "S7SmartSimulator"]

@@ -1,0 +1,212 @@
+"""The S7-200 SMART client's session, refusals, malformed replies and TLS modes."""
+
+from __future__ import annotations
+
+import asyncio
+from typing import Any
+
+import aiohttp
+import pytest
+
+from custom_components.plc_bridge.plc import (
+    PlcAuthenticationError,
+    PlcProtocolError,
+    PlcTlsError,
+    PlcWriteRefusedError,
+    Point,
+    TlsMode,
+)
+from custom_components.plc_bridge.plc.vendors.s7_smart import S7SmartClient
+from simulators.s7_smart import S7SmartSimulator
+
+from .conftest import ConfigFactory
+
+POINT = Point("VW0", "signed")
+
+
+async def test_token_renewed_once(
+    s7_smart_sim: S7SmartSimulator, s7_smart_client: S7SmartClient
+) -> None:
+    s7_smart_sim.set("VW0", 9)
+    s7_smart_sim.invalidate_tokens()
+    assert (await s7_smart_client.read([POINT])).values[POINT].value == 9
+    assert s7_smart_client.metrics.session_renewals == 1
+    assert s7_smart_sim.calls["login"] == 2
+    await s7_smart_client.read([POINT])
+    assert s7_smart_client.metrics.session_renewals == 1
+
+
+async def test_token_lost_twice_fails(
+    s7_smart_sim: S7SmartSimulator, s7_smart_client: S7SmartClient
+) -> None:
+    s7_smart_sim.idle_timeout = 0.0  # every token is stale by its next request
+    with pytest.raises(PlcAuthenticationError, match="dropped the session again"):
+        await s7_smart_client.read([POINT])
+    assert s7_smart_client.metrics.session_renewals == 1
+    assert s7_smart_client.metrics.errors == 1
+    assert s7_smart_sim.calls["login"] == 2
+
+
+async def test_idle_expiry(s7_smart_sim: S7SmartSimulator, s7_smart_client: S7SmartClient) -> None:
+    s7_smart_sim.idle_timeout = 0.05
+    await s7_smart_client.read([POINT])
+    assert s7_smart_client.metrics.session_renewals == 0
+    await asyncio.sleep(0.1)
+    assert (await s7_smart_client.read([POINT])).values[POINT].ok
+    assert s7_smart_client.metrics.session_renewals == 1
+
+
+async def test_renewal_then_other_refusal(
+    s7_smart_sim: S7SmartSimulator, s7_smart_client: S7SmartClient
+) -> None:
+    s7_smart_sim.invalidate_tokens()
+    s7_smart_sim.mode = "STOP"
+    with pytest.raises(PlcWriteRefusedError):
+        await s7_smart_client.write({POINT: 1})
+    assert s7_smart_client.metrics.session_renewals == 1
+
+
+@pytest.mark.parametrize(("user", "password"), [("admin", "wrong"), ("nobody", "Smart-200")])
+async def test_login_refused(
+    s7_smart_sim: S7SmartSimulator, s7_smart_config: ConfigFactory, user: str, password: str
+) -> None:
+    client = S7SmartClient(s7_smart_config(username=user, password=password))
+    with pytest.raises(PlcAuthenticationError, match="refused the user name or password"):
+        await client.connect()
+    await client.close()
+    assert s7_smart_sim.calls["login"] == 1
+    assert s7_smart_sim.calls["logout"] == 0
+
+
+async def test_login_without_token(
+    s7_smart_sim: S7SmartSimulator, s7_smart_config: ConfigFactory
+) -> None:
+    def drop_cookie(reply: dict[str, Any]) -> dict[str, Any]:
+        reply["result"].pop("cookie", None)
+        return reply
+
+    s7_smart_sim.rewrite = drop_cookie
+    client = S7SmartClient(s7_smart_config())
+    with pytest.raises(PlcProtocolError, match="sent no token"):
+        await client.connect()
+    await client.close()
+
+
+async def test_bare_token_gets_cookie_name(
+    s7_smart_sim: S7SmartSimulator, s7_smart_config: ConfigFactory
+) -> None:
+    s7_smart_sim.cookie_name_in_token = False
+    client = S7SmartClient(s7_smart_config())
+    await client.connect()
+    assert (await client.read([POINT])).values[POINT].ok
+    await client.close()
+
+
+async def test_stop_refuses_writes(
+    s7_smart_sim: S7SmartSimulator, s7_smart_client: S7SmartClient
+) -> None:
+    s7_smart_sim.mode = "STOP"
+    with pytest.raises(PlcWriteRefusedError) as caught:
+        await s7_smart_client.write({POINT: 1})
+    assert str(caught.value) == "the PLC is in STOP; S7-200 SMART accepts writes only in RUN"
+    assert (await s7_smart_client.read([POINT])).status.mode == "STOP"
+
+
+async def test_no_write_permission(s7_smart_config: ConfigFactory) -> None:
+    sim = S7SmartSimulator(write_permission=False)
+    await sim.start()
+    try:
+        client = S7SmartClient(s7_smart_config(port=sim.port, fingerprint=sim.fingerprint))
+        assert (await client.connect()).can_write is False
+        with pytest.raises(PlcWriteRefusedError, match="no write permission"):
+            await client.write({POINT: 1})
+        await client.close()
+    finally:
+        await sim.stop()
+
+
+async def test_malformed_reply(
+    s7_smart_sim: S7SmartSimulator, s7_smart_client: S7SmartClient
+) -> None:
+    s7_smart_sim.malformed = True
+    with pytest.raises(PlcProtocolError, match="not JSON"):
+        await s7_smart_client.read([POINT])
+    with pytest.raises(PlcProtocolError):
+        await s7_smart_client.write({POINT: 1})
+
+
+@pytest.mark.parametrize(
+    ("rewrite", "message"),
+    [
+        (lambda r: r | {"id": r["id"] + 100}, "answered id"),
+        (lambda r: r | {"id": None}, "answered id None"),
+        (lambda r: r | {"jsonrpc": "1.0"}, "not JSON-RPC 2.0"),
+        (lambda r: [r], "not JSON-RPC 2.0"),
+        (lambda r: {"jsonrpc": "2.0", "id": r["id"]}, "has no result"),
+        (lambda r: r | {"result": r["result"] | {"data": r["result"]["data"][:1]}}, "1 nodes"),
+        (lambda r: r | {"result": r["result"] | {"data": None}}, "answered no nodes"),
+        (lambda r: r | {"result": r["result"] | {"data": [{"var": "VW2"}] * 2}}, "match"),
+        (
+            lambda r: {"jsonrpc": "2.0", "id": None, "error": {"code": 2003, "message": "Big."}},
+            "the PLC refused the request: Big. \\(code 2003\\)",
+        ),
+        (
+            lambda r: {"jsonrpc": "2.0", "id": r["id"], "error": {"code": "x"}},
+            "unknown error \\(code 0\\)",
+        ),
+    ],
+)
+async def test_protocol_errors(
+    s7_smart_sim: S7SmartSimulator, s7_smart_client: S7SmartClient, rewrite: Any, message: str
+) -> None:
+    s7_smart_sim.rewrite = rewrite
+    with pytest.raises(PlcProtocolError, match=message):
+        await s7_smart_client.read([POINT, Point("VW2", "signed")])
+
+
+async def test_id_echoed_as_text(
+    s7_smart_sim: S7SmartSimulator, s7_smart_client: S7SmartClient
+) -> None:
+    s7_smart_sim.rewrite = lambda reply: reply | {"id": str(reply["id"])}
+    assert (await s7_smart_client.read([POINT])).values[POINT].ok
+
+
+async def test_tls_modes(s7_smart_sim: S7SmartSimulator, s7_smart_config: ConfigFactory) -> None:
+    wrong = S7SmartClient(s7_smart_config(fingerprint="00" * 32))
+    with pytest.raises(PlcTlsError, match="pinned"):
+        await wrong.connect()
+    await wrong.close()
+    assert s7_smart_sim.requests == 0
+    verify = S7SmartClient(s7_smart_config(tls=TlsMode.VERIFY))
+    with pytest.raises(PlcTlsError):
+        await verify.connect()
+    await verify.close()
+    assert s7_smart_sim.requests == 0
+    off = S7SmartClient(s7_smart_config(tls=TlsMode.OFF, fingerprint=""))
+    await off.connect()
+    assert (await off.read([POINT])).values[POINT].ok
+    await off.close()
+
+
+async def test_close_logs_out(
+    s7_smart_sim: S7SmartSimulator, s7_smart_config: ConfigFactory
+) -> None:
+    async with aiohttp.ClientSession() as session:
+        client = S7SmartClient(s7_smart_config(), session)
+        await client.connect()
+        await client.close()
+        assert s7_smart_sim.calls["logout"] == 1
+        assert not session.closed  # an injected session belongs to its owner
+        assert (await client.read([POINT])).values[POINT].ok  # logs in again, no renewal
+        assert client.metrics.session_renewals == 0
+        assert s7_smart_sim.calls["login"] == 2
+        await client.close()
+
+
+async def test_close_when_plc_is_gone(
+    s7_smart_sim: S7SmartSimulator, s7_smart_client: S7SmartClient
+) -> None:
+    own = s7_smart_client.session
+    await s7_smart_sim.stop()
+    await s7_smart_client.close()
+    assert own.closed
