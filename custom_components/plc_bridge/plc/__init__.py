@@ -26,6 +26,7 @@ from .types import (
     ReadResult,
     TlsMode,
     Value,
+    ValueKind,
 )
 
 __all__ = [
@@ -49,4 +50,5 @@ __all__ = [
     "ReadResult",
     "TlsMode",
     "Value",
+    "ValueKind",
 ]

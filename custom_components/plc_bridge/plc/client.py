@@ -11,6 +11,7 @@ from typing import ClassVar
 
 import aiohttp
 
+from .codec import IEC_KINDS
 from .errors import PlcError
 from .types import (
     BrowseItem,
@@ -22,6 +23,7 @@ from .types import (
     ReadResult,
     TlsMode,
     Value,
+    ValueKind,
 )
 
 
@@ -76,6 +78,11 @@ class PlcClient(ABC):
     def validate_value(cls, point: Point, value: Value) -> Value:
         """Return the value coerced for the point; raise PlcValueError before anything is sent."""
         return value
+
+    @classmethod
+    def value_kind(cls, point: Point) -> ValueKind | None:
+        """What a valid point's values are (None: unknown); by IEC type name unless overridden."""
+        return IEC_KINDS.get(point.data_type.strip().upper())
 
     @classmethod
     def requests_for(cls, points: Sequence[Point]) -> int:

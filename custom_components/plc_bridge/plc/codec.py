@@ -6,7 +6,7 @@ from decimal import Decimal
 import math
 
 from .errors import PlcValueError
-from .types import Value
+from .types import Value, ValueKind
 
 INTEGER_RANGES: dict[str, tuple[int, int]] = {
     "BYTE": (0, 0xFF),
@@ -25,6 +25,16 @@ INTEGER_RANGES: dict[str, tuple[int, int]] = {
 """Inclusive value range of each IEC 61131-3 integer and bit-string type."""
 
 REAL_MAX = 3.4028234663852886e38
+
+IEC_KINDS: dict[str, ValueKind] = {
+    "BOOL": ValueKind.BOOL,
+    **dict.fromkeys(INTEGER_RANGES, ValueKind.INTEGER),
+    "REAL": ValueKind.FLOAT,
+    "LREAL": ValueKind.FLOAT,
+    **dict.fromkeys(("STRING", "WSTRING", "CHAR", "WCHAR"), ValueKind.TEXT),
+    **dict.fromkeys(("DATE", "DT", "DATE_AND_TIME", "LDT"), ValueKind.DATETIME),
+}
+"""The kind of value of the IEC 61131-3 elementary types a vendor may use as data types."""
 
 
 def integer_range(bits: int, *, signed: bool) -> tuple[int, int]:

@@ -10,6 +10,7 @@ import time
 from typing import Any
 
 import aiohttp
+from yarl import URL
 
 from .errors import PlcConnectionError, PlcProtocolError, PlcTimeoutError, PlcTlsError
 from .types import ClientMetrics, ConnectionConfig, TlsMode
@@ -38,7 +39,9 @@ def base_url(config: ConnectionConfig) -> str:
 
 async def fetch_fingerprint(host: str, port: int, timeout: float = 10.0) -> str:
     """Connect once without verification and return the SHA-256 hex of the server certificate."""
-    context = ssl.create_default_context()
+    # A bare context: create_default_context() would load the system CAs, a blocking read,
+    # and this handshake trusts nothing anyway; it only looks at the certificate.
+    context = ssl.SSLContext(ssl.PROTOCOL_TLS_CLIENT)
     context.check_hostname = False
     context.verify_mode = ssl.CERT_NONE
     try:
@@ -93,9 +96,14 @@ class HttpTransport:
         *,
         data: str | bytes | None = None,
         headers: Mapping[str, str] | None = None,
+        encoded: bool = False,
         **kwargs: Any,
     ) -> tuple[int, Mapping[str, str], bytes]:
-        """Send one request and return status, headers and body; map every failure."""
+        """Send one request and return status, headers and body; map every failure.
+
+        `encoded`: the path is sent exactly as given (no percent-encoding of `[`, `]`, ...).
+        """
+        url: str | URL = URL(self._url + path, encoded=True) if encoded else self._url + path
         async with self._lock:
             wait = self._last + self._interval - time.monotonic()
             if wait > 0:
@@ -104,7 +112,7 @@ class HttpTransport:
             try:
                 async with self._session.request(
                     method,
-                    self._url + path,
+                    url,
                     data=data,
                     headers=headers,
                     ssl=self._ssl if self._ssl is not None else True,

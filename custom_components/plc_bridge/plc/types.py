@@ -21,6 +21,17 @@ class TlsMode(StrEnum):
     NONE = "none"  # plain HTTP or a non-TLS transport
 
 
+class ValueKind(StrEnum):
+    """What a point's values are, which decides the Home Assistant platforms that fit it."""
+
+    BOOL = "bool"
+    INTEGER = "integer"
+    FLOAT = "float"
+    TEXT = "text"
+    DATETIME = "datetime"
+    BYTES = "bytes"
+
+
 @dataclass(frozen=True, slots=True, kw_only=True)
 class ConnectionConfig:
     """Where and how to reach one PLC; `options` holds vendor-only settings (rack, slot, TSAP)."""

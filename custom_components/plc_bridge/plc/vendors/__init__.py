@@ -10,27 +10,32 @@ VENDORS: tuple[str, ...] = ("s7_smart", "tecomat", "plcnext", "softplc", "s7")
 """Every vendor key, in the order the config flow lists them."""
 
 
+def _load() -> dict[str, type[PlcClient]]:
+    """Import every vendor module that exists, once, when this package is imported.
+
+    Done at import time so that Home Assistant imports them in its executor with the
+    integration, never inside the event loop when a flow first asks for a vendor.
+    """
+    clients: dict[str, type[PlcClient]] = {}
+    for vendor in VENDORS:
+        try:
+            module = importlib.import_module(f"{__name__}.{vendor}")
+        except ModuleNotFoundError as err:
+            if err.name != f"{__name__}.{vendor}":
+                raise
+            continue
+        clients[vendor] = module.CLIENT
+    return clients
+
+
+_CLIENTS = _load()
+
+
 def client_class(vendor: str) -> type[PlcClient]:
     """Return the client class of a vendor; raise KeyError when it is not implemented yet."""
-    if vendor not in VENDORS:
-        raise KeyError(vendor)
-    try:
-        module = importlib.import_module(f"{__name__}.{vendor}")
-    except ModuleNotFoundError as err:
-        if err.name != f"{__name__}.{vendor}":
-            raise
-        raise KeyError(vendor) from err
-    client: type[PlcClient] = module.CLIENT
-    return client
+    return _CLIENTS[vendor]
 
 
 def implemented() -> list[str]:
     """Return the vendor keys that have a client module."""
-    found = []
-    for vendor in VENDORS:
-        try:
-            client_class(vendor)
-        except KeyError:
-            continue
-        found.append(vendor)
-    return found
+    return list(_CLIENTS)

@@ -25,8 +25,9 @@ from ...types import (
     ReadResult,
     TlsMode,
     Value,
+    ValueKind,
 )
-from .address import MODES
+from .address import BOOL, DATE, MODES
 from .codec import (
     INVALID_TOKEN,
     MAX_NODES,
@@ -48,6 +49,15 @@ _LOGGER = logging.getLogger(__name__)
 
 PATH = "/Web_api"
 _DATE_POINT = Point("DATE", "signed")
+_KINDS = {
+    BOOL: ValueKind.BOOL,
+    DATE: ValueKind.DATETIME,
+    "signed": ValueKind.INTEGER,
+    "unsigned": ValueKind.INTEGER,
+    "float": ValueKind.FLOAT,
+    "string": ValueKind.TEXT,
+    "raw": ValueKind.BYTES,
+}
 
 
 def cookie_header(token: str) -> str:
@@ -103,6 +113,11 @@ class S7SmartClient(PlcClient):
         """Return the value checked for the point's address and mode; raise PlcValueError."""
         node = node_for(point)
         return check_value(node.address, node.kind, value)
+
+    @classmethod
+    def value_kind(cls, point: Point) -> ValueKind:
+        """Return what the point holds: a bit is a BOOL and DATE the clock, whatever the mode."""
+        return _KINDS[node_for(point).kind]
 
     @classmethod
     def requests_for(cls, points: Sequence[Point]) -> int:
