@@ -1,0 +1,237 @@
+"""The Tecomat TecoApi client: GetInfo, GetList, GetObject and PutObject over HTTP(S)."""
+
+from __future__ import annotations
+
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
+from datetime import datetime
+import time
+from typing import ClassVar
+from zoneinfo import ZoneInfo
+
+import aiohttp
+
+from ...client import PlcClient
+from ...errors import (
+    PlcAddressError,
+    PlcError,
+    PlcProtocolError,
+    PlcWriteRefusedError,
+)
+from ...planning import chunks
+from ...types import (
+    BrowseItem,
+    ConnectionConfig,
+    DeviceInfo,
+    PlcStatus,
+    Point,
+    PointResult,
+    ReadResult,
+    TlsMode,
+    Value,
+    ValueKind,
+)
+from .api import TecoApi
+from .browse import LIST_URI, browse_items, listed_names
+from .codec import KINDS, TYPES, check_value, data_type, decode, encode
+from .info import device_info, plc_status
+from .paths import (
+    MAX_VARIABLES,
+    SERVICE,
+    VariablePath,
+    check_writable,
+    parse_path,
+    plan,
+)
+
+
+@dataclass(frozen=True, slots=True)
+class _Write:
+    """One point of a PutObject: where, as which type, what."""
+
+    point: Point
+    path: VariablePath
+    kind: str
+    value: Value
+
+
+def _distinct(points: Sequence[Point]) -> dict[str, VariablePath]:
+    """Return the valid paths of points, once each (names are case-insensitive)."""
+    paths: dict[str, VariablePath] = {}
+    for point in points:
+        try:
+            path = parse_path(point.address)
+            data_type(point.data_type)
+        except PlcError:
+            continue
+        paths.setdefault(path.key, path)
+    return paths
+
+
+class TecomatClient(PlcClient):
+    """A Tecomat Foxtrot or TC700 PLC through its web server's TecoApi."""
+
+    vendor: ClassVar[str] = "tecomat"
+    default_port: ClassVar[int] = 80
+    default_tls: ClassVar[TlsMode] = TlsMode.NONE
+    tls_modes: ClassVar[tuple[TlsMode, ...]] = (
+        TlsMode.NONE,
+        TlsMode.PIN,
+        TlsMode.VERIFY,
+        TlsMode.OFF,
+    )
+    needs_credentials: ClassVar[bool] = True
+    data_types: ClassVar[tuple[str, ...]] = TYPES
+    can_browse: ClassVar[bool] = True
+    status_interval: ClassVar[float] = 60.0  # GetInfo costs a request of its own: not every poll
+
+    def __init__(
+        self, config: ConnectionConfig, session: aiohttp.ClientSession | None = None
+    ) -> None:
+        """Keep the settings; the transport and the digest state are made on first use."""
+        super().__init__(config, session)
+        self._api: TecoApi | None = None
+        self._zone = ZoneInfo(config.time_zone)
+        self._status = PlcStatus()
+        self._status_at = -float("inf")
+        self._plan: tuple[tuple[str, ...], list[list[VariablePath]]] | None = None
+
+    @classmethod
+    def validate_point(cls, point: Point) -> Point:
+        """Return the point with its path and type normalized; raise PlcAddressError."""
+        return Point(parse_path(point.address).text, data_type(point.data_type))
+
+    @classmethod
+    def validate_value(cls, point: Point, value: Value) -> Value:
+        """Return the value checked for the point's type and the PutObject parser (3.6)."""
+        path = parse_path(point.address)
+        check_writable(path)
+        return check_value(data_type(point.data_type), value, path.text)
+
+    @classmethod
+    def value_kind(cls, point: Point) -> ValueKind | None:
+        """Return what the point holds; TIME and TOD are text as the PLC writes them."""
+        try:
+            return KINDS[data_type(point.data_type)]
+        except PlcAddressError:
+            return None
+
+    @classmethod
+    def requests_for(cls, points: Sequence[Point]) -> int:
+        """Count the GetObject requests of one poll (URI <= 256 characters, 128 names)."""
+        return len(plan(_distinct(points).values()))
+
+    def _teco(self) -> TecoApi:
+        """Return the service layer, made on first use."""
+        if self._api is None:
+            self._api = TecoApi(self.config, self.session, self.metrics, self.request_interval)
+        return self._api
+
+    async def connect(self) -> DeviceInfo:
+        """Ask GetInfo: device information, PLC mode, program and clock (checks credentials)."""
+        info = await self._teco().ask("GET", SERVICE + "GetInfo")
+        device = device_info(info)
+        self._status, self._status_at = plc_status(info, self._zone), time.monotonic()
+        return device
+
+    async def _poll_status(self) -> PlcStatus:
+        """Return the PLC status; GetInfo is asked again once `status_interval` has passed."""
+        if time.monotonic() - self._status_at >= self.status_interval:
+            info = await self._teco().ask("GET", SERVICE + "GetInfo")
+            self._status, self._status_at = plc_status(info, self._zone), time.monotonic()
+        return self._status
+
+    async def _read(self, points: Sequence[Point]) -> ReadResult:
+        """Read every distinct path once, packed into the fewest GetObject requests."""
+        values: dict[Point, PointResult] = {}
+        wanted: list[tuple[Point, VariablePath, str]] = []
+        for point in points:
+            try:
+                wanted.append((point, parse_path(point.address), data_type(point.data_type)))
+            except PlcError as err:
+                values[point] = PointResult(error=err)
+        found, failed = await self._teco().get(self._planned(wanted))
+        for point, path, kind in wanted:
+            if path.key in failed:
+                values[point] = PointResult(error=failed[path.key])
+                continue
+            try:
+                values[point] = PointResult(
+                    value=decode(kind, found[path.key], self._zone, path.text)
+                )
+            except PlcProtocolError as err:
+                values[point] = PointResult(error=err)
+        return ReadResult(values=values, status=await self._poll_status())
+
+    def _planned(
+        self, wanted: Sequence[tuple[Point, VariablePath, str]]
+    ) -> list[list[VariablePath]]:
+        """Return the request groups of a poll; the last poll's plan is kept (polls repeat)."""
+        paths: dict[str, VariablePath] = {}
+        for _point, path, _kind in wanted:
+            paths.setdefault(path.key, path)
+        names = tuple(paths)
+        if self._plan is None or self._plan[0] != names:
+            self._plan = names, plan(paths.values())
+        return self._plan[1]
+
+    async def _write(self, values: Mapping[Point, Value]) -> dict[Point, PointResult]:
+        """Write every value with one PutObject (128 variables a request at most)."""
+        items = [
+            _Write(point, parse_path(point.address), data_type(point.data_type), value)
+            for point, value in values.items()
+        ]
+        results: dict[Point, PointResult] = {}
+        for group in chunks(items, MAX_VARIABLES):
+            pairs = [(item.path, encode(item.kind, item.value, self._zone)) for item in group]
+            failures = await self._teco().put(pairs)
+            for index, item in enumerate(group):
+                error = failures.get(index)
+                results[item.point] = PointResult(value=None if error else item.value, error=error)
+        return results
+
+    async def browse(self) -> list[BrowseItem]:
+        """List the public variables (GetList) and expand each value into its leaves."""
+        paths: dict[str, VariablePath] = {}
+        for name in listed_names(await self._teco().ask("GET", LIST_URI)):
+            try:
+                path = parse_path(name)
+            except PlcAddressError:
+                continue
+            paths.setdefault(path.key, path)
+        found, _failed = await self._teco().get(plan(paths.values()))
+        items: list[BrowseItem] = []
+        for key, path in paths.items():
+            if key in found:
+                items.extend(browse_items(path, found[key]))
+        return items
+
+    async def read_clock(self) -> datetime:
+        """Return the PLC time GetInfo reports (3.2), in the configured time zone."""
+        self._status_at = -float("inf")
+        status = await self._poll_status()
+        if status.clock is None:
+            raise PlcProtocolError("the PLC's GetInfo answer holds no valid time")
+        return status.clock
+
+    async def set_clock(self, when: datetime) -> None:
+        """Write the time to the DT variable named in options["clock_variable"].
+
+        TecoApi has no service that sets the PLC clock: the PLC program must copy that
+        variable into its real-time clock.
+        """
+        variable = str(self.config.options.get("clock_variable", "")).strip()
+        if not variable:
+            raise PlcWriteRefusedError(
+                "TecoApi cannot set the PLC clock; name a DT variable the PLC program copies "
+                "into its clock (vendor option clock_variable)"
+            )
+        point = Point(variable, "DT")
+        error = (await self.write({point: when}))[point].error
+        if error is not None:
+            raise error
+
+    async def close(self) -> None:
+        """Release the client's own session (TecoApi has no logout)."""
+        self._api = None
+        await self._close_own_session()

@@ -1,0 +1,204 @@
+"""TecoApi values: the IEC types of chapter 4, their JSON forms, checks and a plain JSON writer."""
+
+from __future__ import annotations
+
+from datetime import datetime, tzinfo
+import json
+import math
+import re
+from typing import Any
+
+from ...codec import INTEGER_RANGES, check_bool, check_float, check_integer, plain_decimal
+from ...errors import PlcAddressError, PlcProtocolError, PlcValueError
+from ...types import Value, ValueKind
+
+INTEGERS = ("BYTE", "WORD", "DWORD", "SINT", "INT", "DINT", "USINT", "UINT", "UDINT")
+TYPES = ("BOOL", *INTEGERS, "REAL", "LREAL", "TIME", "TOD", "DATE", "DT", "STRING")
+"""The elementary types of chapter 4, also the point form's data types."""
+ALIASES = {"TIME_OF_DAY": "TOD", "DATE_AND_TIME": "DT"}
+KINDS: dict[str, ValueKind] = {
+    "BOOL": ValueKind.BOOL,
+    **dict.fromkeys(INTEGERS, ValueKind.INTEGER),
+    "REAL": ValueKind.FLOAT,
+    "LREAL": ValueKind.FLOAT,
+    "TIME": ValueKind.TEXT,  # "hh:mm:ss.zzz", as the PLC sends it
+    "TOD": ValueKind.TEXT,
+    "DATE": ValueKind.DATETIME,
+    "DT": ValueKind.DATETIME,
+    "STRING": ValueKind.TEXT,
+}
+MAX_STRING = 255  # chapter 4: STRING holds at most 255 ASCII characters
+MAX_VALUE = 255  # 3.6: an item's value is at most 255 characters in a PutObject body
+MAX_TIME_MS = 2**31 - 1  # chapter 4: TIME and TOD run from 0 to 24d 20:31:23.647
+DAY_MS = 24 * 3600 * 1000
+
+_CLOCK = re.compile(r"(\d+):([0-5]\d):([0-5]\d)(?:\.(\d{1,3}))?", re.ASCII)
+_DATE = re.compile(r"(\d{4})-(\d\d)-(\d\d)", re.ASCII)
+_DT = re.compile(r"(\d{4})-(\d\d)-(\d\d)[T ](\d\d):(\d\d):(\d\d)(?:\.(\d{1,3}))?Z?", re.ASCII)
+
+
+def data_type(text: str) -> str:
+    """Return the canonical type name; raise PlcAddressError for a type TecoApi lacks."""
+    name = text.strip().upper()
+    name = ALIASES.get(name, name)
+    if name not in TYPES:
+        raise PlcAddressError(f"unknown data type {text!r}; use one of {', '.join(TYPES)}")
+    return name
+
+
+def check_value(kind: str, value: Value, what: str) -> Value:
+    """Return a value coerced for an IEC type; raise PlcValueError before anything is sent."""
+    if kind == "BOOL":
+        return check_bool(value, what)
+    if kind in INTEGER_RANGES:
+        return check_integer(value, *INTEGER_RANGES[kind], what)
+    if kind in ("REAL", "LREAL"):
+        return check_float(value, single=kind == "REAL", what=what)
+    if kind in ("TIME", "TOD"):
+        return _format_clock(_check_clock(kind, value, what))
+    if kind in ("DATE", "DT"):
+        return _check_date(kind, value, what)
+    return _check_text(value, what)
+
+
+def _check_text(value: Value, what: str) -> str:
+    """Return ASCII text the PutObject parser takes (3.6) that fits a STRING."""
+    if not isinstance(value, str):
+        raise PlcValueError(f"{what} takes text, not {value!r}")
+    for char in value:
+        if not char.isascii():
+            raise PlcValueError(f"{what}: the PLC takes ASCII text only; {char!r} is not ASCII")
+    if len(value) > MAX_STRING:
+        raise PlcValueError(f"{what}: a STRING holds at most {MAX_STRING} characters")
+    if len(json.dumps(value)) - 2 > MAX_VALUE:
+        raise PlcValueError(f"{what}: with its escapes the text passes {MAX_VALUE} characters")
+    return value
+
+
+def _check_clock(kind: str, value: Value, what: str) -> int:
+    """Return a TIME or TOD as milliseconds: "hh:mm:ss.zzz" text, or a number of seconds."""
+    if isinstance(value, int | float) and not isinstance(value, bool) and math.isfinite(value):
+        millis = round(value * 1000)
+    elif isinstance(value, str) and (match := _CLOCK.fullmatch(value.strip())):
+        millis = _clock_millis(match)
+    else:
+        raise PlcValueError(f"{what} takes a {kind} as hh:mm:ss.zzz, not {value!r}")
+    high = MAX_TIME_MS if kind == "TIME" else DAY_MS - 1
+    if not 0 <= millis <= high:
+        raise PlcValueError(f"{what}: {value!r} is outside the range of a {kind}")
+    return millis
+
+
+def _clock_millis(match: re.Match[str]) -> int:
+    """Return the milliseconds of a matched hh:mm:ss.zzz."""
+    hours, minutes, seconds, fraction = match.groups()
+    millis = int((fraction or "0").ljust(3, "0"))
+    return ((int(hours) * 60 + int(minutes)) * 60 + int(seconds)) * 1000 + millis
+
+
+def _format_clock(millis: int) -> str:
+    """Return milliseconds as the JSON form of TIME and TOD: hh:mm:ss.zzz."""
+    seconds, millis = divmod(millis, 1000)
+    minutes, seconds = divmod(seconds, 60)
+    hours, minutes = divmod(minutes, 60)
+    return f"{hours:02d}:{minutes:02d}:{seconds:02d}.{millis:03d}"
+
+
+def _check_date(kind: str, value: Value, what: str) -> datetime:
+    """Return a DATE or DT as a datetime (naive: PLC time) from 1970 on."""
+    if isinstance(value, str):
+        try:
+            value = datetime.fromisoformat(value.strip())
+        except ValueError:
+            raise PlcValueError(f"{what} takes a {kind} as an ISO date, not {value!r}") from None
+    if not isinstance(value, datetime):
+        raise PlcValueError(f"{what} takes a {kind} (a date and time), not {value!r}")
+    if value.year < 1970:
+        raise PlcValueError(f"{what}: a {kind} starts on 1970-01-01")
+    return value
+
+
+def encode(kind: str, value: Value, zone: tzinfo) -> Any:
+    """Return the JSON value of a checked value; dates and times in the PLC's zone."""
+    if not isinstance(value, datetime):
+        return value
+    if value.tzinfo is not None:
+        value = value.astimezone(zone)
+    if kind == "DATE":
+        return f"{value:%Y-%m-%d}"
+    # The spec's DT form ends in "Z", but the PLC prints its own clock digits (chapter 4
+    # shows DT#...-11:22:33.456 as "...T11:22:33.456Z"): the digits are the PLC's local time.
+    return f"{value:%Y-%m-%dT%H:%M:%S}.{value.microsecond // 1000:03d}Z"
+
+
+def decode(kind: str, raw: Any, zone: tzinfo, what: str) -> Value:
+    """Return the value of a point from its JSON; raise PlcProtocolError when it does not fit."""
+    number = isinstance(raw, int | float) and not isinstance(raw, bool)
+    if kind == "BOOL" and (isinstance(raw, bool) or raw in (0, 1)):
+        return bool(raw)
+    if kind in INTEGER_RANGES and number and float(raw).is_integer():
+        low, high = INTEGER_RANGES[kind]
+        if low <= raw <= high:
+            return int(raw)
+    if kind in ("REAL", "LREAL") and number:
+        return float(raw)
+    if kind == "STRING" and isinstance(raw, str):
+        return raw
+    if isinstance(raw, str):
+        text = raw.strip()
+        if kind in ("TIME", "TOD") and (match := _CLOCK.fullmatch(text)):
+            return _format_clock(_clock_millis(match))
+        if kind in ("DATE", "DT") and (moment := parse_datetime(kind, text, zone)):
+            return moment
+    if isinstance(raw, dict | list):
+        shape = "a structure" if isinstance(raw, dict) else "an array"
+        raise PlcProtocolError(f"{what} is {shape}, not a {kind}; choose one of its members")
+    raise PlcProtocolError(f"{what}: the PLC sent {raw!r}, which is no {kind}")
+
+
+def parse_datetime(kind: str, text: str, zone: tzinfo) -> datetime | None:
+    """Return a DATE ("YYYY-MM-DD") or DT ("YYYY-MM-DDThh:mm:ss.zzzZ") as an aware datetime."""
+    match = (_DATE if kind == "DATE" else _DT).fullmatch(text.strip())
+    if match is None:
+        return None
+    year, month, day, *clock = match.groups()
+    hour, minute, second, fraction = clock or ("0", "0", "0", None)
+    micro = int((fraction or "0").ljust(3, "0")) * 1000
+    try:
+        return datetime(
+            int(year), int(month), int(day), int(hour), int(minute), int(second), micro, zone
+        )
+    except ValueError:
+        return None
+
+
+def guess_type(raw: Any) -> str | None:
+    """Guess the IEC type of a value the PLC published (JSON does not say); None: not a leaf."""
+    if isinstance(raw, bool):
+        return "BOOL"
+    if isinstance(raw, int):
+        return "UDINT" if raw > INTEGER_RANGES["DINT"][1] else "DINT"
+    if isinstance(raw, float):
+        return "REAL"
+    if not isinstance(raw, str):
+        return None
+    text = raw.strip()
+    if _DT.fullmatch(text) and "T" in text:
+        return "DT"
+    if _DATE.fullmatch(text):
+        return "DATE"
+    if _CLOCK.fullmatch(text):
+        return "TIME"
+    return "STRING"
+
+
+def dumps(value: Any) -> str:
+    """Serialize JSON for the PutObject parser: compact, numbers never in exponent form (3.6)."""
+    if isinstance(value, dict):
+        members = (f"{json.dumps(key)}:{dumps(item)}" for key, item in value.items())
+        return "{" + ",".join(members) + "}"
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    if isinstance(value, float):
+        return plain_decimal(value)
+    return json.dumps(value)
