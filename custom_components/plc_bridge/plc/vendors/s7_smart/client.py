@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
 from datetime import datetime
 import hashlib
 import itertools
@@ -70,6 +71,16 @@ def cookie_header(token: str) -> str:
     return token if "=" in token.rstrip("=") else f"Session-Id={token}"
 
 
+@dataclass(frozen=True, slots=True)
+class _PollPlan:
+    """A poll parsed and grouped once: kept while the same points are polled again."""
+
+    key: tuple[Point, ...]
+    invalid: dict[Point, PointResult]
+    wanted: dict[Node, list[Point]]
+    groups: list[tuple[list[Node], list[dict[str, Any]]]]
+
+
 class _RpcError(Exception):
     """An error answer; `_call` turns it into a PlcError and never lets it out."""
 
@@ -101,6 +112,7 @@ class S7SmartClient(PlcClient):
         self._token: str | None = None
         self._ids = itertools.count(1)
         self._zone = ZoneInfo(self.config.time_zone)
+        self._plan: _PollPlan | None = None
 
     @classmethod
     def validate_point(cls, point: Point) -> Point:
@@ -153,22 +165,34 @@ class S7SmartClient(PlcClient):
             can_write=can_write,
         )
 
+    def _poll_plan(self, points: Sequence[Point]) -> _PollPlan:
+        """Return the parsed and grouped poll, reused while the polled points stay the same."""
+        key = tuple(points)
+        if self._plan is None or self._plan.key != key:
+            invalid: dict[Point, PointResult] = {}
+            wanted: dict[Node, list[Point]] = {}
+            for point in points:
+                try:
+                    wanted.setdefault(node_for(point), []).append(point)
+                except PlcError as err:
+                    invalid[point] = PointResult(error=err)
+            groups = [
+                (group, [node.request() for node in group]) for group in read_plan(list(wanted))
+            ]
+            self._plan = _PollPlan(key, invalid, wanted, groups)
+        return self._plan
+
     async def _read(self, points: Sequence[Point]) -> ReadResult:
         """Read every distinct point once, 32 nodes a request; status from the last reply."""
-        values: dict[Point, PointResult] = {}
-        wanted: dict[Node, list[Point]] = {}
-        for point in points:
-            try:
-                wanted.setdefault(node_for(point), []).append(point)
-            except PlcError as err:
-                values[point] = PointResult(error=err)
+        poll = self._poll_plan(points)
+        values = dict(poll.invalid)
         status = PlcStatus()
-        for group in read_plan(list(wanted)):
-            result = await self._call("read", [node.request() for node in group])
+        for group, params in poll.groups:
+            result = await self._call("read", params)
             status = decode_status(result.get("status"), self._zone)
             for node, item in zip(group, reply_nodes(result, group), strict=True):
                 outcome = self._outcome(node, item)
-                for point in wanted[node]:
+                for point in poll.wanted[node]:
                     values[point] = outcome
         return ReadResult(values=values, status=status)
 

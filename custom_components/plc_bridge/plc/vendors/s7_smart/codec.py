@@ -5,6 +5,7 @@ from __future__ import annotations
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from datetime import datetime, tzinfo
+from functools import lru_cache
 import json
 from typing import Any
 
@@ -213,8 +214,9 @@ class Node:
         return node
 
 
+@lru_cache(maxsize=4096)
 def node_for(point: Point) -> Node:
-    """Parse a point into its wire node; raise PlcAddressError."""
+    """Parse a point into its wire node (cached: polls ask again); raise PlcAddressError."""
     address = parse_address(point.address)
     return Node(address, point_kind(address, point.data_type))
 
