@@ -6,6 +6,8 @@ import pytest
 
 from custom_components.plc_bridge.plc.vendors import client_class, implemented
 
+pytest_plugins = ["tests.flow_fixtures", "tests.ha_fixtures"]
+
 
 @pytest.fixture(autouse=True)
 def auto_enable_custom_integrations(enable_custom_integrations: None) -> None:

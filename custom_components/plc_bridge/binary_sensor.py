@@ -1,0 +1,60 @@
+"""Binary sensors: BOOL points, shown on or off."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from homeassistant.components.binary_sensor import (
+    BinarySensorDeviceClass,
+    BinarySensorEntity,
+    BinarySensorEntityDescription,
+)
+from homeassistant.config_entries import ConfigSubentry
+from homeassistant.core import HomeAssistant
+from homeassistant.helpers.entity_platform import AddConfigEntryEntitiesCallback
+
+from .coordinator import PlcBridgeConfigEntry
+from .entity import (
+    PlcPointDescription,
+    PlcPointEntity,
+    add_point_entities,
+    device_class,
+    point_fields,
+)
+
+PARALLEL_UPDATES = 0
+
+
+@dataclass(frozen=True, kw_only=True)
+class PlcBinarySensorDescription(BinarySensorEntityDescription, PlcPointDescription):
+    """A point shown as a binary sensor."""
+
+
+def point_binary_sensor(entry: PlcBridgeConfigEntry, subentry: ConfigSubentry) -> PlcBinarySensor:
+    """Return the binary sensor of a point."""
+    description = PlcBinarySensorDescription(
+        **point_fields(entry, subentry),
+        device_class=device_class(subentry, BinarySensorDeviceClass),
+    )
+    return PlcBinarySensor(entry, description)
+
+
+async def async_setup_entry(
+    hass: HomeAssistant,
+    entry: PlcBridgeConfigEntry,
+    async_add_entities: AddConfigEntryEntitiesCallback,
+) -> None:
+    """Add a binary sensor for each binary sensor point."""
+    add_point_entities(entry, async_add_entities, "binary_sensor", point_binary_sensor)
+
+
+class PlcBinarySensor(PlcPointEntity, BinarySensorEntity):
+    """A BOOL point (any non-zero number counts as on)."""
+
+    entity_description: PlcBinarySensorDescription
+
+    @property
+    def is_on(self) -> bool | None:
+        """Return the point's state."""
+        value = self.raw_value
+        return None if value is None else bool(value)

@@ -1,0 +1,248 @@
+"""Config flow of PLC Bridge: vendor, connection and certificate, reauth and reconfigure."""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from typing import Any
+
+from homeassistant.config_entries import (
+    SOURCE_RECONFIGURE,
+    ConfigEntry,
+    ConfigFlow,
+    ConfigFlowResult,
+    ConfigSubentryFlow,
+)
+from homeassistant.const import CONF_HOST, CONF_PASSWORD, CONF_PORT, CONF_USERNAME
+from homeassistant.core import callback
+from homeassistant.helpers.device_registry import format_mac
+from homeassistant.helpers.selector import (
+    SelectSelector,
+    SelectSelectorConfig,
+    SelectSelectorMode,
+)
+import voluptuous as vol
+
+from .connection import create_client
+from .connection_form import (
+    CREDENTIALS_SCHEMA,
+    VendorField,
+    connection_data,
+    connection_schema,
+    error_for,
+    form_values,
+    on_form,
+)
+from .const import CONF_FINGERPRINT, CONF_TLS, CONF_VENDOR, DOMAIN, LOGGER, SUBENTRY_POINT
+from .options_flow import PlcBridgeOptionsFlow
+from .plc import DeviceInfo, PlcError, TlsMode
+from .plc.http import fetch_fingerprint, format_fingerprint
+from .plc.vendors import VENDORS, client_class
+from .subentry_flow import PointSubentryFlowHandler
+
+CERTIFICATE_TIMEOUT = 10.0
+"""Seconds to wait for the PLC's TLS handshake when fetching its certificate."""
+
+VENDOR_FIELDS: dict[str, tuple[VendorField, ...]] = {}
+"""Extra connection fields per vendor key, shown after the TLS mode; labels in strings.json.
+
+For example "s7": (VendorField("rack", NumberSelector(...), 0), VendorField("slot", ..., 1)).
+Whole numbers come back as int; the client reads them from ConnectionConfig.options.
+"""
+
+
+def device_unique_id(device: DeviceInfo, data: Mapping[str, Any]) -> str:
+    """Return the entry's unique id: the serial or MAC, else host:port for devices without."""
+    if device.serial:
+        return device.serial
+    if device.mac:
+        return format_mac(device.mac)
+    return f"{data[CONF_HOST]}:{data[CONF_PORT]}"
+
+
+class PlcBridgeConfigFlow(ConfigFlow, domain=DOMAIN):
+    """Add a PLC: vendor, connection, certificate; reauth and reconfigure reuse the checks."""
+
+    VERSION = 1
+
+    def __init__(self) -> None:
+        """Start with nothing chosen and no certificate trusted."""
+        self._vendor = ""
+        self._data: dict[str, Any] = {}
+        self._trusted: set[str] = set()
+
+    @staticmethod
+    @callback
+    def async_get_options_flow(config_entry: ConfigEntry) -> PlcBridgeOptionsFlow:
+        """Return the options flow (poll interval)."""
+        return PlcBridgeOptionsFlow()
+
+    @classmethod
+    @callback
+    def async_get_supported_subentry_types(
+        cls, config_entry: ConfigEntry
+    ) -> dict[str, type[ConfigSubentryFlow]]:
+        """Return the subentry flows: one point (entity) per subentry."""
+        return {SUBENTRY_POINT: PointSubentryFlowHandler}
+
+    async def async_step_user(self, user_input: dict[str, Any] | None = None) -> ConfigFlowResult:
+        """Pick the vendor; refuse one whose client is not written yet."""
+        errors: dict[str, str] = {}
+        if user_input is not None:
+            try:
+                client_class(user_input[CONF_VENDOR])
+            except KeyError:
+                errors[CONF_VENDOR] = "not_supported"
+            else:
+                self._vendor = user_input[CONF_VENDOR]
+                self._data = {CONF_VENDOR: self._vendor, CONF_USERNAME: "", CONF_PASSWORD: ""}
+                return await self.async_step_connection()
+        schema = vol.Schema(
+            {
+                vol.Required(CONF_VENDOR): SelectSelector(
+                    SelectSelectorConfig(
+                        options=list(VENDORS),
+                        translation_key=CONF_VENDOR,
+                        mode=SelectSelectorMode.LIST,
+                    )
+                )
+            }
+        )
+        return self.async_show_form(
+            step_id="user",
+            data_schema=self.add_suggested_values_to_schema(schema, user_input),
+            errors=errors,
+        )
+
+    async def async_step_connection(
+        self, user_input: dict[str, Any] | None = None
+    ) -> ConfigFlowResult:
+        """Ask where the PLC is and how to log in, then check the certificate and connect."""
+        if user_input is None:
+            return self._connection_form("connection", {})
+        return await self._submit_connection("connection", user_input)
+
+    async def async_step_reconfigure(
+        self, user_input: dict[str, Any] | None = None
+    ) -> ConfigFlowResult:
+        """Change the address, TLS mode or vendor fields of a configured PLC."""
+        if not self._data:
+            entry = self._get_reconfigure_entry()
+            self._vendor = entry.data[CONF_VENDOR]
+            self._data = dict(entry.data)
+            self._trusted.add(entry.data.get(CONF_FINGERPRINT, ""))
+        if user_input is None:
+            return self._connection_form("reconfigure", {})
+        return await self._submit_connection("reconfigure", user_input)
+
+    async def async_step_certificate(
+        self, user_input: dict[str, Any] | None = None
+    ) -> ConfigFlowResult:
+        """Show the certificate the PLC presents now; trusting it pins it."""
+        fingerprint: str = self._data[CONF_FINGERPRINT]
+        if user_input is not None:
+            self._trusted.add(fingerprint)
+            return await self._finish()
+        return self.async_show_form(
+            step_id="certificate",
+            description_placeholders={
+                CONF_HOST: self._data[CONF_HOST],
+                CONF_PORT: str(self._data[CONF_PORT]),
+                CONF_FINGERPRINT: format_fingerprint(fingerprint),
+            },
+        )
+
+    async def async_step_reauth(self, entry_data: Mapping[str, Any]) -> ConfigFlowResult:
+        """Start re-authentication after the PLC refused the stored credentials."""
+        return await self.async_step_reauth_confirm()
+
+    async def async_step_reauth_confirm(
+        self, user_input: dict[str, Any] | None = None
+    ) -> ConfigFlowResult:
+        """Ask for the credentials again and check them before storing."""
+        entry = self._get_reauth_entry()
+        errors: dict[str, str] = {}
+        if user_input is not None:
+            data = {**entry.data, **user_input}
+            device, errors = await self._connect(data)
+            if device is not None:
+                self.hass.config_entries.async_update_entry(entry, data=data)
+                return self.async_abort(reason="reauth_successful")
+        return self.async_show_form(
+            step_id="reauth_confirm",
+            data_schema=self.add_suggested_values_to_schema(
+                CREDENTIALS_SCHEMA, {CONF_USERNAME: entry.data.get(CONF_USERNAME)}
+            ),
+            errors=on_form(errors, CREDENTIALS_SCHEMA),
+            description_placeholders={"name": entry.title},
+        )
+
+    async def _submit_connection(
+        self, step_id: str, user_input: dict[str, Any]
+    ) -> ConfigFlowResult:
+        """Take a submitted connection form: fetch the certificate in pin mode, then connect."""
+        client = client_class(self._vendor)
+        extras = VENDOR_FIELDS.get(self._vendor, ())
+        self._data.update(connection_data(client, extras, user_input))
+        self._data[CONF_FINGERPRINT] = ""
+        if self._data[CONF_TLS] == TlsMode.PIN:
+            try:
+                self._data[CONF_FINGERPRINT] = await fetch_fingerprint(
+                    self._data[CONF_HOST], self._data[CONF_PORT], CERTIFICATE_TIMEOUT
+                )
+            except PlcError as err:
+                return self._connection_form(step_id, error_for(err))
+            if self._data[CONF_FINGERPRINT] not in self._trusted:
+                return await self.async_step_certificate()
+        return await self._finish()
+
+    async def _finish(self) -> ConfigFlowResult:
+        """Connect with the gathered settings, then create or update the entry."""
+        device, errors = await self._connect(self._data)
+        if device is None:
+            step_id = "reconfigure" if self.source == SOURCE_RECONFIGURE else "connection"
+            return self._connection_form(step_id, errors)
+        await self.async_set_unique_id(
+            device_unique_id(device, self._data), raise_on_progress=False
+        )
+        if self.source != SOURCE_RECONFIGURE:
+            self._abort_if_unique_id_configured()
+            return self.async_create_entry(
+                title=f"{device.model} ({self._data[CONF_HOST]})", data=self._data
+            )
+        entry = self._get_reconfigure_entry()
+        if device.serial or device.mac:
+            self._abort_if_unique_id_mismatch()
+        elif self.unique_id != entry.unique_id:
+            # Without a serial or MAC the address is the identity: it may move, not collide.
+            self._abort_if_unique_id_configured()
+        self.hass.config_entries.async_update_entry(
+            entry, data=self._data, unique_id=self.unique_id
+        )
+        return self.async_abort(reason="reconfigure_successful")
+
+    async def _connect(self, data: Mapping[str, Any]) -> tuple[DeviceInfo | None, dict[str, str]]:
+        """Connect and log in once; return what the PLC says, or the form errors."""
+        client = create_client(self.hass, data)
+        try:
+            return await client.connect(), {}
+        except PlcError as err:
+            LOGGER.debug("Cannot connect to %s: %s", data[CONF_HOST], err)
+            return None, error_for(err)
+        except Exception:
+            LOGGER.exception("Unexpected error connecting to %s", data[CONF_HOST])
+            return None, {"base": "unknown"}
+        finally:
+            await client.close()
+
+    def _connection_form(self, step_id: str, errors: dict[str, str]) -> ConfigFlowResult:
+        """Show the connection (or reconfigure) form with the values entered so far."""
+        schema = connection_schema(
+            client_class(self._vendor),
+            VENDOR_FIELDS.get(self._vendor, ()),
+            credentials=step_id == "connection",
+        )
+        return self.async_show_form(
+            step_id=step_id,
+            data_schema=self.add_suggested_values_to_schema(schema, form_values(self._data)),
+            errors=on_form(errors, schema),
+        )

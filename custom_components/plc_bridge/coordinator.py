@@ -1,0 +1,167 @@
+"""One coordinator per PLC: every point in one planned read per poll, errors mapped once."""
+
+from __future__ import annotations
+
+from collections import deque
+from collections.abc import Mapping
+from dataclasses import dataclass
+from datetime import timedelta
+
+from homeassistant.config_entries import ConfigEntry
+from homeassistant.const import CONF_SCAN_INTERVAL
+from homeassistant.core import HomeAssistant
+from homeassistant.exceptions import (
+    ConfigEntryAuthFailed,
+    ConfigEntryNotReady,
+    HomeAssistantError,
+)
+from homeassistant.helpers.update_coordinator import DataUpdateCoordinator, UpdateFailed
+
+from .const import CONF_ADDRESS, CONF_DATA_TYPE, CONF_TLS, DOMAIN, LOGGER, SUBENTRY_POINT
+from .helpers import translated_errors
+from .plc import (
+    DeviceInfo,
+    PlcAuthenticationError,
+    PlcClient,
+    PlcConnectionError,
+    PlcError,
+    PlcTlsError,
+    Point,
+    ReadResult,
+    TlsMode,
+    Value,
+)
+from .repairs import CERTIFICATE_CHANGED, SESSION_CONFLICT, async_clear_issue, async_raise_issue
+
+RENEWAL_WINDOW = 10
+"""Polls over which session renewals are counted."""
+RENEWAL_LIMIT = 3
+"""Renewals within the window that mean another client logs in with the same PLC user."""
+
+
+@dataclass(slots=True, kw_only=True)
+class PlcRuntimeData:
+    """What a loaded entry keeps: the connected client, its coordinator, what the PLC said."""
+
+    client: PlcClient
+    coordinator: PlcCoordinator
+    device: DeviceInfo
+
+
+type PlcBridgeConfigEntry = ConfigEntry[PlcRuntimeData]
+
+
+def entry_points(entry: ConfigEntry[PlcRuntimeData]) -> dict[str, Point]:
+    """Return the point of every point subentry, by subentry id."""
+    return {
+        subentry_id: Point(subentry.data[CONF_ADDRESS], subentry.data[CONF_DATA_TYPE])
+        for subentry_id, subentry in entry.subentries.items()
+        if subentry.subentry_type == SUBENTRY_POINT
+    }
+
+
+def link_error(
+    hass: HomeAssistant, entry: PlcBridgeConfigEntry, err: PlcError, *, setup: bool
+) -> HomeAssistantError:
+    """Return the error for a failed connect (setup) or poll; a changed pin raises an issue.
+
+    In pin mode the certificate is compared during the TLS handshake, before any request is
+    written, so retrying never hands the credentials to the device that answered instead.
+    """
+    if isinstance(err, PlcAuthenticationError):
+        return ConfigEntryAuthFailed(
+            translation_domain=DOMAIN,
+            translation_key="invalid_auth",
+            translation_placeholders={"error": str(err)},
+        )
+    key = "communication_error"
+    if isinstance(err, PlcTlsError):
+        key = "tls_failed"
+        if entry.data.get(CONF_TLS) == TlsMode.PIN:
+            async_raise_issue(hass, entry, CERTIFICATE_CHANGED)
+    elif isinstance(err, PlcConnectionError):
+        key = "cannot_connect"
+    error = ConfigEntryNotReady if setup else UpdateFailed
+    return error(
+        translation_domain=DOMAIN,
+        translation_key=key,
+        translation_placeholders={"error": str(err)},
+    )
+
+
+class PlcCoordinator(DataUpdateCoordinator[ReadResult]):
+    """Poll every point of one PLC in one planned read, and write through the same client."""
+
+    config_entry: PlcBridgeConfigEntry
+
+    def __init__(self, hass: HomeAssistant, entry: PlcBridgeConfigEntry, client: PlcClient) -> None:
+        """Collect the points and choose the poll interval the vendor's request rate allows."""
+        self.client = client
+        self.points = entry_points(entry)
+        self._poll = list(dict.fromkeys(self.points.values()))
+        interval = max(
+            float(entry.options.get(CONF_SCAN_INTERVAL, client.default_scan_interval)),
+            client.min_scan_interval(self._poll),
+        )
+        super().__init__(
+            hass,
+            LOGGER,
+            config_entry=entry,
+            name=entry.title,
+            update_interval=timedelta(seconds=interval),
+        )
+        self._failing: set[Point] = set()
+        self._renewals: deque[int] = deque(maxlen=RENEWAL_WINDOW)
+        self._renewals_seen = client.metrics.session_renewals
+
+    async def _async_update_data(self) -> ReadResult:
+        """Read every point at once; a point's own failure stays in its result."""
+        try:
+            result = await self.client.read(self._poll)
+        except PlcError as err:
+            raise link_error(self.hass, self.config_entry, err, setup=False) from err
+        finally:
+            self._watch_sessions()
+        if self.config_entry.data.get(CONF_TLS) == TlsMode.PIN:
+            async_clear_issue(self.hass, self.config_entry, CERTIFICATE_CHANGED)
+        self._log_point_changes(result)
+        return result
+
+    def _log_point_changes(self, result: ReadResult) -> None:
+        """Log a point when it starts failing and when it recovers, not at every poll."""
+        failing = {point for point, outcome in result.values.items() if not outcome.ok}
+        for point in failing - self._failing:
+            LOGGER.warning(
+                "%s: cannot read %s (%s): %s",
+                self.name,
+                point.address,
+                point.data_type,
+                result.values[point].error,
+            )
+        for point in self._failing - failing:
+            LOGGER.info("%s: %s (%s) can be read again", self.name, point.address, point.data_type)
+        self._failing = failing
+
+    def _watch_sessions(self) -> None:
+        """Raise an issue while the PLC keeps dropping the session (its user logs in elsewhere)."""
+        renewals = self.client.metrics.session_renewals
+        self._renewals.append(renewals - self._renewals_seen)
+        self._renewals_seen = renewals
+        recent = sum(self._renewals)
+        if recent >= RENEWAL_LIMIT:
+            async_raise_issue(self.hass, self.config_entry, SESSION_CONFLICT)
+        elif recent == 0:
+            async_clear_issue(self.hass, self.config_entry, SESSION_CONFLICT)
+
+    async def async_write(self, values: Mapping[Point, Value]) -> None:
+        """Write the values in one call, then refresh; any point the PLC refused is an error."""
+        with translated_errors(self.hass, self.config_entry):
+            results = await self.client.write(values)
+        await self.async_request_refresh()
+        failed = [f"{point.address}: {res.error}" for point, res in results.items() if res.error]
+        if failed:
+            raise HomeAssistantError(
+                translation_domain=DOMAIN,
+                translation_key="write_failed",
+                translation_placeholders={"error": "; ".join(failed)},
+            )

@@ -1,0 +1,51 @@
+"""Date and time entities: DATE and DT points, such as the PLC clock."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from datetime import datetime
+
+from homeassistant.components.datetime import DateTimeEntity, DateTimeEntityDescription
+from homeassistant.config_entries import ConfigSubentry
+from homeassistant.core import HomeAssistant
+from homeassistant.helpers.entity_platform import AddConfigEntryEntitiesCallback
+
+from .coordinator import PlcBridgeConfigEntry
+from .entity import PlcPointDescription, PlcPointEntity, add_point_entities, point_fields
+
+PARALLEL_UPDATES = 1
+
+
+@dataclass(frozen=True, kw_only=True)
+class PlcDateTimeDescription(DateTimeEntityDescription, PlcPointDescription):
+    """A point shown as a date and time."""
+
+
+def point_datetime(entry: PlcBridgeConfigEntry, subentry: ConfigSubentry) -> PlcDateTime:
+    """Return the date and time entity of a point."""
+    return PlcDateTime(entry, PlcDateTimeDescription(**point_fields(entry, subentry)))
+
+
+async def async_setup_entry(
+    hass: HomeAssistant,
+    entry: PlcBridgeConfigEntry,
+    async_add_entities: AddConfigEntryEntitiesCallback,
+) -> None:
+    """Add a date and time entity for each datetime point."""
+    add_point_entities(entry, async_add_entities, "datetime", point_datetime)
+
+
+class PlcDateTime(PlcPointEntity, DateTimeEntity):
+    """A date and time point; the client sends it in the PLC's time zone."""
+
+    entity_description: PlcDateTimeDescription
+
+    @property
+    def native_value(self) -> datetime | None:
+        """Return the point's date and time (timezone-aware)."""
+        value = self.raw_value
+        return value if isinstance(value, datetime) else None
+
+    async def async_set_value(self, value: datetime) -> None:
+        """Write the date and time."""
+        await self.async_write(value)

@@ -1,0 +1,63 @@
+"""Diagnostics: settings, points, device, last status and request counters, credentials hidden."""
+
+from __future__ import annotations
+
+from dataclasses import asdict
+from typing import Any
+
+from homeassistant.components.diagnostics import async_redact_data
+from homeassistant.const import CONF_HOST, CONF_PASSWORD, CONF_USERNAME
+from homeassistant.core import HomeAssistant
+
+from .const import CONF_FINGERPRINT
+from .coordinator import PlcBridgeConfigEntry
+from .helpers import json_value
+
+TO_REDACT = {
+    CONF_PASSWORD,
+    CONF_USERNAME,
+    CONF_HOST,
+    # The pin identifies one reachable device as surely as its address does.
+    CONF_FINGERPRINT,
+    "serial",
+    "mac",
+    "token",
+    "cookie",
+}
+
+
+async def async_get_config_entry_diagnostics(
+    hass: HomeAssistant, entry: PlcBridgeConfigEntry
+) -> dict[str, Any]:
+    """Return what helps to understand a PLC's behaviour, without where it is or how to log in."""
+    runtime = entry.runtime_data
+    coordinator = runtime.coordinator
+    data = coordinator.data
+    status = asdict(data.status) | {"clock": json_value(data.status.clock)}
+    return {
+        "entry": {
+            "title": entry.title,
+            "data": async_redact_data(dict(entry.data), TO_REDACT),
+            "options": dict(entry.options),
+        },
+        "points": {
+            subentry.subentry_id: {"title": subentry.title, **subentry.data}
+            for subentry in entry.subentries.values()
+        },
+        "device": async_redact_data(asdict(runtime.device), TO_REDACT),
+        "status": status,
+        "results": {
+            f"{point.address}|{point.data_type}": {"ok": result.ok, "error": str(result.error)}
+            if result.error
+            else {"ok": True, "value": json_value(result.value)}
+            for point, result in data.values.items()
+        },
+        "poll": {
+            "interval_s": coordinator.update_interval.total_seconds()
+            if coordinator.update_interval
+            else None,
+            "planned_requests": runtime.client.requests_for(list(data.values)),
+            "last_update_success": coordinator.last_update_success,
+        },
+        "metrics": runtime.client.metrics.as_dict(),
+    }

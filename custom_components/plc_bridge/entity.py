@@ -1,0 +1,180 @@
+"""The base entity of PLC Bridge and the point description built from a subentry."""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass
+from decimal import Decimal
+from enum import StrEnum
+from typing import Any
+
+from homeassistant.config_entries import ConfigSubentry
+from homeassistant.const import CONF_DEVICE_CLASS
+from homeassistant.exceptions import ServiceValidationError
+from homeassistant.helpers.device_registry import CONNECTION_NETWORK_MAC, DeviceInfo, format_mac
+from homeassistant.helpers.entity import Entity, EntityDescription
+from homeassistant.helpers.entity_platform import AddConfigEntryEntitiesCallback
+from homeassistant.helpers.update_coordinator import CoordinatorEntity
+
+from .const import (
+    CONF_ADDRESS,
+    CONF_DATA_TYPE,
+    CONF_OFFSET,
+    CONF_PLATFORM,
+    CONF_READ_ONLY,
+    CONF_SCALE,
+    DOMAIN,
+    SUBENTRY_POINT,
+)
+from .coordinator import PlcBridgeConfigEntry, PlcCoordinator
+from .plc import PlcError, Point, PointResult, Value, ValueKind
+
+MANUFACTURERS = {
+    "s7_smart": "Siemens",
+    "s7": "Siemens",
+    "tecomat": "Teco",
+    "plcnext": "Phoenix Contact",
+    "softplc": "SoftPLC",
+}
+
+
+@dataclass(frozen=True, kw_only=True)
+class PlcPointDescription(EntityDescription):
+    """One point as an entity: its address and type, what it holds, and its scaling."""
+
+    point: Point
+    kind: ValueKind | None = None
+    scale: float = 1.0
+    offset: float = 0.0
+    read_only: bool = False
+
+    def value_fn(self, raw: Value | None) -> Any:
+        """Return what Home Assistant shows for a raw value: numbers scaled, bytes as hex."""
+        if isinstance(raw, bool):
+            return raw
+        if isinstance(raw, int | float):
+            return scaled(raw, self.scale, self.offset)
+        if isinstance(raw, list):
+            return " ".join(f"{byte:02X}" for byte in raw)
+        return raw
+
+    def raw_fn(self, value: float) -> int | float:
+        """Return the raw value to write for a shown number (scaling inverted)."""
+        raw = (Decimal(repr(float(value))) - Decimal(repr(self.offset))) / Decimal(
+            repr(self.scale or 1.0)
+        )
+        return round(raw) if self.kind is ValueKind.INTEGER else float(raw)
+
+
+def scaled(raw: int | float, scale: float, offset: float) -> int | float:
+    """Return raw × scale + offset, computed in decimal so 23 × 0.1 shows as 2.3."""
+    if scale == 1 and offset == 0:
+        return raw
+    value = Decimal(repr(raw)) * Decimal(repr(scale)) + Decimal(repr(offset))
+    return (
+        int(value) if isinstance(raw, int) and value == value.to_integral_value() else float(value)
+    )
+
+
+def point_fields(entry: PlcBridgeConfigEntry, subentry: ConfigSubentry) -> dict[str, Any]:
+    """Return the PlcPointDescription fields of a point subentry (name: the subentry's title)."""
+    data = subentry.data
+    point = Point(data[CONF_ADDRESS], data[CONF_DATA_TYPE])
+    try:
+        kind = entry.runtime_data.client.value_kind(point)
+    except PlcError:
+        kind = None  # the poll reports the address error on the entity
+    return {
+        "key": subentry.subentry_id,
+        "name": subentry.title,
+        "point": point,
+        "kind": kind,
+        "scale": float(data.get(CONF_SCALE, 1.0)),
+        "offset": float(data.get(CONF_OFFSET, 0.0)),
+        "read_only": bool(data.get(CONF_READ_ONLY, False)),
+    }
+
+
+def device_class[E: StrEnum](subentry: ConfigSubentry, enum: type[E]) -> E | None:
+    """Return the subentry's device class if the platform knows it."""
+    try:
+        return enum(subentry.data[CONF_DEVICE_CLASS])
+    except (KeyError, ValueError):
+        return None
+
+
+def add_point_entities(
+    entry: PlcBridgeConfigEntry,
+    async_add_entities: AddConfigEntryEntitiesCallback,
+    platform: str,
+    entity: Callable[[PlcBridgeConfigEntry, ConfigSubentry], Entity],
+) -> None:
+    """Add the entity of every point subentry of a platform, each under its subentry."""
+    for subentry in entry.subentries.values():
+        if subentry.subentry_type == SUBENTRY_POINT and subentry.data[CONF_PLATFORM] == platform:
+            async_add_entities([entity(entry, subentry)], config_subentry_id=subentry.subentry_id)
+
+
+def device_info(entry: PlcBridgeConfigEntry) -> DeviceInfo:
+    """Return the device of a PLC, from what it said when it connected."""
+    device = entry.runtime_data.device
+    connections = {(CONNECTION_NETWORK_MAC, format_mac(device.mac))} if device.mac else set()
+    return DeviceInfo(
+        identifiers={(DOMAIN, entry.unique_id or entry.entry_id)},
+        name=entry.title,
+        manufacturer=MANUFACTURERS.get(device.vendor, device.vendor),
+        model=str(device.model),
+        sw_version=str(device.firmware) if device.firmware else None,
+        serial_number=str(device.serial) if device.serial else None,
+        connections=connections,
+    )
+
+
+class PlcEntity(CoordinatorEntity[PlcCoordinator]):
+    """An entity of one PLC's device: unique id and device set once."""
+
+    _attr_has_entity_name = True
+
+    def __init__(self, entry: PlcBridgeConfigEntry, key: str) -> None:
+        """Attach the entity to the entry's coordinator and device."""
+        super().__init__(entry.runtime_data.coordinator)
+        self._attr_unique_id = f"{entry.unique_id or entry.entry_id}_{key}"
+        self._attr_device_info = device_info(entry)
+
+
+class PlcPointEntity(PlcEntity):
+    """An entity showing one point; unavailable while its point fails, whatever the others do."""
+
+    entity_description: PlcPointDescription
+
+    def __init__(self, entry: PlcBridgeConfigEntry, description: PlcPointDescription) -> None:
+        """Bind the entity to its point (the description's key is the subentry id)."""
+        super().__init__(entry, description.key)
+        self.entity_description = description
+
+    @property
+    def result(self) -> PointResult | None:
+        """The point's outcome in the last poll."""
+        return self.coordinator.data.values.get(self.entity_description.point)
+
+    @property
+    def available(self) -> bool:
+        """Available while the PLC answers and this point reads without error."""
+        result = self.result
+        return super().available and result is not None and result.ok
+
+    @property
+    def raw_value(self) -> Value | None:
+        """The point's value as the PLC sent it."""
+        result = self.result
+        return result.value if result is not None else None
+
+    async def async_write(self, value: Value) -> None:
+        """Write the point (one request), then refresh; refuse a point marked read-only."""
+        if self.entity_description.read_only:
+            raise ServiceValidationError(
+                translation_domain=DOMAIN,
+                translation_key="read_only",
+                translation_placeholders={"address": self.entity_description.point.address},
+            )
+        await self.coordinator.async_write({self.entity_description.point: value})

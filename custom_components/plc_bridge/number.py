@@ -1,0 +1,84 @@
+"""Numbers: writable numeric points, scaled, within the range the user set."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from homeassistant.components.number import (
+    NumberDeviceClass,
+    NumberEntity,
+    NumberEntityDescription,
+    NumberMode,
+)
+from homeassistant.config_entries import ConfigSubentry
+from homeassistant.const import CONF_UNIT_OF_MEASUREMENT
+from homeassistant.core import HomeAssistant
+from homeassistant.helpers.entity_platform import AddConfigEntryEntitiesCallback
+
+from .const import CONF_MAX, CONF_MIN, CONF_STEP
+from .coordinator import PlcBridgeConfigEntry
+from .entity import (
+    PlcPointDescription,
+    PlcPointEntity,
+    add_point_entities,
+    device_class,
+    point_fields,
+)
+from .plc import ValueKind
+
+PARALLEL_UPDATES = 1
+
+# Without a range from the user, allow what a 32-bit point can hold; the vendor's check
+# refuses a value that does not fit the point's own type before anything is sent.
+DEFAULT_MIN = -2_147_483_648.0
+DEFAULT_MAX = 4_294_967_295.0
+
+
+@dataclass(frozen=True, kw_only=True)
+class PlcNumberDescription(NumberEntityDescription, PlcPointDescription):
+    """A point shown as a number."""
+
+
+def point_number(entry: PlcBridgeConfigEntry, subentry: ConfigSubentry) -> PlcNumber:
+    """Return the number of a point; the step defaults to one raw count for integers."""
+    fields = point_fields(entry, subentry)
+    data = subentry.data
+    step = data.get(CONF_STEP) or (
+        abs(fields["scale"]) if fields["kind"] is ValueKind.INTEGER else 0.001
+    )
+    description = PlcNumberDescription(
+        **fields,
+        device_class=device_class(subentry, NumberDeviceClass),
+        native_unit_of_measurement=data.get(CONF_UNIT_OF_MEASUREMENT),
+        native_min_value=float(data.get(CONF_MIN, DEFAULT_MIN)),
+        native_max_value=float(data.get(CONF_MAX, DEFAULT_MAX)),
+        native_step=float(step),
+        # A box, not a slider: dragging would write every value it passes to the machine.
+        mode=NumberMode.BOX,
+    )
+    return PlcNumber(entry, description)
+
+
+async def async_setup_entry(
+    hass: HomeAssistant,
+    entry: PlcBridgeConfigEntry,
+    async_add_entities: AddConfigEntryEntitiesCallback,
+) -> None:
+    """Add a number for each number point."""
+    add_point_entities(entry, async_add_entities, "number", point_number)
+
+
+class PlcNumber(PlcPointEntity, NumberEntity):
+    """A numeric point the user can set; Home Assistant checks the range before it is written."""
+
+    entity_description: PlcNumberDescription
+
+    @property
+    def native_value(self) -> float | None:
+        """Return the scaled value."""
+        value = self.entity_description.value_fn(self.raw_value)
+        return value if isinstance(value, int | float) else None
+
+    async def async_set_native_value(self, value: float) -> None:
+        """Write the value with the scaling inverted."""
+        await self.async_write(self.entity_description.raw_fn(value))

@@ -1,0 +1,102 @@
+"""Repair issues: an unchecked TLS link, a replaced certificate, two clients sharing a PLC user."""
+
+from __future__ import annotations
+
+from typing import Any
+
+from homeassistant.components.repairs import ConfirmRepairFlow, RepairsFlow
+from homeassistant.config_entries import ConfigEntry, ConfigEntryState
+from homeassistant.const import CONF_HOST, CONF_PORT
+from homeassistant.core import HomeAssistant, callback
+from homeassistant.data_entry_flow import FlowResult
+from homeassistant.helpers import issue_registry as ir
+import voluptuous as vol
+
+from .const import CONF_FINGERPRINT, DOMAIN
+from .plc import PlcError
+from .plc.http import fetch_fingerprint, format_fingerprint
+
+TLS_OFF = "tls_off"
+CERTIFICATE_CHANGED = "certificate_changed"
+SESSION_CONFLICT = "session_conflict"
+ISSUES = (TLS_OFF, CERTIFICATE_CHANGED, SESSION_CONFLICT)
+
+
+def issue_id(entry: ConfigEntry[Any], key: str) -> str:
+    """Return the id of an entry's issue: one of each kind per PLC."""
+    return f"{key}_{entry.entry_id}"
+
+
+@callback
+def async_raise_issue(hass: HomeAssistant, entry: ConfigEntry[Any], key: str) -> None:
+    """Create (or keep) an issue of the entry; a changed certificate is fixable here."""
+    ir.async_create_issue(
+        hass,
+        DOMAIN,
+        issue_id(entry, key),
+        is_fixable=key == CERTIFICATE_CHANGED,
+        severity=ir.IssueSeverity.ERROR if key == CERTIFICATE_CHANGED else ir.IssueSeverity.WARNING,
+        translation_key=key,
+        translation_placeholders={"title": entry.title, "host": str(entry.data[CONF_HOST])},
+        data={"entry_id": entry.entry_id},
+    )
+
+
+@callback
+def async_clear_issue(hass: HomeAssistant, entry: ConfigEntry[Any], key: str) -> None:
+    """Delete an issue of the entry, if it is there."""
+    ir.async_delete_issue(hass, DOMAIN, issue_id(entry, key))
+
+
+class CertificateRepairFlow(RepairsFlow):
+    """Show the certificate the PLC presents now; trusting it pins it and sets the entry up."""
+
+    def __init__(self, entry_id: str) -> None:
+        """Remember the entry whose pinned certificate no longer matches."""
+        self._entry_id = entry_id
+        self._fingerprint = ""
+
+    async def async_step_init(self, user_input: dict[str, Any] | None = None) -> FlowResult:
+        """Start with the certificate check."""
+        return await self.async_step_confirm()
+
+    async def async_step_confirm(self, user_input: dict[str, Any] | None = None) -> FlowResult:
+        """Fetch and show the new fingerprint; pin exactly the one shown once confirmed."""
+        entry = self.hass.config_entries.async_get_entry(self._entry_id)
+        if entry is None:
+            return self.async_abort(reason="entry_removed")
+        if user_input is not None:
+            self.hass.config_entries.async_update_entry(
+                entry, data={**entry.data, CONF_FINGERPRINT: self._fingerprint}
+            )
+            if entry.state is not ConfigEntryState.LOADED:
+                # A loaded entry reloads through its update listener; one waiting to retry not.
+                self.hass.config_entries.async_schedule_reload(entry.entry_id)
+            return self.async_create_entry(data={})
+        try:
+            self._fingerprint = await fetch_fingerprint(
+                entry.data[CONF_HOST], int(entry.data[CONF_PORT])
+            )
+        except PlcError as err:
+            return self.async_abort(
+                reason="cannot_connect", description_placeholders={"error": str(err)}
+            )
+        return self.async_show_form(
+            step_id="confirm",
+            data_schema=vol.Schema({}),
+            description_placeholders={
+                "title": entry.title,
+                "host": str(entry.data[CONF_HOST]),
+                "port": str(entry.data[CONF_PORT]),
+                "fingerprint": format_fingerprint(self._fingerprint),
+            },
+        )
+
+
+async def async_create_fix_flow(
+    hass: HomeAssistant, issue_id: str, data: dict[str, str | int | float | None] | None
+) -> RepairsFlow:
+    """Return the fix flow of an issue: trust the new certificate, or just acknowledge."""
+    if issue_id.startswith(CERTIFICATE_CHANGED) and data and isinstance(data["entry_id"], str):
+        return CertificateRepairFlow(data["entry_id"])
+    return ConfirmRepairFlow()

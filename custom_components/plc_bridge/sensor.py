@@ -1,0 +1,155 @@
+"""Sensors: points shown as values, and the status the PLC reports beside them."""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass
+from typing import Any
+
+from homeassistant.components.sensor import (
+    CONF_STATE_CLASS,
+    SensorDeviceClass,
+    SensorEntity,
+    SensorEntityDescription,
+    SensorStateClass,
+)
+from homeassistant.config_entries import ConfigSubentry
+from homeassistant.const import CONF_UNIT_OF_MEASUREMENT, EntityCategory
+from homeassistant.core import HomeAssistant
+from homeassistant.helpers.entity_platform import AddConfigEntryEntitiesCallback
+
+from .coordinator import PlcBridgeConfigEntry
+from .entity import (
+    PlcEntity,
+    PlcPointDescription,
+    PlcPointEntity,
+    add_point_entities,
+    device_class,
+    point_fields,
+)
+from .plc import PlcStatus, ValueKind
+
+PARALLEL_UPDATES = 0
+
+OPERATING_MODES = ["run", "stop", "startup", "halt", "hold", "error"]
+"""The operating modes PLCs report, lower case (anything else shows as unknown)."""
+KNOWN_EXTRA = ("cycle_time", "cpu_load", "last_error")
+"""PlcStatus.extra keys with translated names; other keys are shown under their own name."""
+NUMERIC = (ValueKind.INTEGER, ValueKind.FLOAT, ValueKind.BOOL)
+
+
+@dataclass(frozen=True, kw_only=True)
+class PlcSensorDescription(SensorEntityDescription, PlcPointDescription):
+    """A point shown as a sensor."""
+
+
+@dataclass(frozen=True, kw_only=True)
+class PlcStatusDescription(SensorEntityDescription):
+    """A status field of the PLC shown as a diagnostic sensor."""
+
+    value_fn: Callable[[PlcStatus], str | None]
+
+
+def operating_mode(status: PlcStatus) -> str | None:
+    """Return the operating mode as an option of the enum sensor."""
+    mode = (status.mode or "").strip().lower()
+    return mode if mode in OPERATING_MODES else None
+
+
+STATUS = (
+    PlcStatusDescription(
+        key="operating_mode",
+        translation_key="operating_mode",
+        device_class=SensorDeviceClass.ENUM,
+        options=OPERATING_MODES,
+        value_fn=operating_mode,
+    ),
+    PlcStatusDescription(
+        key="system_status",
+        translation_key="system_status",
+        entity_registry_enabled_default=False,
+        value_fn=lambda status: status.system,
+    ),
+    PlcStatusDescription(
+        key="force_status",
+        translation_key="force_status",
+        entity_registry_enabled_default=False,
+        value_fn=lambda status: status.force,
+    ),
+)
+REPORTED: dict[str, Callable[[PlcStatus], bool]] = {
+    "operating_mode": lambda status: status.mode is not None,
+    "system_status": lambda status: status.system is not None,
+    "force_status": lambda status: status.force is not None,
+}
+
+
+def extra_description(key: str) -> PlcStatusDescription:
+    """Return the description of a vendor-specific status field."""
+    known = key in KNOWN_EXTRA
+    return PlcStatusDescription(
+        key=f"extra_{key}",
+        translation_key=key if known else None,
+        name=None if known else key,
+        entity_registry_enabled_default=False,
+        value_fn=lambda status: status.extra.get(key),
+    )
+
+
+def point_sensor(entry: PlcBridgeConfigEntry, subentry: ConfigSubentry) -> PlcPointSensor:
+    """Return the sensor of a point: numbers keep unit and classes, other values show as text."""
+    fields = point_fields(entry, subentry)
+    extra: dict[str, Any] = {}
+    if fields["kind"] in NUMERIC or fields["kind"] is None:
+        extra = {
+            "native_unit_of_measurement": subentry.data.get(CONF_UNIT_OF_MEASUREMENT),
+            "device_class": device_class(subentry, SensorDeviceClass),
+            "state_class": subentry.data.get(CONF_STATE_CLASS),
+        }
+        if extra["state_class"]:
+            extra["state_class"] = SensorStateClass(extra["state_class"])
+    elif fields["kind"] is ValueKind.DATETIME:
+        extra = {"device_class": SensorDeviceClass.TIMESTAMP}
+    return PlcPointSensor(entry, PlcSensorDescription(**fields, **extra))
+
+
+async def async_setup_entry(
+    hass: HomeAssistant,
+    entry: PlcBridgeConfigEntry,
+    async_add_entities: AddConfigEntryEntitiesCallback,
+) -> None:
+    """Add the point sensors, and a diagnostic sensor for each status field the PLC reports."""
+    status = entry.runtime_data.coordinator.data.status
+    descriptions = [d for d in STATUS if REPORTED[d.key](status)]
+    descriptions += [extra_description(key) for key in sorted(status.extra)]
+    async_add_entities(PlcStatusSensor(entry, description) for description in descriptions)
+    add_point_entities(entry, async_add_entities, "sensor", point_sensor)
+
+
+class PlcPointSensor(PlcPointEntity, SensorEntity):
+    """A point's value."""
+
+    entity_description: PlcSensorDescription
+
+    @property
+    def native_value(self) -> Any:
+        """Return the scaled value (text for strings and raw bytes)."""
+        value = self.entity_description.value_fn(self.raw_value)
+        return int(value) if isinstance(value, bool) else value
+
+
+class PlcStatusSensor(PlcEntity, SensorEntity):
+    """A status field of the PLC, read with every poll."""
+
+    entity_description: PlcStatusDescription
+    _attr_entity_category = EntityCategory.DIAGNOSTIC
+
+    def __init__(self, entry: PlcBridgeConfigEntry, description: PlcStatusDescription) -> None:
+        """Bind the sensor to its status field."""
+        super().__init__(entry, description.key)
+        self.entity_description = description
+
+    @property
+    def native_value(self) -> str | None:
+        """Return the field as the PLC reported it in the last poll."""
+        return self.entity_description.value_fn(self.coordinator.data.status)

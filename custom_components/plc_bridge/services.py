@@ -1,0 +1,132 @@
+"""Actions of PLC Bridge: write and read points by address, and set the PLC clock."""
+
+from __future__ import annotations
+
+from typing import Any
+
+from homeassistant.config_entries import ConfigEntryState
+from homeassistant.core import (
+    HomeAssistant,
+    ServiceCall,
+    ServiceResponse,
+    SupportsResponse,
+    callback,
+)
+from homeassistant.exceptions import ServiceValidationError
+from homeassistant.helpers import config_validation as cv
+from homeassistant.util import dt as dt_util
+import voluptuous as vol
+
+from .const import (
+    ATTR_CONFIG_ENTRY_ID,
+    ATTR_POINTS,
+    ATTR_VALUE,
+    CONF_ADDRESS,
+    CONF_DATA_TYPE,
+    DOMAIN,
+)
+from .coordinator import PlcBridgeConfigEntry
+from .helpers import invalid, json_value, translated_errors
+from .plc import PlcClient, PlcError, Point, Value
+
+SERVICE_WRITE = "write"
+SERVICE_READ = "read"
+SERVICE_SYNC_CLOCK = "sync_clock"
+
+POINT = {vol.Required(CONF_ADDRESS): cv.string, vol.Required(CONF_DATA_TYPE): cv.string}
+VALUE = vol.Any(bool, int, float, str, [vol.Coerce(int)])
+ENTRY_SCHEMA = vol.Schema({vol.Required(ATTR_CONFIG_ENTRY_ID): cv.string})
+WRITE_SCHEMA = ENTRY_SCHEMA.extend(
+    {
+        vol.Required(ATTR_POINTS): vol.All(
+            cv.ensure_list, [vol.Schema({**POINT, vol.Required(ATTR_VALUE): VALUE})], vol.Length(1)
+        )
+    }
+)
+READ_SCHEMA = ENTRY_SCHEMA.extend(
+    {vol.Required(ATTR_POINTS): vol.All(cv.ensure_list, [vol.Schema(POINT)], vol.Length(1))}
+)
+
+
+def loaded_entry(call: ServiceCall) -> PlcBridgeConfigEntry:
+    """Return the PLC the action names; it must be set up."""
+    entry_id: str = call.data[ATTR_CONFIG_ENTRY_ID]
+    entry: PlcBridgeConfigEntry | None = call.hass.config_entries.async_get_entry(entry_id)
+    if entry is None or entry.domain != DOMAIN:
+        raise ServiceValidationError(
+            translation_domain=DOMAIN,
+            translation_key="entry_not_found",
+            translation_placeholders={"entry_id": entry_id},
+        )
+    if entry.state is not ConfigEntryState.LOADED:
+        raise ServiceValidationError(
+            translation_domain=DOMAIN,
+            translation_key="entry_not_loaded",
+            translation_placeholders={"title": entry.title},
+        )
+    return entry
+
+
+def checked_point(client: PlcClient, item: dict[str, Any]) -> Point:
+    """Return an action's point with its address normalized; refuse an invalid one."""
+    try:
+        return client.validate_point(Point(item[CONF_ADDRESS], item[CONF_DATA_TYPE]))
+    except PlcError as err:
+        raise invalid("invalid_address", err) from err
+
+
+def checked_value(client: PlcClient, point: Point, value: Value) -> Value:
+    """Return the value coerced for the point; refuse one that does not fit."""
+    try:
+        return client.validate_value(point, value)
+    except PlcError as err:
+        raise invalid("invalid_value", err) from err
+
+
+async def async_write(call: ServiceCall) -> None:
+    """Write every given point in one request, all checked before anything is sent."""
+    entry = loaded_entry(call)
+    client = entry.runtime_data.client
+    values: dict[Point, Value] = {}
+    for item in call.data[ATTR_POINTS]:
+        point = checked_point(client, item)
+        values[point] = checked_value(client, point, item[ATTR_VALUE])
+    await entry.runtime_data.coordinator.async_write(values)
+
+
+async def async_read(call: ServiceCall) -> ServiceResponse:
+    """Read the given points in one poll; return each value, or its error."""
+    entry = loaded_entry(call)
+    client = entry.runtime_data.client
+    points = [checked_point(client, item) for item in call.data[ATTR_POINTS]]
+    with translated_errors(call.hass, entry):
+        result = await client.read(points)
+    values: dict[str, Any] = {}
+    errors: dict[str, Any] = {}
+    for point in points:
+        outcome = result.values.get(point)
+        values[point.address] = json_value(outcome.value) if outcome and outcome.ok else None
+        if outcome is None or outcome.error is not None:
+            errors[point.address] = str(outcome.error if outcome else "no answer for this point")
+    return {"values": values, "errors": errors}
+
+
+async def async_sync_clock(call: ServiceCall) -> None:
+    """Set the PLC clock to Home Assistant's time."""
+    entry = loaded_entry(call)
+    with translated_errors(call.hass, entry):
+        await entry.runtime_data.client.set_clock(dt_util.now())
+
+
+@callback
+def async_setup_services(hass: HomeAssistant) -> None:
+    """Register the actions (once, for every PLC)."""
+    hass.services.async_register(DOMAIN, SERVICE_WRITE, async_write, schema=WRITE_SCHEMA)
+    hass.services.async_register(
+        DOMAIN,
+        SERVICE_READ,
+        async_read,
+        schema=READ_SCHEMA,
+        supports_response=SupportsResponse.ONLY,
+    )
+    hass.services.async_register(DOMAIN, SERVICE_SYNC_CLOCK, async_sync_clock, schema=ENTRY_SCHEMA)

@@ -1,0 +1,185 @@
+"""Fixtures of the flow tests: a simulator, its entry, a fake browsing vendor, translations."""
+
+from __future__ import annotations
+
+from collections.abc import AsyncGenerator, Generator, Mapping, Sequence
+from datetime import datetime
+import json
+from pathlib import Path
+import re
+from typing import Any, ClassVar
+from unittest.mock import AsyncMock, patch
+
+from homeassistant.const import CONF_HOST, CONF_PASSWORD, CONF_PORT, CONF_USERNAME
+from homeassistant.core import HomeAssistant
+from homeassistant.data_entry_flow import FlowResultType
+import pytest
+from pytest_homeassistant_custom_component.common import MockConfigEntry
+
+from custom_components.plc_bridge.const import (
+    CONF_FINGERPRINT,
+    CONF_OPTIONS,
+    CONF_TLS,
+    CONF_VENDOR,
+    DOMAIN,
+)
+from custom_components.plc_bridge.plc import (
+    BrowseItem,
+    DeviceInfo,
+    PlcAddressError,
+    PlcClient,
+    Point,
+    PointResult,
+    ReadResult,
+    TlsMode,
+    Value,
+    vendors,
+)
+from simulators.s7_smart import DEFAULT_PASSWORD, DEFAULT_USER, S7SmartSimulator
+
+STRINGS = json.loads(
+    (Path(__file__).parents[1] / "custom_components/plc_bridge/strings.json").read_text()
+)
+FAKE_VENDOR = "plcnext"  # registered as a fake client for the test that asks for it
+
+
+def smart_data(sim: S7SmartSimulator, **changes: Any) -> dict[str, Any]:
+    """Return the entry data of the S7-200 SMART simulator, pinned, with changes."""
+    data = {
+        CONF_VENDOR: "s7_smart",
+        CONF_HOST: sim.host,
+        CONF_PORT: sim.port,
+        CONF_USERNAME: DEFAULT_USER,
+        CONF_PASSWORD: DEFAULT_PASSWORD,
+        CONF_TLS: TlsMode.PIN.value,
+        CONF_FINGERPRINT: sim.fingerprint,
+        CONF_OPTIONS: {},
+    }
+    return data | changes
+
+
+@pytest.fixture
+async def flow_sim() -> AsyncGenerator[S7SmartSimulator]:
+    """An S7-200 SMART simulator on 127.0.0.1 (HTTPS, certificate from its own CA)."""
+    sim = S7SmartSimulator()
+    await sim.start()
+    yield sim
+    await sim.stop()
+
+
+@pytest.fixture
+def flow_entry(hass: HomeAssistant, flow_sim: S7SmartSimulator) -> MockConfigEntry:
+    """A configured (not loaded) entry of the simulator."""
+    entry = MockConfigEntry(
+        domain=DOMAIN,
+        title="S7-200 SMART (127.0.0.1)",
+        data=smart_data(flow_sim),
+        unique_id=f"{flow_sim.host}:{flow_sim.port}",
+    )
+    entry.add_to_hass(hass)
+    return entry
+
+
+@pytest.fixture
+def mock_setup_entry() -> Generator[AsyncMock]:
+    """Keep the integration from setting up: for tests of the flow alone."""
+    with patch("custom_components.plc_bridge.async_setup_entry", return_value=True) as mock:
+        yield mock
+
+
+class FakeClient(PlcClient):
+    """A browsing vendor without TLS or credentials that reports a serial number."""
+
+    vendor: ClassVar[str] = FAKE_VENDOR
+    default_port: ClassVar[int] = 8080
+    data_types: ClassVar[tuple[str, ...]] = ("BOOL", "INT", "REAL", "STRING", "DT")
+    can_browse: ClassVar[bool] = True
+    serial: ClassVar[str] = "FAKE-1"
+    items: ClassVar[list[BrowseItem]] = []
+    browse_error: ClassVar[Exception | None] = None
+
+    @classmethod
+    def validate_point(cls, point: Point) -> Point:
+        """Accept dotted identifiers; the type must be one of ours."""
+        if not re.fullmatch(r"[A-Za-z_][\w.]*", point.address):
+            raise PlcAddressError(f"{point.address!r} is not a variable name")
+        if point.data_type.upper() not in cls.data_types:
+            raise PlcAddressError(f"unknown type {point.data_type!r}")
+        return Point(point.address, point.data_type.upper())
+
+    async def connect(self) -> DeviceInfo:
+        """Report a device with a serial number."""
+        return DeviceInfo(vendor=self.vendor, model="Fake PLC", serial=self.serial)
+
+    async def browse(self) -> list[BrowseItem]:
+        """Return the class's published variables, or fail."""
+        if self.browse_error is not None:
+            raise self.browse_error
+        return list(self.items)
+
+    async def _read(self, points: Sequence[Point]) -> ReadResult:
+        """Not used by the flow."""
+        raise NotImplementedError
+
+    async def _write(self, values: Mapping[Point, Value]) -> dict[Point, PointResult]:
+        """Not used by the flow."""
+        raise NotImplementedError
+
+    async def read_clock(self) -> datetime:
+        """Not used by the flow."""
+        raise NotImplementedError
+
+    async def set_clock(self, when: datetime) -> None:
+        """Not used by the flow."""
+        raise NotImplementedError
+
+    async def close(self) -> None:
+        """Nothing to release."""
+
+
+@pytest.fixture
+def fake_vendor(monkeypatch: pytest.MonkeyPatch) -> type[FakeClient]:
+    """Register FakeClient as the FAKE_VENDOR module in the real vendor registry."""
+    monkeypatch.setitem(vendors._CLIENTS, FAKE_VENDOR, FakeClient)
+    monkeypatch.setattr(FakeClient, "items", [])
+    monkeypatch.setattr(FakeClient, "browse_error", None)
+    return FakeClient
+
+
+def strings_at(*path: str) -> Any:
+    """Return the strings.json node at a path of keys."""
+    node: Any = STRINGS
+    for key in path:
+        node = node[key]
+    return node
+
+
+def translated(result: Any, *section: str) -> Any:
+    """Check that a flow result's step, fields, errors or abort reason are all translated."""
+    base = strings_at(*section)
+    if result["type"] is FlowResultType.ABORT:
+        assert result["reason"] in base["abort"]
+        return result
+    if result["type"] is FlowResultType.FORM:
+        step = base["step"][result["step_id"]]
+        assert step["title"]
+        for marker in result["data_schema"].schema if result["data_schema"] else ():
+            assert str(marker) in step["data"], f"{marker} has no label"
+            assert str(marker) in step["data_description"], f"{marker} has no help text"
+        for key in (result["errors"] or {}).values():
+            assert key in base["error"]
+    return result
+
+
+def suggested(result: Any, field: str) -> Any:
+    """Return the value a form suggests for a field (None when it suggests none)."""
+    for marker in result["data_schema"].schema:
+        if str(marker) == field:
+            return (marker.description or {}).get("suggested_value")
+    raise KeyError(field)
+
+
+def error_message(result: Any, field: str, *section: str) -> str:
+    """Return the English message of a form error, with its placeholders filled in."""
+    text: str = strings_at(*section, "error", result["errors"][field])
+    return text.format(**(result["description_placeholders"] or {}))

@@ -1,0 +1,205 @@
+"""Home Assistant fixtures: the S7-200 SMART simulator, an entry with a point of every platform.
+
+Registered for every test through `pytest_plugins` in tests/conftest.py.
+"""
+
+from __future__ import annotations
+
+from collections.abc import AsyncGenerator, Generator, Iterable
+from datetime import datetime, timedelta
+from typing import Any
+from unittest.mock import patch
+
+from freezegun.api import FrozenDateTimeFactory
+from homeassistant.config_entries import ConfigEntryState, ConfigSubentryDataWithId
+from homeassistant.const import (
+    CONF_HOST,
+    CONF_PASSWORD,
+    CONF_PORT,
+    CONF_SCAN_INTERVAL,
+    CONF_USERNAME,
+    Platform,
+)
+from homeassistant.core import HomeAssistant
+import pytest
+from pytest_homeassistant_custom_component.common import MockConfigEntry, async_fire_time_changed
+
+from custom_components.plc_bridge import PLATFORMS
+from custom_components.plc_bridge.const import (
+    CONF_ADDRESS,
+    CONF_DATA_TYPE,
+    CONF_FINGERPRINT,
+    CONF_OFFSET,
+    CONF_OPTIONS,
+    CONF_PLATFORM,
+    CONF_READ_ONLY,
+    CONF_SCALE,
+    CONF_TLS,
+    CONF_VENDOR,
+    DOMAIN,
+    SUBENTRY_POINT,
+)
+from simulators.s7_smart import DEFAULT_PASSWORD, DEFAULT_USER, S7SmartSimulator
+
+SCAN_INTERVAL = 10.0
+ENTRY_ID = "01JPLCBR1DGE0000000000TEST"
+UNIQUE_ID = "plc-bridge-test"
+CLOCK = datetime(2026, 3, 1, 12, 30, 0)  # the simulator's clock (naive PLC local time)
+
+
+def point(
+    subentry_id: str, title: str, platform: str, address: str, data_type: str, **extra: Any
+) -> ConfigSubentryDataWithId:
+    """Return a point subentry as the subentry flow stores it."""
+    data = {
+        CONF_PLATFORM: platform,
+        CONF_ADDRESS: address,
+        CONF_DATA_TYPE: data_type,
+        CONF_SCALE: 1.0,
+        CONF_OFFSET: 0.0,
+        CONF_READ_ONLY: False,
+    }
+    return ConfigSubentryDataWithId(
+        data=data | extra,
+        subentry_id=subentry_id,
+        subentry_type=SUBENTRY_POINT,
+        title=title,
+        unique_id=f"{address}|{data_type}",
+    )
+
+
+POINTS = [
+    point(
+        "temperature",
+        "Temperature",
+        "sensor",
+        "VD100",
+        "float",
+        unit_of_measurement="°C",
+        device_class="temperature",
+        state_class="measurement",
+    ),
+    point("pressure", "Pressure", "sensor", "VW10", "signed", scale=0.1, unit_of_measurement="bar"),
+    point("label", "Label", "sensor", "VB200", "string"),
+    point("raw", "Raw", "sensor", "VD300", "raw"),
+    point("door", "Door", "binary_sensor", "I0.0", "signed", device_class="door"),
+    point("pump", "Pump", "switch", "Q0.0", "signed"),
+    point(
+        "setpoint",
+        "Setpoint",
+        "number",
+        "VW20",
+        "signed",
+        scale=0.5,
+        offset=10.0,
+        min=10.0,
+        max=60.0,
+        step=0.5,
+    ),
+    point("clock", "PLC clock", "datetime", "DATE", "signed"),
+]
+"""A point of every platform and of every S7-200 SMART data mode."""
+
+
+def sim_data(sim: S7SmartSimulator, **changes: Any) -> dict[str, Any]:
+    """Return entry data for the simulator: pinned certificate, default user."""
+    data = {
+        CONF_VENDOR: "s7_smart",
+        CONF_HOST: sim.host,
+        CONF_PORT: sim.port,
+        CONF_USERNAME: DEFAULT_USER,
+        CONF_PASSWORD: DEFAULT_PASSWORD,
+        CONF_TLS: "pin",
+        CONF_FINGERPRINT: sim.fingerprint,
+        CONF_OPTIONS: {},
+    }
+    return data | changes
+
+
+def make_entry(
+    hass: HomeAssistant,
+    sim: S7SmartSimulator,
+    points: Iterable[ConfigSubentryDataWithId] = POINTS,
+    **changes: Any,
+) -> MockConfigEntry:
+    """Add an entry of the simulator with the given points (not set up yet)."""
+    entry = MockConfigEntry(
+        domain=DOMAIN,
+        title="S7-200 SMART",
+        entry_id=ENTRY_ID,
+        unique_id=UNIQUE_ID,
+        data=sim_data(sim, **changes),
+        options={CONF_SCAN_INTERVAL: SCAN_INTERVAL},
+        subentries_data=list(points),
+    )
+    entry.add_to_hass(hass)
+    return entry
+
+
+async def poll(hass: HomeAssistant, freezer: FrozenDateTimeFactory, times: int = 1) -> None:
+    """Let the poll interval pass (`times` times) and wait for the polls."""
+    for _ in range(times):
+        freezer.tick(timedelta(seconds=SCAN_INTERVAL))
+        async_fire_time_changed(hass)
+        await hass.async_block_till_done(wait_background_tasks=True)
+
+
+async def unload_all(hass: HomeAssistant) -> None:
+    """Unload every loaded PLC Bridge entry (its client logs out)."""
+    for entry in hass.config_entries.async_entries(DOMAIN):
+        if entry.state is ConfigEntryState.LOADED:
+            assert await hass.config_entries.async_unload(entry.entry_id)
+
+
+@pytest.fixture
+async def s7_smart_sim(
+    hass: HomeAssistant, freezer: FrozenDateTimeFactory
+) -> AsyncGenerator[S7SmartSimulator]:
+    """A started S7-200 SMART simulator (HTTPS, own CA) holding the values of POINTS.
+
+    Time is frozen from before any entry is set up until every entry is unloaded: the clients
+    pace their requests by the monotonic clock, which the freezer moves by years.
+    """
+    sim = S7SmartSimulator()
+    sim.clock = CLOCK
+    sim.set("VD100", 21.5, "float")
+    sim.set("VW10", 235)
+    sim.set("VB200", "Line 1", "string")
+    sim.set("VD300", [1, 2, 171, 205], "raw")
+    sim.set("I0.0", True)
+    sim.set("VW20", 40)
+    await sim.start()
+    yield sim
+    await unload_all(hass)
+    await sim.stop()
+
+
+@pytest.fixture
+def s7_smart_entry(hass: HomeAssistant, s7_smart_sim: S7SmartSimulator) -> MockConfigEntry:
+    """The simulator's entry: pinned certificate, a point of every platform."""
+    return make_entry(hass, s7_smart_sim)
+
+
+@pytest.fixture
+def platforms() -> list[Platform]:
+    """The platforms to set up (a test module narrows this for its snapshot)."""
+    return PLATFORMS
+
+
+@pytest.fixture
+async def setup_integration(
+    hass: HomeAssistant, s7_smart_entry: MockConfigEntry, platforms: list[Platform]
+) -> AsyncGenerator[MockConfigEntry]:
+    """Set the simulator's entry up with the chosen platforms (kept for its unload)."""
+    with patch("custom_components.plc_bridge.PLATFORMS", platforms):
+        assert await hass.config_entries.async_setup(s7_smart_entry.entry_id)
+        await hass.async_block_till_done()
+        yield s7_smart_entry
+        await unload_all(hass)
+
+
+@pytest.fixture
+def entity_registry_enabled_by_default() -> Generator[None]:
+    """Create the entities that are disabled by default as enabled."""
+    with patch("homeassistant.helpers.entity.Entity.entity_registry_enabled_default", True):
+        yield

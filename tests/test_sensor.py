@@ -1,0 +1,140 @@
+"""Tests of the sensors: point values, scaling, and the PLC's status as diagnostic sensors."""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import replace
+from unittest.mock import patch
+
+from freezegun.api import FrozenDateTimeFactory
+from homeassistant.const import STATE_UNAVAILABLE, STATE_UNKNOWN, Platform
+from homeassistant.core import HomeAssistant
+from homeassistant.helpers import entity_registry as er
+import pytest
+from pytest_homeassistant_custom_component.common import MockConfigEntry, snapshot_platform
+from syrupy.assertion import SnapshotAssertion
+
+from custom_components.plc_bridge.entity import PlcPointDescription, scaled
+from custom_components.plc_bridge.plc import Point, ReadResult, ValueKind
+from custom_components.plc_bridge.plc.vendors.s7_smart import S7SmartClient
+from simulators.s7_smart import S7SmartSimulator
+
+from .ha_fixtures import make_entry, point, poll
+
+
+@pytest.fixture
+def platforms() -> list[Platform]:
+    """Only the sensor platform."""
+    return [Platform.SENSOR]
+
+
+@pytest.mark.usefixtures("entity_registry_enabled_by_default")
+async def test_snapshot(
+    hass: HomeAssistant,
+    setup_integration: MockConfigEntry,
+    entity_registry: er.EntityRegistry,
+    snapshot: SnapshotAssertion,
+) -> None:
+    await snapshot_platform(hass, entity_registry, snapshot, setup_integration.entry_id)
+
+
+async def test_status_fields_disabled_by_default(
+    hass: HomeAssistant, setup_integration: MockConfigEntry, entity_registry: er.EntityRegistry
+) -> None:
+    entry = entity_registry.async_get("sensor.s7_200_smart_system_status")
+    assert entry is not None
+    assert entry.disabled_by is er.RegistryEntryDisabler.INTEGRATION
+    assert hass.states.get("sensor.s7_200_smart_operating_mode").state == "run"
+
+
+async def test_values_follow_the_plc(
+    hass: HomeAssistant,
+    s7_smart_sim: S7SmartSimulator,
+    setup_integration: MockConfigEntry,
+    freezer: FrozenDateTimeFactory,
+) -> None:
+    s7_smart_sim.set("VW10", -12)
+    s7_smart_sim.mode = "STOP"
+    await poll(hass, freezer)
+    assert hass.states.get("sensor.s7_200_smart_pressure").state == "-1.2"
+    assert hass.states.get("sensor.s7_200_smart_operating_mode").state == "stop"
+
+    s7_smart_sim.mode = "SOMETHING ELSE"
+    await poll(hass, freezer)
+    assert hass.states.get("sensor.s7_200_smart_operating_mode").state == STATE_UNKNOWN
+
+
+@pytest.mark.usefixtures("entity_registry_enabled_by_default")
+async def test_vendor_status_fields(hass: HomeAssistant, s7_smart_sim: S7SmartSimulator) -> None:
+    """Status fields beyond the usual three become sensors, translated where the name is known."""
+    read = S7SmartClient._read
+
+    async def with_extra(client: S7SmartClient, points: Sequence[Point]) -> ReadResult:
+        # The S7-200 SMART reports no such fields: a vendor that does is imitated here.
+        result = await read(client, points)
+        extra = {"cycle_time": "12 ms", "Backplane": "ok"}
+        return replace(result, status=replace(result.status, extra=extra))
+
+    entry = make_entry(hass, s7_smart_sim, [])
+    with patch.object(S7SmartClient, "_read", with_extra):
+        assert await hass.config_entries.async_setup(entry.entry_id)
+        await hass.async_block_till_done()
+    assert hass.states.get("sensor.s7_200_smart_cycle_time").state == "12 ms"
+    assert hass.states.get("sensor.s7_200_smart_backplane").state == "ok"
+
+
+@pytest.mark.parametrize(
+    ("raw", "scale", "offset", "expected"),
+    [
+        (23, 0.1, 0.0, 2.3),
+        (40, 0.5, 10.0, 30),
+        (7, 2.0, 1.0, 15),
+        (1.5, 1.0, 0.0, 1.5),
+        (3, 1.0, 0.0, 3),
+    ],
+)
+def test_scaling(raw: float, scale: float, offset: float, expected: float) -> None:
+    value = scaled(raw, scale, offset)
+    assert value == expected
+    assert type(value) is type(expected)
+
+
+@pytest.mark.parametrize(
+    ("kind", "value", "raw"),
+    [(ValueKind.INTEGER, 30.0, 40), (ValueKind.FLOAT, 11.25, 2.5), (ValueKind.INTEGER, 10.3, 1)],
+)
+def test_inverse_scaling(kind: ValueKind, value: float, raw: float) -> None:
+    description = PlcPointDescription(
+        key="x", point=Point("VW0", "signed"), kind=kind, scale=0.5, offset=10.0
+    )
+    assert description.raw_fn(value) == raw
+
+
+async def test_entities_belong_to_their_subentry(
+    hass: HomeAssistant, setup_integration: MockConfigEntry, entity_registry: er.EntityRegistry
+) -> None:
+    point_entry = entity_registry.async_get("sensor.s7_200_smart_temperature")
+    status_entry = entity_registry.async_get("sensor.s7_200_smart_operating_mode")
+    assert point_entry is not None
+    assert status_entry is not None
+    assert point_entry.config_subentry_id == "temperature"
+    assert status_entry.config_subentry_id is None
+
+
+async def test_other_kinds_of_points(hass: HomeAssistant, s7_smart_sim: S7SmartSimulator) -> None:
+    """The clock as a timestamp, a bit as 0/1, and an address the vendor cannot parse."""
+    entry = make_entry(
+        hass,
+        s7_smart_sim,
+        [
+            point("clock", "Clock", "sensor", "DATE", "signed"),
+            point("bit", "Bit", "sensor", "I0.0", "signed"),
+            point("bad", "Bad", "sensor", "VX1", "signed"),
+        ],
+    )
+    assert await hass.config_entries.async_setup(entry.entry_id)
+    clock = hass.states.get("sensor.s7_200_smart_clock")
+    assert clock.state == "2026-03-01T20:30:00+00:00"
+    assert clock.attributes["device_class"] == "timestamp"
+    assert hass.states.get("sensor.s7_200_smart_bit").state == "1"
+    assert hass.states.get("sensor.s7_200_smart_bad").state == STATE_UNAVAILABLE
