@@ -1,0 +1,1 @@
+"""Measured figures of PLC Bridge, printed with the command that made them."""
