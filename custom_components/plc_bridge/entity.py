@@ -10,6 +10,7 @@ from typing import Any
 
 from homeassistant.config_entries import ConfigSubentry
 from homeassistant.const import CONF_DEVICE_CLASS
+from homeassistant.core import callback
 from homeassistant.exceptions import ServiceValidationError
 from homeassistant.helpers.device_registry import CONNECTION_NETWORK_MAC, DeviceInfo, format_mac
 from homeassistant.helpers.entity import Entity, EntityDescription
@@ -140,6 +141,24 @@ class PlcEntity(CoordinatorEntity[PlcCoordinator]):
         super().__init__(entry.runtime_data.coordinator)
         self._attr_unique_id = f"{entry.unique_id or entry.entry_id}_{key}"
         self._attr_device_info = device_info(entry)
+        self._shown: tuple[bool, Any] | None = None
+
+    def observed(self) -> Any:
+        """What this entity shows of the last poll; its state is written only when this changes."""
+        raise NotImplementedError
+
+    async def async_added_to_hass(self) -> None:
+        """Remember what the first state shows, then follow the coordinator."""
+        await super().async_added_to_hass()
+        self._shown = (self.available, self.observed())
+
+    @callback
+    def _handle_coordinator_update(self) -> None:
+        """Write the state only when availability or the value changed: a quiet poll writes none."""
+        shown = (self.available, self.observed())
+        if shown != self._shown:
+            self._shown = shown
+            super()._handle_coordinator_update()
 
 
 class PlcPointEntity(PlcEntity):
@@ -168,6 +187,10 @@ class PlcPointEntity(PlcEntity):
         """The point's value as the PLC sent it."""
         result = self.result
         return result.value if result is not None else None
+
+    def observed(self) -> Any:
+        """The point's value as read in the last poll."""
+        return self.raw_value
 
     async def async_write(self, value: Value) -> None:
         """Write the point (one request), then refresh; refuse a point marked read-only."""

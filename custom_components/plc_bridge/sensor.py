@@ -153,3 +153,7 @@ class PlcStatusSensor(PlcEntity, SensorEntity):
     def native_value(self) -> str | None:
         """Return the field as the PLC reported it in the last poll."""
         return self.entity_description.value_fn(self.coordinator.data.status)
+
+    def observed(self) -> Any:
+        """The status field of the last poll."""
+        return self.native_value
