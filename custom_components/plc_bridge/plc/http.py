@@ -105,7 +105,8 @@ class HttpTransport:
         """
         url: str | URL = URL(self._url + path, encoded=True) if encoded else self._url + path
         async with self._lock:
-            wait = self._last + self._interval - time.monotonic()
+            # Capped: a clock that moved back (suspend, a frozen test clock) never stalls a poll.
+            wait = min(self._interval, self._last + self._interval - time.monotonic())
             if wait > 0:
                 await asyncio.sleep(wait)
             self._metrics.requests += 1
