@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import asyncio
+import time
 from typing import Any
 
 import aiohttp
@@ -16,7 +17,7 @@ from custom_components.plc_bridge.plc import (
     Point,
     TlsMode,
 )
-from custom_components.plc_bridge.plc.vendors.s7_smart import S7SmartClient
+from custom_components.plc_bridge.plc.vendors.s7_smart import S7SmartClient, client as client_module
 from simulators.s7_smart import S7SmartSimulator
 
 from .conftest import ConfigFactory
@@ -210,3 +211,22 @@ async def test_close_when_plc_is_gone(
     await s7_smart_sim.stop()
     await s7_smart_client.close()
     assert own.closed
+
+
+async def test_close_does_not_wait_for_a_silent_plc(
+    monkeypatch: pytest.MonkeyPatch, s7_smart_config: ConfigFactory
+) -> None:
+    async def silent(reader: asyncio.StreamReader, writer: asyncio.StreamWriter) -> None:
+        await reader.read()
+
+    server = await asyncio.start_server(silent, "127.0.0.1", 0)
+    port = server.sockets[0].getsockname()[1]
+    monkeypatch.setattr(client_module, "LOGOUT_TIMEOUT", 0.05)
+    client = S7SmartClient(s7_smart_config(port=port, tls=TlsMode.OFF, fingerprint=""))
+    client._token = "Session-Id=abc"  # logged in before the PLC went silent
+    client._http()
+    started = time.monotonic()
+    await client.close()
+    assert time.monotonic() - started < 1
+    server.close()
+    await server.wait_closed()

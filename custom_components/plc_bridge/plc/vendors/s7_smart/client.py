@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import asyncio
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from datetime import datetime
@@ -49,6 +50,7 @@ from .codec import (
 _LOGGER = logging.getLogger(__name__)
 
 PATH = "/Web_api"
+LOGOUT_TIMEOUT = 2.0
 _DATE_POINT = Point("DATE", "signed")
 _KINDS = {
     BOOL: ValueKind.BOOL,
@@ -241,8 +243,10 @@ class S7SmartClient(PlcClient):
         """Log out (a failure is of no consequence) and release the client's own session."""
         if self._transport is not None and self._token is not None:
             try:
-                await self._rpc("logout", None)
-            except (PlcError, _RpcError) as err:
+                # Short: an unreachable PLC must not hold up Home Assistant's unload or shutdown.
+                async with asyncio.timeout(LOGOUT_TIMEOUT):
+                    await self._rpc("logout", None)
+            except (PlcError, _RpcError, TimeoutError) as err:
                 _LOGGER.debug("Logout from %s failed: %s", self.config.host, err)
         self._token = None
         self._transport = None
