@@ -1,0 +1,7 @@
+"""Siemens S7 (S7-200 with CP 243-1, S7-300/400, S7-1200/1500) over S7comm on ISO-on-TCP."""
+
+from .client import S7Client
+
+CLIENT = S7Client
+
+__all__ = ["CLIENT", "S7Client"]

@@ -1,0 +1,247 @@
+"""S7 addresses as STEP 7 / TIA Portal show them, and the data types each width takes."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+from functools import lru_cache
+import re
+
+from ...errors import PlcAddressError
+from ...types import Point, ValueKind
+
+AREA_P = 0x80  # peripheral I/O: reads reach the inputs, writes the outputs
+AREA_I = 0x81
+AREA_Q = 0x82
+AREA_M = 0x83
+AREA_DB = 0x84
+AREA_C = 0x1C
+AREA_T = 0x1D
+V_DB = 1  # an S7-200 (CP 243-1) serves V memory as DB1 over S7comm
+
+DATA_TYPES: tuple[str, ...] = (
+    "BOOL",
+    "BYTE",
+    "CHAR",
+    "WORD",
+    "INT",
+    "UINT",
+    "DWORD",
+    "DINT",
+    "UDINT",
+    "REAL",
+    "LREAL",
+    "STRING",
+    "DATE_AND_TIME",
+    "DTL",
+)
+"""The point form's data types; STRING means STRING[254], and STRING[n] is accepted too."""
+
+STRING_MAX = 254
+SIZES: dict[str, int] = {
+    "BOOL": 1,
+    "BYTE": 1,
+    "CHAR": 1,
+    "WORD": 2,
+    "INT": 2,
+    "UINT": 2,
+    "DWORD": 4,
+    "DINT": 4,
+    "UDINT": 4,
+    "REAL": 4,
+    "LREAL": 8,
+    "DATE_AND_TIME": 8,
+    "DTL": 12,
+}
+KINDS: dict[str, ValueKind] = {
+    "BOOL": ValueKind.BOOL,
+    **dict.fromkeys(("BYTE", "WORD", "INT", "UINT", "DWORD", "DINT", "UDINT"), ValueKind.INTEGER),
+    "REAL": ValueKind.FLOAT,
+    "LREAL": ValueKind.FLOAT,
+    "CHAR": ValueKind.TEXT,
+    "STRING": ValueKind.TEXT,
+    "DATE_AND_TIME": ValueKind.DATETIME,
+    "DTL": ValueKind.DATETIME,
+}
+# Types longer than a double word have no width letter in STEP 7: they take their first byte.
+_FROM_BYTE = ("LREAL", "STRING", "DATE_AND_TIME", "DTL")
+_FITS: dict[str, tuple[str, ...]] = {
+    "X": ("BOOL",),
+    "B": ("BYTE", "CHAR", *_FROM_BYTE),
+    "W": ("WORD", "INT", "UINT"),
+    "D": ("DWORD", "DINT", "UDINT", "REAL"),
+}
+_HOLDS = {
+    "X": "BOOL",
+    "B": "BYTE or CHAR, or the first byte of an LREAL, STRING, DATE_AND_TIME or DTL",
+    "W": "WORD, INT or UINT",
+    "D": "DWORD, DINT, UDINT or REAL",
+}
+_WIDTH_NAMES = {
+    "X": "a bit",
+    "B": "a byte",
+    "W": "a word (16 bits)",
+    "D": "a double word (32 bits)",
+}
+_ALIASES = {"E": "I", "A": "Q", "PE": "PI", "PA": "PQ", "Z": "C", "DT": "DATE_AND_TIME"}
+# A CPU cannot read PQ (STEP 7 only transfers to it); a PQ write also updates the process
+# image, so PQ is read there.
+_AREAS = {"I": AREA_I, "Q": AREA_Q, "M": AREA_M, "V": AREA_DB, "PI": AREA_P, "PQ": AREA_Q}
+_PATTERN = re.compile(
+    r"%?(?:DB(?P<db>\d+)\.DB(?P<dbwidth>[XBWD])(?P<dboffset>\d+)(?:\.(?P<dbbit>\d+))?"
+    r"|(?P<area>PI|PE|PQ|PA|I|E|Q|A|M|V)(?P<width>[BWD]?)(?P<offset>\d+)(?:\.(?P<bit>\d+))?"
+    r"|(?P<counter>T|C|Z)(?P<number>\d+))"
+)
+_STRING = re.compile(r"STRING\[(\d+)\]")
+EXAMPLES = "DB1.DBX0.0, DB1.DBW4, M10.1, MW20, IW64, Q0.1, PIW256, VW100, T5 or C3"
+MAX_OFFSET = 0xFFFF
+
+
+@dataclass(frozen=True, slots=True)
+class Variable:
+    """A point resolved to the wire: area, DB, first byte (T/C: number), bit, size, type."""
+
+    area: int
+    db: int
+    start: int
+    data_type: str  # normalized, e.g. INT or STRING[20]
+    bit: int | None = None
+    text: str = ""  # the normalized address
+    write_area: int = 0  # where writes go when not to `area` (PQ: the peripheral outputs)
+
+    @property
+    def counted(self) -> bool:
+        """True for timers and counters, addressed by number (two bytes each), not by byte."""
+        return self.area in (AREA_T, AREA_C)
+
+    @property
+    def string_length(self) -> int:
+        """The declared maximum length of a STRING (0 for other types)."""
+        if self.data_type == "STRING":
+            return STRING_MAX
+        match = _STRING.fullmatch(self.data_type)
+        return int(match[1]) if match else 0
+
+    @property
+    def size(self) -> int:
+        """How many bytes the value takes in the PLC (T/C: one element)."""
+        if self.string_length:
+            return 2 + self.string_length
+        return SIZES[self.data_type]
+
+
+def normalize_type(data_type: str) -> str:
+    """Return the canonical type name; STRING[254] is STRING; raise PlcAddressError."""
+    name = re.sub(r"\s+", "", data_type).upper()
+    name = _ALIASES.get(name, name)
+    if match := _STRING.fullmatch(name):
+        length = int(match[1])
+        if not 1 <= length <= STRING_MAX:
+            raise PlcAddressError(f"a STRING holds 1..{STRING_MAX} characters, not {length}")
+        return "STRING" if length == STRING_MAX else f"STRING[{length}]"
+    if name not in SIZES and name != "STRING":
+        raise PlcAddressError(
+            f"{data_type!r} is not an S7 data type; use {', '.join(DATA_TYPES)} or STRING[n]"
+        )
+    return name
+
+
+def value_kind(data_type: str) -> ValueKind | None:
+    """What a data type's values are (None for an unknown type)."""
+    try:
+        name = normalize_type(data_type)
+    except PlcAddressError:
+        return None
+    return KINDS["STRING" if name.startswith("STRING") else name]
+
+
+@lru_cache(maxsize=8192)
+def variable(point: Point) -> Variable:
+    """Resolve a point; raise PlcAddressError with a message the point form can show."""
+    data_type = normalize_type(point.data_type)
+    text = re.sub(r"\s+", "", point.address).upper()
+    match = _PATTERN.fullmatch(text)
+    if match is None:
+        raise PlcAddressError(f"{point.address!r} is not an S7 address; try {EXAMPLES}")
+    if match["counter"]:
+        return _counted(match["counter"], int(match["number"]), data_type)
+    if match["db"]:
+        db = int(match["db"])
+        if not 1 <= db <= 0xFFFF:
+            raise PlcAddressError(f"{point.address!r}: DB numbers run from 1 to 65535")
+        width, offset, bit = match["dbwidth"], int(match["dboffset"]), match["dbbit"]
+        area, prefix = AREA_DB, f"DB{db}.DB"
+    else:
+        name = _ALIASES.get(match["area"], match["area"])
+        width, offset, bit = match["width"] or "X", int(match["offset"]), match["bit"]
+        area, prefix, db = _AREAS[name], name, V_DB if name == "V" else 0
+        if name in ("PI", "PQ") and not match["width"]:
+            raise PlcAddressError(
+                f"{point.address!r}: peripheral I/O is read by byte, word or double word "
+                f"({name}B, {name}W, {name}D), not by bit"
+            )
+    place = _place(point.address, prefix, width, offset, bit)
+    _check_fit(place, width, data_type)
+    found = Variable(area, db, offset, data_type, None if bit is None else int(bit), place)
+    if prefix == "PQ":
+        found = replace(found, write_area=AREA_P)
+    if found.start + found.size - 1 > MAX_OFFSET:
+        raise PlcAddressError(f"{place}: a {data_type} there runs past byte {MAX_OFFSET}")
+    return found
+
+
+def _place(address: str, prefix: str, width: str, offset: int, bit: str | None) -> str:
+    """Return the normalized address text after checking the bit number against the width."""
+    if offset > MAX_OFFSET:
+        raise PlcAddressError(f"{address!r}: byte offsets run from 0 to {MAX_OFFSET}")
+    if width == "X":
+        if bit is None:
+            raise PlcAddressError(
+                f"{address!r} needs a bit number or a width, e.g. {prefix}{offset}.0 "
+                f"or {prefix}B{offset}"
+                if not prefix.startswith("DB")
+                else f"{address!r} needs a bit number, e.g. {prefix}X{offset}.0"
+            )
+        if int(bit) > 7:
+            raise PlcAddressError(f"{address!r}: bit numbers run from 0 to 7")
+        return f"{prefix}{'X' if prefix.startswith('DB') else ''}{offset}.{int(bit)}"
+    if bit is not None:
+        raise PlcAddressError(f"{address!r}: {_WIDTH_NAMES[width]} address takes no bit number")
+    return f"{prefix}{width}{offset}"
+
+
+def _check_fit(place: str, width: str, data_type: str) -> None:
+    """Refuse a data type that does not fit the address width (DBW + REAL and the like)."""
+    base = "STRING" if data_type.startswith("STRING") else data_type
+    if base in _FITS[width]:
+        return
+    if base in _FROM_BYTE:
+        hint = f"give its first byte, e.g. {_with_width(place, 'B')}"
+    else:
+        wanted = next(letter for letter, types in _FITS.items() if base in types)
+        hint = f"use {_with_width(place, wanted)}"
+    raise PlcAddressError(
+        f"{place} is {_WIDTH_NAMES[width]} for {_HOLDS[width]}; for {base} {hint}"
+    )
+
+
+def _with_width(place: str, width: str) -> str:
+    """Return the same byte offset spelled with another width letter (DB1.DBW4 -> DB1.DBD4)."""
+    match = re.fullmatch(r"(DB\d+\.DB|[A-Z]+?)([XBWD]?)(\d+)(?:\.\d)?", place)
+    assert match is not None
+    prefix, offset = match[1], match[3]
+    if width == "X":
+        return f"{prefix}{'X' if prefix.startswith('DB') else ''}{offset}.0"
+    return f"{prefix}{width}{offset}"
+
+
+def _counted(letter: str, number: int, data_type: str) -> Variable:
+    """Return a timer or counter variable (raw 16-bit word: S5TIME or BCD count)."""
+    name = _ALIASES.get(letter, letter)
+    if number > MAX_OFFSET:
+        raise PlcAddressError(f"{name}{number}: numbers run from 0 to {MAX_OFFSET}")
+    if data_type != "WORD":
+        raise PlcAddressError(
+            f"{name}{number} is a {'timer' if name == 'T' else 'counter'}: read it as WORD "
+            "(the raw S5TIME or BCD word the CPU keeps)"
+        )
+    return Variable(AREA_T if name == "T" else AREA_C, 0, number, "WORD", None, f"{name}{number}")

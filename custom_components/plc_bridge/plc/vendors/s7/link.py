@@ -1,0 +1,247 @@
+"""One ISO-on-TCP (RFC 1006) connection: TSAPs from the options, the S7 session, one choke point.
+
+python-snap7 does the framing: `AsyncISOTCPConnection` (asyncio streams, TPKT/COTP) and
+`S7Protocol` (setup, SZL, clock PDUs; reply parsing). Every request goes through `exchange`,
+which counts it, bounds it with the timeout and maps errors; no thread, no executor.
+"""
+
+from __future__ import annotations
+
+import asyncio
+from collections.abc import Mapping
+import contextlib
+from dataclasses import dataclass
+from datetime import datetime
+import re
+from typing import Any
+
+from snap7.async_client import AsyncISOTCPConnection
+from snap7.error import S7ConnectionError, S7ProtocolError, S7TimeoutError
+from snap7.s7protocol import S7Protocol, S7UserDataGroup, S7UserDataSubfunction
+
+from ...errors import (
+    PlcConnectionError,
+    PlcError,
+    PlcProtocolError,
+    PlcTimeoutError,
+    PlcValueError,
+)
+from ...types import ClientMetrics
+from .planner import DEFAULT_PDU, Span, WriteItem
+from .protocol import read_items, read_request, write_codes, write_request
+
+PG = 0x01  # connection type in a rack/slot TSAP, as Snap7 connects by default
+LOCAL_TSAP = 0x0100
+MAX_FRAGMENTS = 16
+_TSAP = re.compile(r"([0-9A-F]{1,2})\.([0-9A-F]{1,2})|0X([0-9A-F]{1,4})")
+
+
+class S7RequestError(PlcProtocolError):
+    """The PLC answered a request with an error (the connection itself is fine)."""
+
+    def __init__(self, message: str, code: int | None = None) -> None:
+        super().__init__(message)
+        self.code = code
+
+
+@dataclass(frozen=True, slots=True)
+class Endpoint:
+    """The TSAP pair of a connection: ours (calling) and the PLC's (called)."""
+
+    local_tsap: int
+    remote_tsap: int
+
+
+def parse_tsap(value: object, what: str) -> int:
+    """Return a TSAP from "10.01" (as STEP 7 writes it), "0x1001" or an int."""
+    if isinstance(value, int) and not isinstance(value, bool) and 0 <= value <= 0xFFFF:
+        return value
+    match = _TSAP.fullmatch(value.strip().upper()) if isinstance(value, str) else None
+    if match is None:
+        raise PlcValueError(f"{what} {value!r} is not a TSAP; write it as STEP 7 does, e.g. 10.01")
+    if match[3]:
+        return int(match[3], 16)
+    return int(match[1], 16) << 8 | int(match[2], 16)
+
+
+def tsap_text(tsap: int) -> str:
+    """Return a TSAP as STEP 7 writes it (0x1001 -> "10.01")."""
+    return f"{tsap >> 8:02X}.{tsap & 0xFF:02X}"
+
+
+def _number(options: Mapping[str, object], key: str, default: int, high: int) -> int:
+    """Return a small whole number option (form numbers may come as floats or text)."""
+    value = options.get(key, default)
+    if isinstance(value, str) and value.strip().isdigit():
+        value = int(value)
+    if isinstance(value, float) and value.is_integer():
+        value = int(value)
+    if isinstance(value, bool) or not isinstance(value, int) or not 0 <= value <= high:
+        raise PlcValueError(f"{key} must be a whole number from 0 to {high}, not {value!r}")
+    return value
+
+
+def validate_options(options: Mapping[str, object]) -> dict[str, str | int | bool]:
+    """Return the connection options normalized; raise PlcValueError (a ValueError) when bad.
+
+    "connection": "rack_slot" (default: "rack" 0..7, "slot" 0..31) or "tsap" ("local_tsap",
+    default 01.00, and "remote_tsap", e.g. 10.00/10.01 for an S7-200 CP 243-1). Other keys are
+    not the protocol's and are left out.
+    """
+    connection = options.get("connection", "rack_slot")
+    if connection == "rack_slot":
+        rack, slot = _number(options, "rack", 0, 7), _number(options, "slot", 1, 31)
+        return {"connection": "rack_slot", "rack": rack, "slot": slot}
+    if connection == "tsap":
+        if options.get("remote_tsap") in (None, ""):
+            raise PlcValueError("remote_tsap is needed to connect by TSAP, e.g. 10.01")
+        local = parse_tsap(options.get("local_tsap", LOCAL_TSAP), "local_tsap")
+        remote = parse_tsap(options["remote_tsap"], "remote_tsap")
+        return {
+            "connection": "tsap",
+            "local_tsap": tsap_text(local),
+            "remote_tsap": tsap_text(remote),
+        }
+    raise PlcValueError(f"connection must be 'rack_slot' or 'tsap', not {connection!r}")
+
+
+def endpoint(options: Mapping[str, object]) -> Endpoint:
+    """Return the TSAP pair the options ask for (rack/slot: PG connection 01.xx)."""
+    settings = validate_options(options)
+    if settings["connection"] == "tsap":
+        local = parse_tsap(settings["local_tsap"], "local_tsap")
+        return Endpoint(local, parse_tsap(settings["remote_tsap"], "remote_tsap"))
+    rack, slot = int(settings["rack"]), int(settings["slot"])
+    return Endpoint(LOCAL_TSAP, PG << 8 | rack << 5 | slot)
+
+
+class S7Link:
+    """An open S7 session; unusable once an exchange broke it (the client then opens another)."""
+
+    def __init__(
+        self, host: str, port: int, ends: Endpoint, timeout: float, metrics: ClientMetrics
+    ) -> None:
+        """Prepare the connection; nothing is sent until `open`."""
+        self._connection = AsyncISOTCPConnection(host, port, ends.local_tsap, ends.remote_tsap)
+        self._where = f"{host}:{port} (TSAP {tsap_text(ends.remote_tsap)})"
+        self._protocol = S7Protocol()
+        self._timeout = timeout
+        self._metrics = metrics
+        self._broken = False
+        self.pdu_size = DEFAULT_PDU
+
+    @property
+    def usable(self) -> bool:
+        """True while the session can carry requests."""
+        return self._connection.connected and not self._broken
+
+    async def open(self, requested_pdu: int) -> None:
+        """Connect (TCP, COTP with the TSAPs) and negotiate the PDU size."""
+        try:
+            await self._connection.connect(timeout=self._timeout)
+        except S7TimeoutError as err:
+            raise PlcTimeoutError(
+                f"{self._where} did not answer within {self._timeout:g} s"
+            ) from err
+        except S7ConnectionError as err:
+            raise PlcConnectionError(f"cannot connect to {self._where}: {err}") from err
+        try:
+            request = self._protocol.build_setup_communication_request(1, 1, requested_pdu)
+            response = await self.exchange(request)
+            pdu = (response.get("parameters") or {}).get("pdu_length")
+            if not isinstance(pdu, int) or pdu < 64:
+                raise PlcProtocolError(f"the PLC negotiated an unusable PDU size {pdu!r}")
+        except S7RequestError as err:
+            await self.close()
+            raise PlcConnectionError(f"the PLC refused the S7 session: {err}") from err
+        except PlcError:
+            await self.close()
+            raise
+        self.pdu_size = min(pdu, requested_pdu)
+
+    async def exchange(self, request: bytes) -> dict[str, Any]:
+        """Send one S7 PDU, wait for its answer and return it parsed (the choke point)."""
+        if not self.usable:
+            raise PlcConnectionError("the connection to the PLC is closed")
+        self._metrics.requests += 1
+        try:
+            async with asyncio.timeout(self._timeout):
+                await self._connection.send_data(request)
+                reply = await self._connection.receive_data()
+        except asyncio.CancelledError:
+            self._broken = True  # an answer may still be on its way: never reuse the stream
+            raise
+        except (TimeoutError, S7TimeoutError) as err:
+            self._broken = True
+            raise PlcTimeoutError(f"the PLC did not answer within {self._timeout:g} s") from err
+        except (S7ConnectionError, OSError) as err:
+            self._broken = True
+            raise PlcConnectionError(f"the connection to the PLC broke: {err}") from err
+        if reply[4:6] != request[4:6]:
+            self._broken = True
+            raise PlcProtocolError("the PLC answered another request than the one sent")
+        try:
+            return self._protocol.parse_response(reply)
+        except S7ProtocolError as err:
+            raise S7RequestError(str(err), err.error_code) from None
+
+    def _sequence(self) -> int:
+        """Return the next PDU reference (shared with the library's builders)."""
+        self._protocol.sequence = (self._protocol.sequence + 1) & 0xFFFF
+        return self._protocol.sequence
+
+    async def read(self, spans: list[Span]) -> list[bytes | int]:
+        """Read several items in one request: their data, or their return codes."""
+        response = await self.exchange(read_request(self._sequence(), spans))
+        return read_items(response, len(spans))
+
+    async def write(self, items: list[WriteItem]) -> list[int]:
+        """Write several items in one request; return their return codes."""
+        response = await self.exchange(write_request(self._sequence(), items))
+        return write_codes(response, len(items))
+
+    def _checked(self, response: dict[str, Any], group: int, sub: int, *, empty: bool) -> None:
+        """Check a USERDATA answer is a success of the expected function."""
+        try:
+            self._protocol.check_userdata_response(response, group, sub, accept_null_ack=empty)
+        except S7ProtocolError as err:
+            raise S7RequestError(str(err), err.error_code) from None
+
+    async def read_szl(self, szl_id: int, index: int = 0) -> bytes:
+        """Read a system status list (header and records), following up on fragments."""
+        response = await self.exchange(self._protocol.build_read_szl_request(szl_id, index))
+        group, sub = S7UserDataGroup.SZL, S7UserDataSubfunction.READ_SZL
+        self._checked(response, group, sub, empty=False)
+        data = self._protocol.parse_read_szl_response(response)["data"]
+        for _ in range(MAX_FRAGMENTS):
+            parameters = response.get("parameters") or {}
+            if not parameters.get("last_data_unit"):
+                return bytes(data)
+            followup = self._protocol.build_userdata_followup_request(
+                group, sub, parameters.get("sequence_number", 0)
+            )
+            response = await self.exchange(followup)
+            self._checked(response, group, sub, empty=False)
+            data += self._protocol.parse_read_szl_response(response, first_fragment=False)["data"]
+        raise PlcProtocolError(f"SZL 0x{szl_id:04X} came in more than {MAX_FRAGMENTS} fragments")
+
+    async def get_clock(self) -> datetime:
+        """Return the PLC clock (naive, PLC local time)."""
+        response = await self.exchange(self._protocol.build_get_clock_request())
+        self._checked(response, S7UserDataGroup.TIME, S7UserDataSubfunction.GET_CLOCK, empty=False)
+        try:
+            return self._protocol.parse_get_clock_response(response)
+        except S7ProtocolError as err:
+            raise PlcProtocolError(str(err)) from None
+
+    async def set_clock(self, when: datetime) -> None:
+        """Set the PLC clock (naive, PLC local time, years 1990..2089)."""
+        response = await self.exchange(self._protocol.build_set_clock_request(when))
+        self._checked(response, S7UserDataGroup.TIME, S7UserDataSubfunction.SET_CLOCK, empty=True)
+
+    async def close(self) -> None:
+        """Say goodbye (COTP disconnect) and close the socket; errors do not matter here."""
+        self._broken = True
+        with contextlib.suppress(Exception):
+            async with asyncio.timeout(self._timeout):
+                await self._connection.disconnect()

@@ -1,0 +1,176 @@
+"""S7comm multi-variable read and write PDUs, per-item return codes, and what SZL lists say.
+
+python-snap7's `S7Protocol` builds the session PDUs (setup, SZL, clock) and parses every reply;
+its `build_multi_read_request` only knows byte items of its own `S7Area` enum, and
+`extract_multi_read_data` raises on the first failing item, so the multi-variable requests are
+built here (same wire format) and their data items read one by one.
+"""
+
+from __future__ import annotations
+
+import struct
+from typing import Any
+
+from snap7.szl import parse_cpu_info_szl, parse_order_code_szl
+from snap7.type import S7SZL
+
+from ...errors import PlcAddressError, PlcError, PlcProtocolError, PlcWriteRefusedError
+from .planner import Span, WriteItem
+
+READ = 0x04
+WRITE = 0x05
+REQUEST = 0x01
+OK = 0xFF
+BIT, BYTE = 0x01, 0x02  # word lengths of an address spec (T/C use their area code)
+TRANSPORT_BIT, TRANSPORT_BYTE, TRANSPORT_OCTETS = 0x03, 0x04, 0x09
+_LENGTH_IN_BYTES = (0x03, 0x07, 0x09)  # bit (one byte), real, octet string; others count bits
+SZL_IDENTITY = 0x001C
+SZL_ORDER_CODE = 0x0011
+SZL_STATE = 0x0424
+
+_ITEM_ERRORS = {
+    0x01: "hardware fault (is there a module at this address?)",
+    0x03: "access denied (protection level, or a DB with optimized block access)",
+    0x05: "address out of range (the area or DB is shorter)",
+    0x06: "data type not supported at this address",
+    0x07: "data type inconsistent with the address",
+    0x0A: "no such object (the DB or area does not exist)",
+}
+
+
+def address_spec(span: Span, bit: int | None = None) -> bytes:
+    """Return the 12-byte S7-ANY address spec of an item (a bit, bytes, or T/C elements)."""
+    if span.counted:
+        word_length, count, address = span.area, span.length, span.start
+    elif bit is not None:
+        word_length, count, address = BIT, 1, span.start * 8 + bit
+    else:
+        word_length, count, address = BYTE, span.length, span.start * 8
+    head = struct.pack(">BBBBHHB", 0x12, 0x0A, 0x10, word_length, count, span.db, span.area)
+    return head + address.to_bytes(3, "big")
+
+
+def _request(sequence: int, parameters: bytes, data: bytes = b"") -> bytes:
+    """Return a job PDU: S7 header, parameters, data."""
+    header = struct.pack(">BBHHHH", 0x32, REQUEST, 0, sequence, len(parameters), len(data))
+    return header + parameters + data
+
+
+def read_request(sequence: int, spans: list[Span]) -> bytes:
+    """Return one multi-variable read request for the spans."""
+    specs = b"".join(address_spec(span) for span in spans)
+    return _request(sequence, bytes([READ, len(spans)]) + specs)
+
+
+def write_request(sequence: int, items: list[WriteItem]) -> bytes:
+    """Return one multi-variable write request; a bit item carries transport size BIT."""
+    specs = b"".join(address_spec(item.span, item.bit) for item in items)
+    data = bytearray()
+    for index, item in enumerate(items):
+        if item.bit is not None:
+            transport, length = TRANSPORT_BIT, 1
+        elif item.span.counted:
+            transport, length = TRANSPORT_OCTETS, len(item.data)
+        else:
+            transport, length = TRANSPORT_BYTE, len(item.data) * 8
+        data += struct.pack(">BBH", 0, transport, length) + item.data
+        if len(item.data) % 2 and index < len(items) - 1:
+            data.append(0)
+    return _request(sequence, bytes([WRITE, len(items)]) + specs, bytes(data))
+
+
+def _check_function(response: dict[str, Any], function: int, count: int) -> bytes:
+    """Return the reply's data section after checking it answers this function and count."""
+    parameters = response.get("parameters") or {}
+    if parameters.get("function_code") != function or parameters.get("item_count") != count:
+        raise PlcProtocolError(
+            f"the PLC answered a {count}-item request with {parameters.get('item_count')} items"
+        )
+    raw = response.get("raw_data", b"")
+    assert isinstance(raw, bytes)
+    return raw
+
+
+def read_items(response: dict[str, Any], count: int) -> list[bytes | int]:
+    """Return the data of each item of a read reply, or its return code when it failed."""
+    raw = _check_function(response, READ, count)
+    items: list[bytes | int] = []
+    offset = 0
+    for index in range(count):
+        if offset + 4 > len(raw):
+            raise PlcProtocolError(f"the PLC's read reply ends before item {index + 1}")
+        code, transport, length = struct.unpack_from(">BBH", raw, offset)
+        offset += 4
+        if code != OK:
+            items.append(code)  # a failed item carries no data
+            continue
+        size = length if transport in _LENGTH_IN_BYTES else length // 8
+        if offset + size > len(raw):
+            raise PlcProtocolError(f"the PLC's read reply cuts item {index + 1} short")
+        items.append(raw[offset : offset + size])
+        offset += size + (size % 2 if index < count - 1 else 0)
+    return items
+
+
+def write_codes(response: dict[str, Any], count: int) -> list[int]:
+    """Return the return code of each item of a write reply."""
+    raw = _check_function(response, WRITE, count)
+    if len(raw) != count:
+        raise PlcProtocolError(f"the PLC acknowledged {len(raw)} of {count} written items")
+    return list(raw)
+
+
+def item_error(code: int, address: str, *, write: bool = False) -> PlcError:
+    """Return the error of one item from its return code (0x0A, 0x05, ...)."""
+    text = _ITEM_ERRORS.get(code)
+    if text is None:
+        return PlcProtocolError(f"{address}: the PLC answered the item with code 0x{code:02X}")
+    if write and code == 0x03:
+        return PlcWriteRefusedError(f"{address}: the PLC refused the write: {text}")
+    return PlcAddressError(f"{address}: {text} (0x{code:02X})")
+
+
+def cpu_mode(szl: bytes) -> str | None:
+    """Return RUN or STOP from SZL 0x0424 (None: unknown).
+
+    As Snap7's opGetPlcStatus reads it: byte 3 of the record (after the 4-byte list header) is
+    the mode; RUN is 0x08 on every CPU and CP, STOP 0x04, or 0x03 on older CPUs.
+    """
+    if len(szl) < 8:
+        raise PlcProtocolError("the PLC's CPU state list (SZL 0x0424) is too short")
+    mode = szl[7]
+    if mode == 0:
+        return None
+    return "RUN" if mode == 0x08 else "STOP"
+
+
+def _szl(data: bytes) -> S7SZL:
+    """Wrap list bytes (header and records) in the structure python-snap7's parsers take."""
+    szl = S7SZL()
+    data = data[: len(szl.Data)]
+    szl.Data[: len(data)] = data
+    szl.Header.LengthDR = len(data)
+    szl.Header.NDR = 1
+    return szl
+
+
+def _text(raw: bytes) -> str:
+    """Return a fixed-length SZL text field without padding."""
+    return raw.decode("latin-1").strip("\x00 ")
+
+
+def identity(order_code: bytes | None, component: bytes | None) -> dict[str, str]:
+    """Return what SZL 0x0011 (order code, firmware) and 0x001C (names, serial) say."""
+    found: dict[str, str] = {}
+    if order_code:
+        order = parse_order_code_szl(_szl(order_code))
+        found["order_code"] = _text(order.OrderCode)
+        if order.V1 or order.V2 or order.V3:
+            found["firmware"] = f"V{order.V1}.{order.V2}.{order.V3}"
+    if component:
+        info = parse_cpu_info_szl(_szl(component))
+        found["module_type"] = _text(info.ModuleTypeName)
+        found["serial"] = _text(info.SerialNumber)
+        found["name"] = _text(info.ASName)
+        found["module_name"] = _text(info.ModuleName)
+    return {key: value for key, value in found.items() if value}

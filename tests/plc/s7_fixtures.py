@@ -1,0 +1,133 @@
+"""S7 fixtures, imported by the tests/plc/test_s7_*.py modules: a simulator, clients, a raw peer."""
+
+from __future__ import annotations
+
+import asyncio
+from collections.abc import AsyncGenerator, Awaitable, Callable
+import struct
+from typing import Any
+
+import pytest
+
+from custom_components.plc_bridge.plc import ConnectionConfig
+from custom_components.plc_bridge.plc.vendors.s7 import S7Client
+from simulators.s7 import S7Simulator
+
+type ConfigFactory = Callable[..., ConnectionConfig]
+type Answer = Callable[[bytes], bytes | None]
+
+DBS = {1: 512, 2: 64, 3: 300, 4: 300}
+
+
+@pytest.fixture
+async def s7_sim() -> AsyncGenerator[S7Simulator]:
+    """An S7-300-like CPU (rack 0, slot 1, PDU 480) on a free loopback port."""
+    sim = S7Simulator(dbs=DBS)
+    await sim.start()
+    yield sim
+    await sim.stop()
+
+
+@pytest.fixture
+def s7_config(s7_sim: S7Simulator) -> ConfigFactory:
+    """Make the settings of a client of the simulator (Prague clock, short timeout)."""
+
+    def make(**changes: Any) -> ConnectionConfig:
+        settings: dict[str, Any] = {
+            "host": s7_sim.host,
+            "port": s7_sim.port,
+            "timeout": 2.0,
+            "time_zone": "Europe/Prague",
+            "options": {"connection": "rack_slot", "rack": 0, "slot": 1},
+        }
+        return ConnectionConfig(**(settings | changes))
+
+    return make
+
+
+@pytest.fixture
+async def s7_client(s7_config: ConfigFactory) -> AsyncGenerator[S7Client]:
+    """A client connected to the simulator, closed afterwards."""
+    client = S7Client(s7_config())
+    await client.connect()
+    yield client
+    await client.close()
+
+
+@pytest.fixture
+def fast_reconnect(monkeypatch: pytest.MonkeyPatch) -> None:
+    """Shorten the reconnect backoff to 50 ms doubling to 200 ms."""
+    monkeypatch.setattr(S7Client, "reconnect_delay", (0.05, 0.2))
+
+
+def userdata_ack(request: bytes, data: bytes, *, last: int = 0) -> bytes:
+    """Answer a USERDATA request (SZL, clock) with data, as a CPU does."""
+    parameters = bytes([0, 1, 0x12, 8, 0x12, 0x80 | request[15] & 0x0F, request[16], 1, 0, last])
+    parameters += b"\x00\x00"
+    body = bytes([0xFF, 0x09]) + len(data).to_bytes(2, "big") + data
+    header = struct.pack(">BBHHHH", 0x32, 7, 0, int.from_bytes(request[4:6]), 12, len(body))
+    return header + parameters + body
+
+
+def setup_ack(request: bytes, pdu: int = 240) -> bytes:
+    """Answer a setup communication request with a PDU size."""
+    header = struct.pack(">BBHHHHBB", 0x32, 3, 0, int.from_bytes(request[4:6]), 8, 0, 0, 0)
+    return header + bytes([0xF0, 0, 0, 1, 0, 1]) + pdu.to_bytes(2, "big")
+
+
+class RawPeer:
+    """A loopback ISO-on-TCP peer whose S7 answers a test writes (a misbehaving PLC)."""
+
+    def __init__(self, answer: Answer) -> None:
+        self.answer = answer
+        self.port = 0
+        self._server: asyncio.Server | None = None
+
+    async def start(self) -> None:
+        """Listen on a free loopback port."""
+        self._server = await asyncio.start_server(self._serve, "127.0.0.1", 0)
+        self.port = self._server.sockets[0].getsockname()[1]
+
+    async def stop(self) -> None:
+        """Stop listening and close every connection."""
+        assert self._server is not None
+        self._server.close()
+        self._server.close_clients()
+        await self._server.wait_closed()
+
+    async def _serve(self, reader: asyncio.StreamReader, writer: asyncio.StreamWriter) -> None:
+        """Confirm the COTP connection, then answer each S7 PDU with `answer`."""
+        try:
+            while True:
+                head = await reader.readexactly(4)
+                payload = await reader.readexactly(int.from_bytes(head[2:4]) - 4)
+                if payload[1] == 0xE0:
+                    reply = b"\x06\xd0\x00\x01\x00\x01\x00"
+                elif payload[1] != 0xF0:  # a disconnect request
+                    break
+                else:
+                    pdu = self.answer(payload[3:])
+                    if pdu is None:
+                        continue
+                    reply = b"\x02\xf0\x80" + pdu
+                writer.write(struct.pack(">BBH", 3, 0, len(reply) + 4) + reply)
+                await writer.drain()
+        except (asyncio.IncompleteReadError, ConnectionError):
+            pass
+        writer.close()
+
+
+@pytest.fixture
+async def raw_peer() -> AsyncGenerator[Callable[[Answer], Awaitable[RawPeer]]]:
+    """Start raw peers answering as a test says; stopped afterwards."""
+    peers: list[RawPeer] = []
+
+    async def make(answer: Answer) -> RawPeer:
+        peer = RawPeer(answer)
+        await peer.start()
+        peers.append(peer)
+        return peer
+
+    yield make
+    for peer in peers:
+        await peer.stop()
