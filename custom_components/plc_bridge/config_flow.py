@@ -16,9 +16,13 @@ from homeassistant.const import CONF_HOST, CONF_PASSWORD, CONF_PORT, CONF_USERNA
 from homeassistant.core import callback
 from homeassistant.helpers.device_registry import format_mac
 from homeassistant.helpers.selector import (
+    NumberSelector,
+    NumberSelectorConfig,
+    NumberSelectorMode,
     SelectSelector,
     SelectSelectorConfig,
     SelectSelectorMode,
+    TextSelector,
 )
 import voluptuous as vol
 
@@ -32,9 +36,17 @@ from .connection_form import (
     form_values,
     on_form,
 )
-from .const import CONF_FINGERPRINT, CONF_TLS, CONF_VENDOR, DOMAIN, LOGGER, SUBENTRY_POINT
+from .const import (
+    CONF_FINGERPRINT,
+    CONF_OPTIONS,
+    CONF_TLS,
+    CONF_VENDOR,
+    DOMAIN,
+    LOGGER,
+    SUBENTRY_POINT,
+)
 from .options_flow import PlcBridgeOptionsFlow
-from .plc import DeviceInfo, PlcError, TlsMode
+from .plc import DeviceInfo, PlcError, PlcValueError, TlsMode
 from .plc.http import fetch_fingerprint, format_fingerprint
 from .plc.vendors import VENDORS, client_class
 from .subentry_flow import PointSubentryFlowHandler
@@ -42,11 +54,38 @@ from .subentry_flow import PointSubentryFlowHandler
 CERTIFICATE_TIMEOUT = 10.0
 """Seconds to wait for the PLC's TLS handshake when fetching its certificate."""
 
-VENDOR_FIELDS: dict[str, tuple[VendorField, ...]] = {}
+
+def _choice(key: str, options: list[str]) -> SelectSelector:
+    """Return a translated select of fixed options."""
+    return SelectSelector(
+        SelectSelectorConfig(options=options, translation_key=key, mode=SelectSelectorMode.LIST)
+    )
+
+
+def _whole(low: int, high: int) -> NumberSelector:
+    """Return a whole-number box."""
+    return NumberSelector(
+        NumberSelectorConfig(min=low, max=high, step=1, mode=NumberSelectorMode.BOX)
+    )
+
+
+VENDOR_FIELDS: dict[str, tuple[VendorField, ...]] = {
+    "tecomat": (
+        VendorField("auth", _choice("auth", ["digest", "basic"]), "digest"),
+        VendorField("clock_variable", TextSelector()),
+    ),
+    "s7": (
+        VendorField("connection", _choice("connection", ["rack_slot", "tsap"]), "rack_slot"),
+        VendorField("rack", _whole(0, 7), 0),
+        VendorField("slot", _whole(0, 31), 1),
+        VendorField("local_tsap", TextSelector()),
+        VendorField("remote_tsap", TextSelector()),
+    ),
+}
 """Extra connection fields per vendor key, shown after the TLS mode; labels in strings.json.
 
-For example "s7": (VendorField("rack", NumberSelector(...), 0), VendorField("slot", ..., 1)).
-Whole numbers come back as int; the client reads them from ConnectionConfig.options.
+Whole numbers come back as int; the client checks them (`validate_options`) and reads them
+from ConnectionConfig.options.
 """
 
 
@@ -183,6 +222,10 @@ class PlcBridgeConfigFlow(ConfigFlow, domain=DOMAIN):
         client = client_class(self._vendor)
         extras = VENDOR_FIELDS.get(self._vendor, ())
         self._data.update(connection_data(client, extras, user_input))
+        try:
+            self._data[CONF_OPTIONS] = client.validate_options(self._data[CONF_OPTIONS])
+        except PlcValueError as err:
+            return self._connection_form(step_id, {"base": "invalid_options"}, str(err))
         self._data[CONF_FINGERPRINT] = ""
         if self._data[CONF_TLS] == TlsMode.PIN:
             try:
@@ -234,7 +277,9 @@ class PlcBridgeConfigFlow(ConfigFlow, domain=DOMAIN):
         finally:
             await client.close()
 
-    def _connection_form(self, step_id: str, errors: dict[str, str]) -> ConfigFlowResult:
+    def _connection_form(
+        self, step_id: str, errors: dict[str, str], problem: str = ""
+    ) -> ConfigFlowResult:
         """Show the connection (or reconfigure) form with the values entered so far."""
         schema = connection_schema(
             client_class(self._vendor),
@@ -245,4 +290,5 @@ class PlcBridgeConfigFlow(ConfigFlow, domain=DOMAIN):
             step_id=step_id,
             data_schema=self.add_suggested_values_to_schema(schema, form_values(self._data)),
             errors=on_form(errors, schema),
+            description_placeholders={"problem": problem},
         )

@@ -24,7 +24,7 @@ CONF_MIN: Final = "min"
 CONF_MAX: Final = "max"
 CONF_STEP: Final = "step"
 
-POINT_PLATFORMS: Final = ("sensor", "binary_sensor", "switch", "number", "datetime")
+POINT_PLATFORMS: Final = ("sensor", "binary_sensor", "switch", "number", "datetime", "text")
 
 ATTR_CONFIG_ENTRY_ID: Final = "config_entry_id"
 ATTR_POINTS: Final = "points"

@@ -46,6 +46,7 @@ PLATFORM_KINDS: dict[str, tuple[frozenset[ValueKind], str]] = {
     "switch": (frozenset({ValueKind.BOOL}), "needs_bool"),
     "number": (NUMERIC, "needs_number"),
     "datetime": (frozenset({ValueKind.DATETIME}), "needs_datetime"),
+    "text": (frozenset({ValueKind.TEXT}), "needs_text"),
 }
 """The kinds of value a platform can show, and the error when a point is not one (sensor: all)."""
 
@@ -55,6 +56,7 @@ DEVICE_CLASSES: dict[str, frozenset[str]] = {
     "switch": frozenset(SwitchDeviceClass),
     "number": frozenset(NumberDeviceClass),
     "datetime": frozenset(),
+    "text": frozenset(),
 }
 
 _NUMBER = NumberSelector(NumberSelectorConfig(mode=NumberSelectorMode.BOX, step="any"))
@@ -74,6 +76,7 @@ def point_schema(client: type[PlcClient]) -> vol.Schema:
                     options=list(client.data_types),
                     translation_key=CONF_DATA_TYPE,
                     mode=SelectSelectorMode.DROPDOWN,
+                    custom_value=True,  # e.g. STRING[20]; the vendor's parser checks it
                 )
             ),
             vol.Optional(CONF_UNIT_OF_MEASUREMENT): TextSelector(),
@@ -180,4 +183,6 @@ def suggested_platform(client: type[PlcClient], item: BrowseItem) -> str:
         return "number"
     if kind is ValueKind.DATETIME and not item.read_only:
         return "datetime"
+    if kind is ValueKind.TEXT and not item.read_only:
+        return "text"
     return "sensor"

@@ -75,6 +75,11 @@ class PlcClient(ABC):
         """Return the point with its address normalized; raise PlcAddressError when invalid."""
 
     @classmethod
+    def validate_options(cls, options: Mapping[str, object]) -> dict[str, str | int | bool]:
+        """Return the vendor options normalized; raise PlcValueError with a form-ready message."""
+        return {k: v for k, v in options.items() if isinstance(v, str | int | bool)}
+
+    @classmethod
     def validate_value(cls, point: Point, value: Value) -> Value:
         """Return the value coerced for the point; raise PlcValueError before anything is sent."""
         return value

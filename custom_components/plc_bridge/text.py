@@ -1,0 +1,50 @@
+"""Texts: writable STRING points."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from homeassistant.components.text import TextEntity, TextEntityDescription
+from homeassistant.config_entries import ConfigSubentry
+from homeassistant.core import HomeAssistant
+from homeassistant.helpers.entity_platform import AddConfigEntryEntitiesCallback
+
+from .coordinator import PlcBridgeConfigEntry
+from .entity import PlcPointDescription, PlcPointEntity, add_point_entities, point_fields
+
+PARALLEL_UPDATES = 1
+
+
+@dataclass(frozen=True, kw_only=True)
+class PlcTextDescription(TextEntityDescription, PlcPointDescription):
+    """A point shown as an editable text."""
+
+
+def point_text(entry: PlcBridgeConfigEntry, subentry: ConfigSubentry) -> PlcText:
+    """Return the text entity of a point; the vendor's check refuses what does not fit."""
+    return PlcText(entry, PlcTextDescription(**point_fields(entry, subentry), native_max=255))
+
+
+async def async_setup_entry(
+    hass: HomeAssistant,
+    entry: PlcBridgeConfigEntry,
+    async_add_entities: AddConfigEntryEntitiesCallback,
+) -> None:
+    """Add a text entity for each text point."""
+    add_point_entities(entry, async_add_entities, "text", point_text)
+
+
+class PlcText(PlcPointEntity, TextEntity):
+    """A STRING point the user can set."""
+
+    entity_description: PlcTextDescription
+
+    @property
+    def native_value(self) -> str | None:
+        """Return the point's text."""
+        value = self.raw_value
+        return None if value is None else str(value)
+
+    async def async_set_value(self, value: str) -> None:
+        """Write the text (ASCII and length are checked by the vendor before sending)."""
+        await self.async_write(value)
