@@ -6,7 +6,12 @@ import pytest
 
 from custom_components.plc_bridge.plc.vendors import client_class, implemented
 
-pytest_plugins = ["tests.flow_fixtures", "tests.ha_fixtures"]
+pytest_plugins = [
+    "tests.flow_fixtures",
+    "tests.ha_fixtures",
+    "tests.tecomat_ha_fixtures",
+    "tests.s7_ha_fixtures",
+]
 
 
 @pytest.fixture(autouse=True)

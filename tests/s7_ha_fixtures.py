@@ -1,0 +1,1 @@
+"""Home Assistant fixtures for the S7 (ISO-on-TCP) vendor."""

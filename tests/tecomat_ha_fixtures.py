@@ -1,0 +1,1 @@
+"""Home Assistant fixtures for the TecoApi (tecomat) vendor."""
