@@ -1,1 +1,130 @@
-"""Home Assistant fixtures for the TecoApi (tecomat) vendor."""
+"""Home Assistant fixtures for the TecoApi (tecomat) vendor: its simulator and an entry of it.
+
+Registered for every test through `pytest_plugins` in tests/conftest.py.
+"""
+
+from __future__ import annotations
+
+from collections.abc import AsyncGenerator, Iterable
+from typing import Any
+
+from freezegun.api import FrozenDateTimeFactory
+from homeassistant.config_entries import ConfigSubentryDataWithId
+from homeassistant.const import (
+    CONF_HOST,
+    CONF_PASSWORD,
+    CONF_PORT,
+    CONF_SCAN_INTERVAL,
+    CONF_USERNAME,
+)
+from homeassistant.core import HomeAssistant
+import pytest
+from pytest_homeassistant_custom_component.common import MockConfigEntry
+
+from custom_components.plc_bridge.const import (
+    CONF_FINGERPRINT,
+    CONF_OPTIONS,
+    CONF_TLS,
+    CONF_VENDOR,
+    DOMAIN,
+)
+from simulators.tecomat import DEFAULT_PASSWORD, DEFAULT_USER, TecomatSimulator
+from tests.ha_fixtures import SCAN_INTERVAL, point, unload_all
+
+TECOMAT_ENTRY_ID = "01JPLCBR1DGE00000000TECOMAT"
+TECOMAT_SERIAL = "PP 0004"  # GetInfo's plc.serialNumber: the entry's unique id
+
+TECOMAT_POINTS = [
+    point(
+        "inside",
+        "Inside temperature",
+        "sensor",
+        "Main.myObject2.value",
+        "REAL",
+        unit_of_measurement="°C",
+        device_class="temperature",
+        state_class="measurement",
+        read_only=True,
+    ),
+    point(
+        "requested",
+        "Requested temperature",
+        "number",
+        "Main.myObject3.value",
+        "REAL",
+        min=10.0,
+        max=30.0,
+        step=0.5,
+    ),
+    point("pump", "Circulation pump", "switch", "Main.pump.value", "BOOL"),
+    point("bool1", "Bool 1", "binary_sensor", "plcData.varBool1", "BOOL"),
+    point("int", "Int", "sensor", "plcData.varInt", "INT"),
+    point("udint", "Salary", "sensor", "myObject.salary", "UDINT"),
+    point("time", "Time", "sensor", "plcData.varTime", "TIME"),
+    point("element", "Element", "sensor", "arr2[1][3]", "REAL"),
+    point("greeting", "Greeting", "text", "plcData.varString", "STRING"),
+    point("stamp", "Stamp", "datetime", "plcData.varDT", "DT"),
+]
+"""Points of several IEC types, chapter 5.3 objects, members and elements, every platform."""
+
+
+def tecomat_data(sim: TecomatSimulator, **changes: Any) -> dict[str, Any]:
+    """Return entry data for the simulator: plain HTTP, default user, Digest, a clock variable."""
+    data = {
+        CONF_VENDOR: "tecomat",
+        CONF_HOST: sim.host,
+        CONF_PORT: sim.port,
+        CONF_USERNAME: DEFAULT_USER,
+        CONF_PASSWORD: DEFAULT_PASSWORD,
+        CONF_TLS: "none",
+        CONF_FINGERPRINT: "",
+        CONF_OPTIONS: {"auth": sim.auth.method, "clock_variable": "setTime"},
+    }
+    return data | changes
+
+
+def make_tecomat_entry(
+    hass: HomeAssistant,
+    sim: TecomatSimulator,
+    points: Iterable[ConfigSubentryDataWithId] = TECOMAT_POINTS,
+    **changes: Any,
+) -> MockConfigEntry:
+    """Add an entry of the simulator with the given points (not set up yet)."""
+    entry = MockConfigEntry(
+        domain=DOMAIN,
+        title="Fx2 CP2080",
+        entry_id=TECOMAT_ENTRY_ID,
+        unique_id=TECOMAT_SERIAL,
+        data=tecomat_data(sim, **changes),
+        options={CONF_SCAN_INTERVAL: SCAN_INTERVAL},
+        subentries_data=list(points),
+    )
+    entry.add_to_hass(hass)
+    return entry
+
+
+@pytest.fixture
+async def tecomat_sim(
+    hass: HomeAssistant, freezer: FrozenDateTimeFactory
+) -> AsyncGenerator[TecomatSimulator]:
+    """A started Tecomat simulator (Digest, plain HTTP, no benchmark variables).
+
+    Time is frozen until every entry is unloaded, as for the S7-200 SMART fixture.
+    """
+    sim = TecomatSimulator(bench=0)
+    await sim.start()
+    yield sim
+    await unload_all(hass)
+    await sim.stop()
+
+
+@pytest.fixture
+async def tecomat_entry(
+    hass: HomeAssistant, tecomat_sim: TecomatSimulator
+) -> AsyncGenerator[MockConfigEntry]:
+    """The simulator's entry with TECOMAT_POINTS, set up (unloaded afterwards)."""
+    entry = make_tecomat_entry(hass, tecomat_sim)
+    assert await hass.config_entries.async_setup(entry.entry_id)
+    await hass.async_block_till_done()
+    yield entry
+    await unload_all(hass)

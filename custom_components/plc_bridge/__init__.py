@@ -12,7 +12,14 @@ from .connection import create_client
 from .const import CONF_TLS, DOMAIN
 from .coordinator import PlcBridgeConfigEntry, PlcCoordinator, PlcRuntimeData, link_error
 from .plc import PlcError, TlsMode
-from .repairs import CERTIFICATE_CHANGED, ISSUES, TLS_OFF, async_clear_issue, async_raise_issue
+from .repairs import (
+    CERTIFICATE_CHANGED,
+    ISSUES,
+    TLS_OFF,
+    async_clear_issue,
+    async_clear_point_issues,
+    async_raise_issue,
+)
 from .services import async_setup_services
 
 PLATFORMS = [
@@ -67,3 +74,4 @@ async def async_remove_entry(hass: HomeAssistant, entry: ConfigEntry) -> None:
     """Delete the issues of a removed PLC."""
     for key in ISSUES:
         async_clear_issue(hass, entry, key)
+    async_clear_point_issues(hass, entry)

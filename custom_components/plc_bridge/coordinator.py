@@ -21,6 +21,7 @@ from .const import CONF_ADDRESS, CONF_DATA_TYPE, CONF_TLS, DOMAIN, LOGGER, SUBEN
 from .helpers import translated_errors
 from .plc import (
     DeviceInfo,
+    PlcAddressError,
     PlcAuthenticationError,
     PlcClient,
     PlcConnectionError,
@@ -31,7 +32,15 @@ from .plc import (
     TlsMode,
     Value,
 )
-from .repairs import CERTIFICATE_CHANGED, SESSION_CONFLICT, async_clear_issue, async_raise_issue
+from .repairs import (
+    CERTIFICATE_CHANGED,
+    SESSION_CONFLICT,
+    async_clear_issue,
+    async_clear_point_issue,
+    async_clear_point_issues,
+    async_raise_issue,
+    async_raise_point_issue,
+)
 
 RENEWAL_WINDOW = 10
 """Polls over which session renewals are counted."""
@@ -111,6 +120,9 @@ class PlcCoordinator(DataUpdateCoordinator[ReadResult]):
             update_interval=timedelta(seconds=interval),
         )
         self._failing: set[Point] = set()
+        self._unknown: set[str] = set()
+        # A removed point's issue goes with it (removing a subentry reloads the entry).
+        async_clear_point_issues(hass, entry, keep=self.points)
         self._renewals: deque[int] = deque(maxlen=RENEWAL_WINDOW)
         self._renewals_seen = client.metrics.session_renewals
 
@@ -125,6 +137,7 @@ class PlcCoordinator(DataUpdateCoordinator[ReadResult]):
         if self.config_entry.data.get(CONF_TLS) == TlsMode.PIN:
             async_clear_issue(self.hass, self.config_entry, CERTIFICATE_CHANGED)
         self._log_point_changes(result)
+        self._watch_addresses(result)
         return result
 
     def _log_point_changes(self, result: ReadResult) -> None:
@@ -141,6 +154,27 @@ class PlcCoordinator(DataUpdateCoordinator[ReadResult]):
         for point in self._failing - failing:
             LOGGER.info("%s: %s (%s) can be read again", self.name, point.address, point.data_type)
         self._failing = failing
+
+    def _watch_addresses(self, result: ReadResult) -> None:
+        """Raise one issue per point whose address the PLC does not know; clear it once it reads.
+
+        Vendor-neutral: any PlcAddressError counts, whether the point read fine before (a
+        renamed PLC variable) or fails at every poll; the other points are read regardless.
+        """
+        for subentry_id, point in self.points.items():
+            outcome = result.values.get(point)
+            if outcome is None:
+                continue
+            if isinstance(outcome.error, PlcAddressError):
+                if subentry_id not in self._unknown:
+                    self._unknown.add(subentry_id)
+                    async_raise_point_issue(
+                        self.hass, self.config_entry, subentry_id, point.address, str(outcome.error)
+                    )
+            elif outcome.ok:
+                # Also after a reload, when the issue was raised by the previous coordinator.
+                self._unknown.discard(subentry_id)
+                async_clear_point_issue(self.hass, self.config_entry, subentry_id)
 
     def _watch_sessions(self) -> None:
         """Raise an issue while the PLC keeps dropping the session (its user logs in elsewhere)."""

@@ -1,7 +1,8 @@
-"""Repair issues: an unchecked TLS link, a replaced certificate, two clients sharing a PLC user."""
+"""Repair issues: an unchecked TLS link, a replaced certificate, a shared PLC user, lost points."""
 
 from __future__ import annotations
 
+from collections.abc import Collection
 from typing import Any
 
 from homeassistant.components.repairs import ConfirmRepairFlow, RepairsFlow
@@ -20,6 +21,8 @@ TLS_OFF = "tls_off"
 CERTIFICATE_CHANGED = "certificate_changed"
 SESSION_CONFLICT = "session_conflict"
 ISSUES = (TLS_OFF, CERTIFICATE_CHANGED, SESSION_CONFLICT)
+UNKNOWN_ADDRESS = "unknown_address"
+"""One issue per point whose address the PLC does not know (typically a renamed variable)."""
 
 
 def issue_id(entry: ConfigEntry[Any], key: str) -> str:
@@ -46,6 +49,52 @@ def async_raise_issue(hass: HomeAssistant, entry: ConfigEntry[Any], key: str) ->
 def async_clear_issue(hass: HomeAssistant, entry: ConfigEntry[Any], key: str) -> None:
     """Delete an issue of the entry, if it is there."""
     ir.async_delete_issue(hass, DOMAIN, issue_id(entry, key))
+
+
+def point_issue_id(entry: ConfigEntry[Any], subentry_id: str) -> str:
+    """Return the id of a point's unknown-address issue."""
+    return f"{UNKNOWN_ADDRESS}_{entry.entry_id}_{subentry_id}"
+
+
+@callback
+def async_raise_point_issue(
+    hass: HomeAssistant, entry: ConfigEntry[Any], subentry_id: str, address: str, error: str
+) -> None:
+    """Create (or update) the issue of a point the PLC does not know."""
+    subentry = entry.subentries.get(subentry_id)
+    ir.async_create_issue(
+        hass,
+        DOMAIN,
+        point_issue_id(entry, subentry_id),
+        is_fixable=False,
+        severity=ir.IssueSeverity.WARNING,
+        translation_key=UNKNOWN_ADDRESS,
+        translation_placeholders={
+            "title": entry.title,
+            "point": subentry.title if subentry else subentry_id,
+            "address": address,
+            "error": error,
+        },
+        data={"entry_id": entry.entry_id, "subentry_id": subentry_id},
+    )
+
+
+@callback
+def async_clear_point_issue(hass: HomeAssistant, entry: ConfigEntry[Any], subentry_id: str) -> None:
+    """Delete a point's issue, if it is there."""
+    ir.async_delete_issue(hass, DOMAIN, point_issue_id(entry, subentry_id))
+
+
+@callback
+def async_clear_point_issues(
+    hass: HomeAssistant, entry: ConfigEntry[Any], keep: Collection[str] = ()
+) -> None:
+    """Delete the point issues of an entry, except those of the subentry ids in `keep`."""
+    prefix = point_issue_id(entry, "")
+    registry = ir.async_get(hass)
+    for domain, issue in list(registry.issues):
+        if domain == DOMAIN and issue.startswith(prefix) and issue[len(prefix) :] not in keep:
+            ir.async_delete_issue(hass, DOMAIN, issue)
 
 
 class CertificateRepairFlow(RepairsFlow):

@@ -295,6 +295,6 @@ def test_listing_and_objects() -> None:
     )
     assert api_object(parse_path("a"), {"value": None, "attr": {}}) is None
     assert api_object(parse_path("a"), {"value": 1}) is None
-    assert suggested_platform("STRING", False) == "sensor"
+    assert suggested_platform("STRING", False) == "text"
     assert suggested_platform("DT", True) == "sensor"
     assert suggested_platform("DATE", False) == "datetime"

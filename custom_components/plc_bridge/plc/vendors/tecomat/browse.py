@@ -81,7 +81,7 @@ def api_object(path: VariablePath, raw: dict[str, Any]) -> BrowseItem | None:
 
 def suggested_platform(kind: str, read_only: bool) -> str:
     """Return the Home Assistant platform a published object suits."""
-    controls = {"BOOL": "switch", "DATE": "datetime", "DT": "datetime"}
+    controls = {"BOOL": "switch", "DATE": "datetime", "DT": "datetime", "STRING": "text"}
     if read_only:
         return "binary_sensor" if kind == "BOOL" else "sensor"
     if kind in controls:

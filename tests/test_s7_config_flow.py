@@ -1,0 +1,179 @@
+"""Config flow for S7: rack/slot or TSAPs, checked by the client, then a real connection."""
+
+from __future__ import annotations
+
+from typing import Any
+from unittest.mock import AsyncMock
+
+from homeassistant.config_entries import SOURCE_USER
+from homeassistant.const import CONF_HOST, CONF_PORT
+from homeassistant.core import HomeAssistant
+from homeassistant.data_entry_flow import FlowResultType
+import pytest
+from pytest_homeassistant_custom_component.common import MockConfigEntry
+
+from custom_components.plc_bridge.const import CONF_VENDOR, DOMAIN
+from simulators.s7 import S7Simulator
+from tests.flow_fixtures import error_message, translated
+
+from .s7_ha_fixtures import SimFactory, s7_data
+
+CONFIG = ("config",)
+SERIAL = S7Simulator.serial
+TITLE = "CPU 315-2 PN/DP (127.0.0.1)"
+
+pytestmark = pytest.mark.usefixtures("mock_setup_entry")
+
+
+async def connection_form(hass: HomeAssistant) -> dict[str, Any]:
+    """Start a user flow, pick S7; return the connection form."""
+    result = await hass.config_entries.flow.async_init(DOMAIN, context={"source": SOURCE_USER})
+    result = await hass.config_entries.flow.async_configure(result["flow_id"], {CONF_VENDOR: "s7"})
+    assert result["step_id"] == "connection"
+    return translated(result, *CONFIG)
+
+
+async def submit(hass: HomeAssistant, result: dict[str, Any], values: dict[str, Any]) -> Any:
+    """Submit a form; check the answer is translated."""
+    return translated(
+        await hass.config_entries.flow.async_configure(result["flow_id"], values), *CONFIG
+    )
+
+
+def where(sim: S7Simulator, **fields: Any) -> dict[str, Any]:
+    """Return the connection form input for the simulator."""
+    return {CONF_HOST: sim.host, CONF_PORT: sim.port} | fields
+
+
+async def test_form_defaults(hass: HomeAssistant) -> None:
+    """Port 102, rack 0, slot 1 by rack/slot; no TLS choice, no credentials."""
+    form = await connection_form(hass)
+    fields = {str(marker) for marker in form["data_schema"].schema}
+    assert fields == {
+        "host",
+        "port",
+        "connection",
+        "rack",
+        "slot",
+        "local_tsap",
+        "remote_tsap",
+    }
+    values = form["data_schema"]({CONF_HOST: "plc"})
+    assert values == {
+        CONF_HOST: "plc",
+        CONF_PORT: 102,
+        "connection": "rack_slot",
+        "rack": 0,
+        "slot": 1,
+    }
+
+
+async def test_rack_slot_default(
+    hass: HomeAssistant, s7_ha_sims: SimFactory, mock_setup_entry: AsyncMock
+) -> None:
+    """Rack 0 / slot 1: the entry is created, identified by the CPU's SZL serial."""
+    sim = await s7_ha_sims()
+    result = await submit(hass, await connection_form(hass), where(sim))
+    assert result["type"] is FlowResultType.CREATE_ENTRY
+    assert result["title"] == TITLE
+    assert result["data"] == s7_data(sim)
+    assert result["result"].unique_id == SERIAL
+    assert sim.connections == 1
+    assert sim.calls["szl"] >= 2  # order code (0x0011) and identity (0x001C)
+    assert mock_setup_entry.call_count == 1
+
+
+async def test_slot_two(hass: HomeAssistant, s7_ha_sims: SimFactory) -> None:
+    """A CPU in slot 2 (S7-400) refuses slot 1 on the host field, then takes slot 2."""
+    sim = await s7_ha_sims(slot=2)
+    form = await connection_form(hass)
+    result = await submit(hass, form, where(sim, rack=0, slot=1))
+    assert result["type"] is FlowResultType.FORM
+    assert result["errors"] == {CONF_HOST: "cannot_connect"}
+    assert sim.connections == 0
+    result = await submit(hass, result, where(sim, rack=0.0, slot=2.0))  # as the UI sends
+    assert result["type"] is FlowResultType.CREATE_ENTRY
+    assert result["data"] == s7_data(sim, slot=2)
+    assert result["result"].unique_id == SERIAL
+
+
+async def test_tsap(hass: HomeAssistant, s7_ha_sims: SimFactory) -> None:
+    """Connection by TSAP (S7-200 CP 243-1 style): "10.01" reaches a CPU called 0x1001."""
+    sim = await s7_ha_sims(remote_tsap=0x1001)
+    result = await submit(
+        hass, await connection_form(hass), where(sim, connection="tsap", remote_tsap=" 10.01 ")
+    )
+    assert result["type"] is FlowResultType.CREATE_ENTRY
+    assert result["data"]["vendor_options"] == {
+        "connection": "tsap",
+        "local_tsap": "01.00",
+        "remote_tsap": "10.01",
+    }
+    assert result["result"].unique_id == SERIAL
+    assert sim.connections == 1
+
+
+async def test_tsap_wrong_remote(hass: HomeAssistant, s7_ha_sims: SimFactory) -> None:
+    """A TSAP the CPU does not serve is a connection failure on the host field."""
+    sim = await s7_ha_sims(remote_tsap=0x1001)
+    result = await submit(
+        hass, await connection_form(hass), where(sim, connection="tsap", remote_tsap="10.02")
+    )
+    assert result["errors"] == {CONF_HOST: "cannot_connect"}
+
+
+@pytest.mark.parametrize(
+    ("fields", "problem"),
+    [
+        ({"connection": "tsap"}, "remote_tsap is needed to connect by TSAP, e.g. 10.01"),
+        (
+            {"connection": "tsap", "remote_tsap": "10:01"},
+            "remote_tsap '10:01' is not a TSAP; write it as STEP 7 does, e.g. 10.01",
+        ),
+    ],
+)
+async def test_invalid_options(
+    hass: HomeAssistant, s7_ha_sims: SimFactory, fields: dict[str, Any], problem: str
+) -> None:
+    """Options the client refuses are shown with its words; nothing connects."""
+    sim = await s7_ha_sims(remote_tsap=0x1001)
+    result = await submit(hass, await connection_form(hass), where(sim, **fields))
+    assert result["type"] is FlowResultType.FORM
+    assert result["errors"] == {"base": "invalid_options"}
+    assert result["description_placeholders"] == {"problem": problem}
+    assert error_message(result, "base", *CONFIG) == (
+        f"The connection settings are not valid: {problem}"
+    )
+    assert sim.requests == 0
+    assert sim.connections == 0
+
+
+async def test_already_configured(hass: HomeAssistant, s7_ha_sims: SimFactory) -> None:
+    """The same CPU (same serial) under another address is refused."""
+    sim = await s7_ha_sims()
+    MockConfigEntry(domain=DOMAIN, unique_id=SERIAL, data=s7_data(sim, slot=3)).add_to_hass(hass)
+    result = await submit(hass, await connection_form(hass), where(sim))
+    assert result["type"] is FlowResultType.ABORT
+    assert result["reason"] == "already_configured"
+    assert len(hass.config_entries.async_entries(DOMAIN)) == 1
+
+
+async def test_reconfigure_to_tsap(hass: HomeAssistant, s7_ha_sims: SimFactory) -> None:
+    """A configured CPU moves to connection by TSAP; the same serial keeps the entry."""
+    sim = await s7_ha_sims(remote_tsap=0x0302)
+    entry = MockConfigEntry(domain=DOMAIN, unique_id=SERIAL, data=s7_data(sim))
+    entry.add_to_hass(hass)
+    result = translated(await entry.start_reconfigure_flow(hass), *CONFIG)
+    assert result["step_id"] == "reconfigure"
+    result = await submit(hass, result, where(sim))
+    assert result["errors"] == {CONF_HOST: "cannot_connect"}
+    result = await submit(
+        hass, result, where(sim, connection="tsap", local_tsap="10.00", remote_tsap="0x0302")
+    )
+    assert result["type"] is FlowResultType.ABORT
+    assert result["reason"] == "reconfigure_successful"
+    assert entry.data["vendor_options"] == {
+        "connection": "tsap",
+        "local_tsap": "10.00",
+        "remote_tsap": "03.02",
+    }

@@ -1,0 +1,235 @@
+"""Config and point flows of a Tecomat PLC against its simulator: Digest/Basic, browsing."""
+
+from __future__ import annotations
+
+from collections.abc import AsyncGenerator
+from typing import Any
+from unittest.mock import AsyncMock
+
+from homeassistant.config_entries import SOURCE_USER
+from homeassistant.const import CONF_HOST, CONF_PASSWORD, CONF_PORT, CONF_USERNAME
+from homeassistant.core import HomeAssistant
+from homeassistant.data_entry_flow import FlowResultType
+import pytest
+
+from custom_components.plc_bridge.const import CONF_TLS, CONF_VENDOR, DOMAIN, SUBENTRY_POINT
+from simulators.tecomat import DEFAULT_PASSWORD, DEFAULT_USER, TecomatSimulator
+from tests.flow_fixtures import suggested, translated
+from tests.ha_fixtures import point
+from tests.tecomat_ha_fixtures import TECOMAT_SERIAL, make_tecomat_entry
+
+CONFIG = ("config",)
+POINTS = ("config_subentries", SUBENTRY_POINT)
+
+
+@pytest.fixture(params=["digest", "basic"])
+async def auth_sim(request: pytest.FixtureRequest) -> AsyncGenerator[TecomatSimulator]:
+    """A Tecomat simulator asking for Digest or for Basic authentication."""
+    sim = TecomatSimulator(auth=request.param, bench=0)
+    await sim.start()
+    yield sim
+    await sim.stop()
+
+
+async def connection_form(hass: HomeAssistant) -> dict[str, Any]:
+    """Start a user flow and pick the Tecomat vendor; return the connection form."""
+    result = await hass.config_entries.flow.async_init(DOMAIN, context={"source": SOURCE_USER})
+    result = await hass.config_entries.flow.async_configure(
+        result["flow_id"], {CONF_VENDOR: "tecomat"}
+    )
+    assert result["step_id"] == "connection"
+    return translated(result, *CONFIG)
+
+
+def connection(sim: TecomatSimulator, auth: str, **changes: Any) -> dict[str, Any]:
+    """Return the connection form input for the simulator."""
+    values = {
+        CONF_HOST: sim.host,
+        CONF_PORT: sim.port,
+        CONF_TLS: "none",
+        CONF_USERNAME: DEFAULT_USER,
+        CONF_PASSWORD: DEFAULT_PASSWORD,
+        "auth": auth,
+        "clock_variable": "setTime",
+    }
+    return values | changes
+
+
+async def test_connection_form_fields(hass: HomeAssistant) -> None:
+    """The form offers the TecoApi fields: port 80, no TLS, Digest by default."""
+    result = await connection_form(hass)
+    schema = {str(marker): marker for marker in result["data_schema"].schema}
+    assert list(schema) == [
+        CONF_HOST,
+        CONF_PORT,
+        CONF_TLS,
+        CONF_USERNAME,
+        CONF_PASSWORD,
+        "auth",
+        "clock_variable",
+    ]
+    assert schema[CONF_PORT].default() == 80
+    assert schema[CONF_TLS].default() == "none"
+    assert schema["auth"].default() == "digest"
+
+
+async def test_creates_entry(
+    hass: HomeAssistant, auth_sim: TecomatSimulator, mock_setup_entry: AsyncMock
+) -> None:
+    """Digest or Basic: the entry is keyed by GetInfo's serial number."""
+    method = auth_sim.auth.method
+    result = await connection_form(hass)
+    result = await hass.config_entries.flow.async_configure(
+        result["flow_id"], connection(auth_sim, method)
+    )
+    assert result["type"] is FlowResultType.CREATE_ENTRY
+    assert result["title"] == "Fx2 CP2080 (127.0.0.1)"
+    assert result["result"].unique_id == TECOMAT_SERIAL
+    assert result["data"] == {
+        CONF_VENDOR: "tecomat",
+        CONF_HOST: auth_sim.host,
+        CONF_PORT: auth_sim.port,
+        CONF_TLS: "none",
+        CONF_USERNAME: DEFAULT_USER,
+        CONF_PASSWORD: DEFAULT_PASSWORD,
+        "fingerprint": "",
+        "vendor_options": {"auth": method, "clock_variable": "setTime"},
+    }
+    assert auth_sim.calls["GetInfo"] == 1
+    assert sum(auth_sim.auth.accepted.values()) >= 1
+
+
+@pytest.mark.parametrize(
+    ("changes", "field"),
+    [
+        ({CONF_PASSWORD: "wrong"}, CONF_PASSWORD),
+        ({CONF_USERNAME: "nobody"}, CONF_PASSWORD),
+    ],
+)
+async def test_wrong_credentials(
+    hass: HomeAssistant,
+    auth_sim: TecomatSimulator,
+    mock_setup_entry: AsyncMock,
+    changes: dict[str, str],
+    field: str,
+) -> None:
+    """Credentials the PLC refuses show invalid_auth on the password; fixing them creates."""
+    method = auth_sim.auth.method
+    result = await connection_form(hass)
+    result = await hass.config_entries.flow.async_configure(
+        result["flow_id"], connection(auth_sim, method, **changes)
+    )
+    assert result["type"] is FlowResultType.FORM
+    assert translated(result, *CONFIG)["errors"] == {field: "invalid_auth"}
+    result = await hass.config_entries.flow.async_configure(
+        result["flow_id"], connection(auth_sim, method)
+    )
+    assert result["type"] is FlowResultType.CREATE_ENTRY
+
+
+async def test_wrong_method(
+    hass: HomeAssistant, auth_sim: TecomatSimulator, mock_setup_entry: AsyncMock
+) -> None:
+    """Choosing the method the PLC does not use is an authentication error too."""
+    other = "basic" if auth_sim.auth.method == "digest" else "digest"
+    result = await connection_form(hass)
+    result = await hass.config_entries.flow.async_configure(
+        result["flow_id"], connection(auth_sim, other)
+    )
+    assert result["errors"] == {CONF_PASSWORD: "invalid_auth"}
+
+
+async def test_browse_lists_leaves_and_fills_in(
+    hass: HomeAssistant, tecomat_sim: TecomatSimulator
+) -> None:
+    """Browsing the real simulator: leaves of structs, arrays and Main; a 5.3 object fills in."""
+    entry = make_tecomat_entry(
+        hass, tecomat_sim, [point("dint", "Dint", "sensor", "plcData.varDint", "DINT")]
+    )
+    assert await hass.config_entries.async_setup(entry.entry_id)
+    await hass.async_block_till_done()
+    result = await hass.config_entries.subentries.async_init(
+        (entry.entry_id, SUBENTRY_POINT), context={"source": SOURCE_USER}
+    )
+    assert translated(result, *POINTS)["step_id"] == "browse"
+    options = result["data_schema"].schema["variable"].config["options"]
+    labels = {option["label"]: option["value"] for option in options}
+    for label in (
+        "myObject.favorites.color (STRING)",
+        "myObject.interests[2] (STRING)",
+        "arr2[2][3] (REAL)",
+        "arr3[1][2][3] (DINT)",  # TecoApi sends no types: JSON integers are guessed DINT
+        "myObject.married (BOOL)",
+        "plcData.varStringArray[5] (STRING)",
+        "plcData.varDT (DT)",
+        "requested temperature – Main.myObject3.value (REAL)",
+        "circulation pump – Main.pump.value (BOOL)",
+    ):
+        assert label in labels, label
+    assert "plcData.varDint (DINT)" not in labels  # configured already
+    assert "setTime (DT)" in labels
+    assert result["description_placeholders"] == {"count": str(len(options) - 1)}
+
+    chosen = labels["requested temperature – Main.myObject3.value (REAL)"]
+    result = await hass.config_entries.subentries.async_configure(
+        result["flow_id"], {"variable": chosen}
+    )
+    assert translated(result, *POINTS)["step_id"] == "user"
+    expected = {
+        "name": "requested temperature",
+        "address": "Main.myObject3.value",
+        "data_type": "REAL",
+        "unit_of_measurement": "°C",
+        "min": 10.0,
+        "max": 30.0,
+        "read_only": False,
+        "platform": "number",
+    }
+    assert {key: suggested(result, key) for key in expected} == expected
+    result = await hass.config_entries.subentries.async_configure(
+        result["flow_id"], expected | {"scale": 1, "offset": 0}
+    )
+    assert result["type"] is FlowResultType.CREATE_ENTRY
+    await hass.async_block_till_done()
+    assert hass.states.get("number.fx2_cp2080_requested_temperature").state == "23.0"
+
+
+async def test_browse_prefills_read_only_object(
+    hass: HomeAssistant, tecomat_sim: TecomatSimulator
+) -> None:
+    """A read-only 5.3 object becomes a sensor without a range (min = max = 0 means none)."""
+    entry = make_tecomat_entry(hass, tecomat_sim, [])
+    assert await hass.config_entries.async_setup(entry.entry_id)
+    await hass.async_block_till_done()
+    result = await hass.config_entries.subentries.async_init(
+        (entry.entry_id, SUBENTRY_POINT), context={"source": SOURCE_USER}
+    )
+    options = result["data_schema"].schema["variable"].config["options"]
+    labels = {option["label"]: option["value"] for option in options}
+    result = await hass.config_entries.subentries.async_configure(
+        result["flow_id"], {"variable": labels["outside temperature – Main.myObject1.value (REAL)"]}
+    )
+    values = {
+        key: suggested(result, key)
+        for key in ("name", "address", "unit_of_measurement", "min", "max", "read_only", "platform")
+    }
+    assert values == {
+        "name": "outside temperature",
+        "address": "Main.myObject1.value",
+        "unit_of_measurement": "°C",
+        "min": None,
+        "max": None,
+        "read_only": True,
+        "platform": "sensor",
+    }
+
+
+async def test_same_plc_aborts(hass: HomeAssistant, tecomat_sim: TecomatSimulator) -> None:
+    """A second flow for the same PLC aborts: the serial number is configured already."""
+    make_tecomat_entry(hass, tecomat_sim, [])
+    result = await connection_form(hass)
+    result = await hass.config_entries.flow.async_configure(
+        result["flow_id"], connection(tecomat_sim, "digest")
+    )
+    assert result["type"] is FlowResultType.ABORT
+    assert result["reason"] == "already_configured"
