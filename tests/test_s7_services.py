@@ -139,10 +139,6 @@ async def test_diagnostics(
     assert S7Simulator.serial not in text
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="diagnostics.py calls requests_for without the negotiated PDU (plans for 480)",
-)
 async def test_diagnostics_plan_for_negotiated_pdu(
     hass: HomeAssistant,
     hass_client: ClientSessionGenerator,

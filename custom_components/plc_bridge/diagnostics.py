@@ -56,7 +56,7 @@ async def async_get_config_entry_diagnostics(
             "interval_s": coordinator.update_interval.total_seconds()
             if coordinator.update_interval
             else None,
-            "planned_requests": runtime.client.requests_for(list(data.values)),
+            "planned_requests": runtime.client.planned_requests(list(data.values)),
             "last_update_success": coordinator.last_update_success,
         },
         "metrics": runtime.client.metrics.as_dict(),

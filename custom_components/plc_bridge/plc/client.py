@@ -98,6 +98,14 @@ class PlcClient(ABC):
             return math.ceil(len(points) / cls.max_points_per_request)
         return 1
 
+    def planned_requests(self, points: Sequence[Point]) -> int:
+        """How many requests one poll of these points takes on this PLC, as connected.
+
+        The class-level `requests_for` plans without a PLC; a vendor whose plan depends on what
+        the PLC negotiated (the S7 PDU size) overrides this.
+        """
+        return self.requests_for(points)
+
     @classmethod
     def min_scan_interval(cls, points: Sequence[Point]) -> float:
         """The shortest poll interval that respects the vendor's advised request rate."""

@@ -125,6 +125,10 @@ class S7Client(PlcClient):
                 continue
         return len(plan_reads(needs, pdu_size)) + 1
 
+    def planned_requests(self, points: Sequence[Point]) -> int:
+        """Round trips of one poll at the PDU size this PLC negotiated."""
+        return self.requests_for(points, self.pdu_size)
+
     @property
     def pdu_size(self) -> int:
         """The PDU size the PLC negotiated (the default before the first connection)."""
