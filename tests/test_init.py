@@ -16,7 +16,7 @@ from custom_components.plc_bridge.const import CONF_FINGERPRINT, CONF_TLS, DOMAI
 from custom_components.plc_bridge.plc.http import format_fingerprint
 from simulators.s7_smart import S7SmartSimulator
 
-from .ha_fixtures import UNIQUE_ID, make_entry, point, poll
+from .ha_fixtures import ENTRY_ID, make_entry, point, poll
 
 
 async def test_setup_and_unload(
@@ -27,7 +27,8 @@ async def test_setup_and_unload(
 ) -> None:
     entry = setup_integration
     assert entry.state is ConfigEntryState.LOADED
-    device = device_registry.async_get_device(identifiers={(DOMAIN, UNIQUE_ID)})
+    # No serial or MAC: the device is the entry's, whatever address it moves to.
+    device = device_registry.async_get_device(identifiers={(DOMAIN, ENTRY_ID)})
     assert device is not None
     assert (device.manufacturer, device.model, device.sw_version) == (
         "Siemens",

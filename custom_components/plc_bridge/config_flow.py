@@ -8,6 +8,7 @@ from typing import Any
 from homeassistant.config_entries import (
     SOURCE_RECONFIGURE,
     ConfigEntry,
+    ConfigEntryState,
     ConfigFlow,
     ConfigFlowResult,
     ConfigSubentryFlow,
@@ -204,8 +205,7 @@ class PlcBridgeConfigFlow(ConfigFlow, domain=DOMAIN):
             data = {**entry.data, **user_input}
             device, errors = await self._connect(data)
             if device is not None:
-                self.hass.config_entries.async_update_entry(entry, data=data)
-                return self.async_abort(reason="reauth_successful")
+                return self._store(entry, "reauth_successful", data=data)
         return self.async_show_form(
             step_id="reauth_confirm",
             data_schema=self.add_suggested_values_to_schema(
@@ -258,10 +258,20 @@ class PlcBridgeConfigFlow(ConfigFlow, domain=DOMAIN):
         elif self.unique_id != entry.unique_id:
             # Without a serial or MAC the address is the identity: it may move, not collide.
             self._abort_if_unique_id_configured()
-        self.hass.config_entries.async_update_entry(
-            entry, data=self._data, unique_id=self.unique_id
+        return self._store(
+            entry, "reconfigure_successful", data=self._data, unique_id=self.unique_id
         )
-        return self.async_abort(reason="reconfigure_successful")
+
+    def _store(self, entry: ConfigEntry, reason: str, **changes: Any) -> ConfigFlowResult:
+        """Update the entry and end the flow; the update listener reloads a loaded entry.
+
+        An entry whose setup failed (wrong password, PLC away) has no listener yet: it is
+        reloaded here, so new credentials or a new address take effect at once.
+        """
+        self.hass.config_entries.async_update_entry(entry, **changes)
+        if entry.state is not ConfigEntryState.LOADED:
+            self.hass.config_entries.async_schedule_reload(entry.entry_id)
+        return self.async_abort(reason=reason)
 
     async def _connect(self, data: Mapping[str, Any]) -> tuple[DeviceInfo | None, dict[str, str]]:
         """Connect and log in once; return what the PLC says, or the form errors."""

@@ -23,6 +23,8 @@ TO_REDACT = {
     "mac",
     "token",
     "cookie",
+    # Titles are "<model> (<host>)" unless the user renamed the entry.
+    "title",
 }
 
 
@@ -35,11 +37,10 @@ async def async_get_config_entry_diagnostics(
     data = coordinator.data
     status = asdict(data.status) | {"clock": json_value(data.status.clock)}
     return {
-        "entry": {
-            "title": entry.title,
-            "data": async_redact_data(dict(entry.data), TO_REDACT),
-            "options": dict(entry.options),
-        },
+        "entry": async_redact_data(
+            {"title": entry.title, "data": dict(entry.data), "options": dict(entry.options)},
+            TO_REDACT,
+        ),
         "points": {
             subentry.subentry_id: {"title": subentry.title, **subentry.data}
             for subentry in entry.subentries.values()

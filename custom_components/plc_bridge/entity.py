@@ -116,12 +116,24 @@ def add_point_entities(
             async_add_entities([entity(entry, subentry)], config_subentry_id=subentry.subentry_id)
 
 
+def device_key(entry: PlcBridgeConfigEntry) -> str:
+    """Return what identifies the PLC's device and entities for as long as the entry exists.
+
+    The unique id where the PLC reports a serial or MAC (it is that); else the entry id, as the
+    unique id is then host:port and changes when the PLC is moved with Reconfigure.
+    """
+    device = entry.runtime_data.device
+    if (device.serial or device.mac) and entry.unique_id:
+        return entry.unique_id
+    return entry.entry_id
+
+
 def device_info(entry: PlcBridgeConfigEntry) -> DeviceInfo:
     """Return the device of a PLC, from what it said when it connected."""
     device = entry.runtime_data.device
     connections = {(CONNECTION_NETWORK_MAC, format_mac(device.mac))} if device.mac else set()
     return DeviceInfo(
-        identifiers={(DOMAIN, entry.unique_id or entry.entry_id)},
+        identifiers={(DOMAIN, device_key(entry))},
         name=entry.title,
         manufacturer=MANUFACTURERS.get(device.vendor, device.vendor),
         model=str(device.model),
@@ -139,7 +151,7 @@ class PlcEntity(CoordinatorEntity[PlcCoordinator]):
     def __init__(self, entry: PlcBridgeConfigEntry, key: str) -> None:
         """Attach the entity to the entry's coordinator and device."""
         super().__init__(entry.runtime_data.coordinator)
-        self._attr_unique_id = f"{entry.unique_id or entry.entry_id}_{key}"
+        self._attr_unique_id = f"{device_key(entry)}_{key}"
         self._attr_device_info = device_info(entry)
         self._shown: tuple[bool, Any] | None = None
 
