@@ -191,3 +191,28 @@ async def test_entry_must_exist_and_be_loaded(
     with pytest.raises(ServiceValidationError) as err:
         await call(hass, "sync_clock", setup_integration)
     assert str(err.value) == "The PLC S7-200 SMART is not connected right now"
+
+
+async def test_user_without_write_permission(
+    hass: HomeAssistant, s7_smart_sim: S7SmartSimulator, setup_integration: MockConfigEntry
+) -> None:
+    """The PLC said at connect time that its user may not write: nothing is ever sent."""
+    s7_smart_sim.write_permission = False
+    await hass.config_entries.async_reload(setup_integration.entry_id)
+    await hass.async_block_till_done()
+    assert not setup_integration.runtime_data.device.can_write
+    message = (
+        "The PLC user Home Assistant logs in with on S7-200 SMART may not write; nothing was "
+        "sent. Give that user write permission on the PLC, then reload the PLC's entry"
+    )
+    points = [{"address": "VW30", "data_type": "signed", "value": 1}]
+    with pytest.raises(ServiceValidationError, match="may not write") as err:
+        await call(hass, "write", setup_integration, points=points)
+    assert str(err.value) == message
+    with pytest.raises(ServiceValidationError, match="may not write"):
+        await call(hass, "sync_clock", setup_integration)
+    with pytest.raises(ServiceValidationError, match="may not write"):
+        await hass.services.async_call(
+            "switch", "turn_on", {"entity_id": "switch.s7_200_smart_pump"}, blocking=True
+        )
+    assert s7_smart_sim.calls["write"] == 0

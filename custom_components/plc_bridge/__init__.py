@@ -45,7 +45,7 @@ async def async_setup_entry(hass: HomeAssistant, entry: PlcBridgeConfigEntry) ->
         async_raise_issue(hass, entry, TLS_OFF)
     else:
         async_clear_issue(hass, entry, TLS_OFF)
-    client = create_client(hass, entry.data)
+    client = create_client(hass, entry.data, entry.options)
     entry.async_on_unload(client.close)  # also when the setup below fails
     try:
         device = await client.connect()

@@ -18,7 +18,7 @@ from homeassistant.exceptions import (
 from homeassistant.helpers.update_coordinator import DataUpdateCoordinator, UpdateFailed
 
 from .const import CONF_ADDRESS, CONF_DATA_TYPE, CONF_TLS, DOMAIN, LOGGER, SUBENTRY_POINT
-from .helpers import translated_errors
+from .helpers import check_can_write, translated_errors
 from .plc import (
     DeviceInfo,
     PlcAddressError,
@@ -189,6 +189,7 @@ class PlcCoordinator(DataUpdateCoordinator[ReadResult]):
 
     async def async_write(self, values: Mapping[Point, Value]) -> None:
         """Write the values in one call, then refresh; any point the PLC refused is an error."""
+        check_can_write(self.config_entry)
         with translated_errors(self.hass, self.config_entry):
             results = await self.client.write(values)
         await self.async_request_refresh()

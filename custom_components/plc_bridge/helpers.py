@@ -58,6 +58,16 @@ def translated_errors(hass: HomeAssistant, entry: ConfigEntry[Any]) -> Iterator[
         raise plc_error("communication_error", err) from err
 
 
+def check_can_write(entry: ConfigEntry[Any]) -> None:
+    """Refuse a write before sending when the PLC said at connect time that its user may not."""
+    if not entry.runtime_data.device.can_write:
+        raise ServiceValidationError(
+            translation_domain=DOMAIN,
+            translation_key="no_write_permission",
+            translation_placeholders={"title": entry.title},
+        )
+
+
 def json_value(value: Value | None) -> Any:
     """Return a point value as action responses carry it (date and time as ISO 8601 text)."""
     return value.isoformat() if isinstance(value, datetime) else value

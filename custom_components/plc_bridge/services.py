@@ -26,7 +26,7 @@ from .const import (
     DOMAIN,
 )
 from .coordinator import PlcBridgeConfigEntry
-from .helpers import invalid, json_value, translated_errors
+from .helpers import check_can_write, invalid, json_value, translated_errors
 from .plc import PlcClient, PlcError, Point, Value
 
 SERVICE_WRITE = "write"
@@ -114,6 +114,7 @@ async def async_read(call: ServiceCall) -> ServiceResponse:
 async def async_sync_clock(call: ServiceCall) -> None:
     """Set the PLC clock to Home Assistant's time."""
     entry = loaded_entry(call)
+    check_can_write(entry)
     with translated_errors(call.hass, entry):
         await entry.runtime_data.client.set_clock(dt_util.now())
 

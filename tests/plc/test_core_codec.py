@@ -43,7 +43,7 @@ def test_check_integer_accepts(value: object, low: int, high: int, expected: int
     assert check_integer(value, low, high) == expected  # type: ignore[arg-type]
 
 
-@pytest.mark.parametrize("value", [256, -1, 1.5, "x", "1.5", [1]])
+@pytest.mark.parametrize("value", [256, -1, 1.5, "x", "1.5", [1], "--5", "+-5", "²", "١"])
 def test_check_integer_refuses(value: object) -> None:
     with pytest.raises(PlcValueError):
         check_integer(value, *INTEGER_RANGES["BYTE"])  # type: ignore[arg-type]
@@ -81,3 +81,4 @@ def test_check_ascii() -> None:
         check_ascii("x" * 11, 10)
     with pytest.raises(PlcValueError, match="text"):
         check_ascii(5, 10)
+    assert check_ascii("line 1\r\nline 2\tend", 30) == "line 1\r\nline 2\tend"

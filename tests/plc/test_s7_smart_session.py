@@ -11,6 +11,7 @@ import pytest
 
 from custom_components.plc_bridge.plc import (
     PlcAuthenticationError,
+    PlcConnectionError,
     PlcProtocolError,
     PlcTlsError,
     PlcWriteRefusedError,
@@ -41,8 +42,9 @@ async def test_token_lost_twice_fails(
     s7_smart_sim: S7SmartSimulator, s7_smart_client: S7SmartClient
 ) -> None:
     s7_smart_sim.idle_timeout = 0.0  # every token is stale by its next request
-    with pytest.raises(PlcAuthenticationError, match="dropped the session again"):
+    with pytest.raises(PlcConnectionError, match="dropped the session again") as err:
         await s7_smart_client.read([POINT])
+    assert not isinstance(err.value, PlcAuthenticationError)  # the password is right: no reauth
     assert s7_smart_client.metrics.session_renewals == 1
     assert s7_smart_client.metrics.errors == 1
     assert s7_smart_sim.calls["login"] == 2

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from decimal import Decimal
 import math
+import re
 
 from .errors import PlcValueError
 from .types import Value, ValueKind
@@ -52,13 +53,16 @@ def check_integer(value: Value, low: int, high: int, what: str = "value") -> int
         number = value
     elif isinstance(value, float) and value.is_integer():
         number = int(value)
-    elif isinstance(value, str) and value.strip().lstrip("+-").isdigit():
+    elif isinstance(value, str) and _WHOLE.fullmatch(value.strip()):
         number = int(value.strip())
     else:
         raise PlcValueError(f"{what} must be a whole number, not {value!r}")
     if not low <= number <= high:
         raise PlcValueError(f"{what} {number} is outside {low}..{high}")
     return number
+
+
+_WHOLE = re.compile(r"[+-]?[0-9]+")  # str.isdigit() also takes "²" and other digits int() refuses
 
 
 def check_float(value: Value, *, single: bool = True, what: str = "value") -> float:
@@ -89,7 +93,7 @@ _BOOL_WORDS = {"1": True, "true": True, "on": True, "0": False, "false": False, 
 
 
 def check_ascii(value: Value, max_length: int, what: str = "value") -> str:
-    """Return value as printable ASCII text of at most max_length characters."""
+    """Return value as ASCII text (control characters included) of at most max_length."""
     if not isinstance(value, str):
         raise PlcValueError(f"{what} must be text, not {value!r}")
     if not value.isascii():

@@ -44,6 +44,7 @@ class ConnectionConfig:
     fingerprint: str = ""  # hex SHA-256 of the DER certificate, for TlsMode.PIN
     timeout: float = 10.0
     time_zone: str = "UTC"  # IANA name of the zone the PLC clock runs in (Home Assistant's)
+    poll_interval: float = 5.0  # seconds between two polls: a reconnect never waits longer
     options: dict[str, str | int | bool] = field(default_factory=dict)
 
 

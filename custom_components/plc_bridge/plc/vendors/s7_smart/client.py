@@ -16,7 +16,7 @@ from zoneinfo import ZoneInfo
 import aiohttp
 
 from ...client import PlcClient
-from ...errors import PlcAuthenticationError, PlcError, PlcProtocolError
+from ...errors import PlcConnectionError, PlcError, PlcProtocolError
 from ...http import HttpTransport
 from ...types import (
     ConnectionConfig,
@@ -281,8 +281,11 @@ class S7SmartClient(PlcClient):
             return await self._rpc(method, params)
         except _RpcError as err:
             if err.code == INVALID_TOKEN:
-                raise PlcAuthenticationError(
-                    "the PLC dropped the session again right after a new login"
+                # The login just worked: the password is right, another client took the
+                # session (the same PLC user logged in elsewhere). Not a case for reauth.
+                raise PlcConnectionError(
+                    "the PLC dropped the session again right after a new login "
+                    "(another client logs in as the same PLC user)"
                 ) from None
             raise request_error(err.code, err.message) from None
 
