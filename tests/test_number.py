@@ -94,3 +94,19 @@ async def test_float_point(hass: HomeAssistant, s7_smart_sim: S7SmartSimulator) 
         blocking=True,
     )
     assert s7_smart_sim.get("VD100", "float") == 2.25
+
+
+async def test_quick_writes_show_at_once(
+    hass: HomeAssistant, s7_smart_sim: S7SmartSimulator, setup_integration: MockConfigEntry
+) -> None:
+    """The refresh after a write is held back after another one; the PLC's ack shows anyway."""
+    for value in (35, 36, 37):
+        await hass.services.async_call(
+            NUMBER_DOMAIN,
+            SERVICE_SET_VALUE,
+            {ATTR_ENTITY_ID: SETPOINT, ATTR_VALUE: value},
+            blocking=True,
+        )
+        assert hass.states.get(SETPOINT).state == str(value)
+    assert s7_smart_sim.get("VW20") == 54  # (37 - 10) / 0.5
+    assert s7_smart_sim.calls["write"] == 3

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from collections import deque
 from collections.abc import Mapping
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from datetime import timedelta
 
 from homeassistant.config_entries import ConfigEntry
@@ -28,6 +28,7 @@ from .plc import (
     PlcError,
     PlcTlsError,
     Point,
+    PointResult,
     ReadResult,
     TlsMode,
     Value,
@@ -188,10 +189,22 @@ class PlcCoordinator(DataUpdateCoordinator[ReadResult]):
             async_clear_issue(self.hass, self.config_entry, SESSION_CONFLICT)
 
     async def async_write(self, values: Mapping[Point, Value]) -> None:
-        """Write the values in one call, then refresh; any point the PLC refused is an error."""
+        """Write the values in one call, then refresh; any point the PLC refused is an error.
+
+        The points the PLC took show their new value at once; the refresh that follows (held
+        back by the debouncer after a burst of writes) reads back what the PLC really holds.
+        """
         check_can_write(self.config_entry)
         with translated_errors(self.hass, self.config_entry):
             results = await self.client.write(values)
+        taken = {
+            point: PointResult(value=result.value)
+            for point, result in results.items()
+            if result.ok and result.value is not None and point in self.data.values
+        }
+        if taken:
+            self.data = replace(self.data, values={**self.data.values, **taken})
+            self.async_update_listeners()
         await self.async_request_refresh()
         failed = [f"{point.address}: {res.error}" for point, res in results.items() if res.error]
         if failed:

@@ -117,6 +117,7 @@ async def async_sync_clock(call: ServiceCall) -> None:
     check_can_write(entry)
     with translated_errors(call.hass, entry):
         await entry.runtime_data.client.set_clock(dt_util.now())
+    await entry.runtime_data.coordinator.async_request_refresh()  # clock points show it
 
 
 @callback
