@@ -96,7 +96,7 @@ POINTS = [
         max=60.0,
         step=0.5,
     ),
-    point("clock", "PLC clock", "datetime", "DATE", "signed"),
+    point("clock", "Clock", "datetime", "DATE", "signed"),
 ]
 """A point of every platform and of every S7-200 SMART data mode."""
 

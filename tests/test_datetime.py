@@ -1,9 +1,10 @@
-"""Tests of the date and time entities: the PLC clock as a point."""
+"""Tests of the date and time entities: a clock point, and the clock the PLC reports."""
 
 from __future__ import annotations
 
 from datetime import UTC, datetime
 
+from freezegun.api import FrozenDateTimeFactory
 from homeassistant.components.datetime import (
     ATTR_DATETIME,
     DOMAIN as DATETIME_DOMAIN,
@@ -18,7 +19,9 @@ from syrupy.assertion import SnapshotAssertion
 
 from simulators.s7_smart import S7SmartSimulator
 
-CLOCK = "datetime.s7_200_smart_plc_clock"
+from .ha_fixtures import poll
+
+CLOCK = "datetime.s7_200_smart_clock"
 
 
 @pytest.fixture
@@ -48,3 +51,25 @@ async def test_set_clock_point(
     )
     assert s7_smart_sim.clock == datetime(2026, 7, 4, 11, 0)
     assert hass.states.get(CLOCK).state == "2026-07-04T18:00:00+00:00"
+
+
+async def test_plc_clock_entity(
+    hass: HomeAssistant,
+    s7_smart_sim: S7SmartSimulator,
+    setup_integration: MockConfigEntry,
+    freezer: FrozenDateTimeFactory,
+) -> None:
+    """The clock the PLC reports with its values: shown, set through it, followed at each poll."""
+    plc_clock = "datetime.s7_200_smart_plc_clock"
+    assert hass.states.get(plc_clock).state == "2026-03-01T20:30:00+00:00"
+    await hass.services.async_call(
+        DATETIME_DOMAIN,
+        SERVICE_SET_VALUE,
+        {ATTR_ENTITY_ID: plc_clock, ATTR_DATETIME: datetime(2026, 7, 4, 18, 0, tzinfo=UTC)},
+        blocking=True,
+    )
+    assert s7_smart_sim.clock == datetime(2026, 7, 4, 11, 0)
+    assert hass.states.get(plc_clock).state == "2026-07-04T18:00:00+00:00"
+    s7_smart_sim.clock = datetime(2026, 7, 4, 11, 5)
+    await poll(hass, freezer)
+    assert hass.states.get(plc_clock).state == "2026-07-04T18:05:00+00:00"

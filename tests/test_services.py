@@ -171,7 +171,7 @@ async def test_sync_clock_refreshes_the_clock_point(
     hass: HomeAssistant, s7_smart_sim: S7SmartSimulator, setup_integration: MockConfigEntry
 ) -> None:
     """The PLC is polled right after its clock is set: its clock point shows the new time."""
-    clock = "datetime.s7_200_smart_plc_clock"
+    clock = "datetime.s7_200_smart_clock"
     assert hass.states.get(clock).state == "2026-03-01T20:30:00+00:00"
     await call(hass, "sync_clock", setup_integration)
     now = dt_util.now().replace(microsecond=0)

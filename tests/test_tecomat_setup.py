@@ -46,6 +46,10 @@ async def test_live_values(hass: HomeAssistant, tecomat_entry: MockConfigEntry) 
         "sensor.fx2_cp2080_element": "1.3",
         "text.fx2_cp2080_greeting": "Hello everybody",
         "datetime.fx2_cp2080_stamp": "2014-05-11T18:22:33+00:00",
+        # GetInfo (3.2): the clock (settable: the entry names a clock variable), the program.
+        "datetime.fx2_cp2080_plc_clock": "2018-02-01T00:50:39+00:00",
+        "sensor.fx2_cp2080_program": "DOC_TECOAPI v1.0",
+        "sensor.fx2_cp2080_program_compiled": "2018-01-19T00:39:38+00:00",
     }
 
 
@@ -94,7 +98,7 @@ async def test_renamed_variable_raises_an_issue(
     assert len(issue_registry.issues) == 1
 
     tecomat_sim.rename("plcData.varInteger", "varInt")
-    await poll(hass, freezer)
+    await poll(hass, freezer, 6)  # an unknown variable is asked for again once a minute
     assert hass.states.get("sensor.fx2_cp2080_int").state == "-2222"
     assert not issue_registry.issues
 

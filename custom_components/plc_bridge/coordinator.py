@@ -5,7 +5,7 @@ from __future__ import annotations
 from collections import deque
 from collections.abc import Mapping
 from dataclasses import dataclass, replace
-from datetime import timedelta
+from datetime import datetime, timedelta
 
 from homeassistant.config_entries import ConfigEntry
 from homeassistant.const import CONF_SCAN_INTERVAL
@@ -187,6 +187,13 @@ class PlcCoordinator(DataUpdateCoordinator[ReadResult]):
             async_raise_issue(self.hass, self.config_entry, SESSION_CONFLICT)
         elif recent == 0:
             async_clear_issue(self.hass, self.config_entry, SESSION_CONFLICT)
+
+    async def async_set_clock(self, when: datetime) -> None:
+        """Set the PLC clock, then poll so that clock points and the clock entity show it."""
+        check_can_write(self.config_entry)
+        with translated_errors(self.hass, self.config_entry):
+            await self.client.set_clock(when)
+        await self.async_request_refresh()
 
     async def async_write(self, values: Mapping[Point, Value]) -> None:
         """Write the values in one call, then refresh; any point the PLC refused is an error.

@@ -1,4 +1,4 @@
-"""Date and time entities: DATE and DT points, such as the PLC clock."""
+"""Date and time entities: DATE and DT points, and the PLC clock where the PLC reports it."""
 
 from __future__ import annotations
 
@@ -7,11 +7,18 @@ from datetime import datetime
 
 from homeassistant.components.datetime import DateTimeEntity, DateTimeEntityDescription
 from homeassistant.config_entries import ConfigSubentry
+from homeassistant.const import EntityCategory
 from homeassistant.core import HomeAssistant
 from homeassistant.helpers.entity_platform import AddConfigEntryEntitiesCallback
 
 from .coordinator import PlcBridgeConfigEntry
-from .entity import PlcPointDescription, PlcPointEntity, add_point_entities, point_fields
+from .entity import (
+    PlcEntity,
+    PlcPointDescription,
+    PlcPointEntity,
+    add_point_entities,
+    point_fields,
+)
 
 PARALLEL_UPDATES = 1
 
@@ -31,7 +38,10 @@ async def async_setup_entry(
     entry: PlcBridgeConfigEntry,
     async_add_entities: AddConfigEntryEntitiesCallback,
 ) -> None:
-    """Add a date and time entity for each datetime point."""
+    """Add a date and time entity for each datetime point, and the clock if it can be set."""
+    runtime = entry.runtime_data
+    if runtime.coordinator.data.status.clock is not None and runtime.client.can_set_clock:
+        async_add_entities([PlcClock(entry)])
     add_point_entities(entry, async_add_entities, "datetime", point_datetime)
 
 
@@ -49,3 +59,28 @@ class PlcDateTime(PlcPointEntity, DateTimeEntity):
     async def async_set_value(self, value: datetime) -> None:
         """Write the date and time."""
         await self.async_write(value)
+
+
+class PlcClock(PlcEntity, DateTimeEntity):
+    """The PLC clock as last read (vendors read it at their own pace); setting it sets the PLC."""
+
+    entity_description = DateTimeEntityDescription(
+        key="plc_clock", translation_key="plc_clock", entity_category=EntityCategory.CONFIG
+    )
+
+    def __init__(self, entry: PlcBridgeConfigEntry) -> None:
+        """Bind the clock to the PLC's device."""
+        super().__init__(entry, self.entity_description.key)
+
+    @property
+    def native_value(self) -> datetime | None:
+        """Return the PLC time the last read reported."""
+        return self.coordinator.data.status.clock
+
+    def observed(self) -> datetime | None:
+        """The clock as last read."""
+        return self.native_value
+
+    async def async_set_value(self, value: datetime) -> None:
+        """Set the PLC clock, as the sync_clock action does."""
+        await self.coordinator.async_set_clock(value)

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from dataclasses import dataclass
+from datetime import datetime
 from typing import Any
 
 from homeassistant.components.sensor import (
@@ -33,8 +34,10 @@ PARALLEL_UPDATES = 0
 
 OPERATING_MODES = ["run", "stop", "startup", "halt", "hold", "error"]
 """The operating modes PLCs report, lower case (anything else shows as unknown)."""
-KNOWN_EXTRA = ("cycle_time", "cpu_load", "last_error")
+KNOWN_EXTRA = ("cycle_time", "cpu_load", "last_error", "program", "program_stamp")
 """PlcStatus.extra keys with translated names; other keys are shown under their own name."""
+SHOWN_EXTRA = ("program", "program_compiled")
+"""Extra keys whose sensors are enabled by default (the others are there, disabled)."""
 NUMERIC = (ValueKind.INTEGER, ValueKind.FLOAT, ValueKind.BOOL)
 
 
@@ -47,7 +50,7 @@ class PlcSensorDescription(SensorEntityDescription, PlcPointDescription):
 class PlcStatusDescription(SensorEntityDescription):
     """A status field of the PLC shown as a diagnostic sensor."""
 
-    value_fn: Callable[[PlcStatus], str | None]
+    value_fn: Callable[[PlcStatus], str | datetime | None]
 
 
 def operating_mode(status: PlcStatus) -> str | None:
@@ -77,6 +80,19 @@ STATUS = (
         value_fn=lambda status: status.force,
     ),
 )
+CLOCK = PlcStatusDescription(
+    key="plc_clock",
+    translation_key="plc_clock",
+    device_class=SensorDeviceClass.TIMESTAMP,
+    value_fn=lambda status: status.clock,
+)
+"""The PLC clock, read only: for PLCs whose clock cannot be set (else it is a datetime)."""
+COMPILED = PlcStatusDescription(
+    key="extra_program_compiled",
+    translation_key="program_compiled",
+    device_class=SensorDeviceClass.TIMESTAMP,
+    value_fn=lambda status: timestamp(status.extra.get("program_compiled")),
+)
 REPORTED: dict[str, Callable[[PlcStatus], bool]] = {
     "operating_mode": lambda status: status.mode is not None,
     "system_status": lambda status: status.system is not None,
@@ -84,14 +100,25 @@ REPORTED: dict[str, Callable[[PlcStatus], bool]] = {
 }
 
 
+def timestamp(text: str | None) -> datetime | None:
+    """Return an ISO 8601 time with its offset (as vendors report it in extra), else None."""
+    try:
+        moment = datetime.fromisoformat(text) if text else None
+    except ValueError:
+        return None
+    return moment if moment is not None and moment.tzinfo is not None else None
+
+
 def extra_description(key: str) -> PlcStatusDescription:
     """Return the description of a vendor-specific status field."""
+    if key == "program_compiled":
+        return COMPILED
     known = key in KNOWN_EXTRA
     return PlcStatusDescription(
         key=f"extra_{key}",
         translation_key=key if known else None,
         name=None if known else key,
-        entity_registry_enabled_default=False,
+        entity_registry_enabled_default=key in SHOWN_EXTRA,
         value_fn=lambda status: status.extra.get(key),
     )
 
@@ -121,6 +148,8 @@ async def async_setup_entry(
     """Add the point sensors, and a diagnostic sensor for each status field the PLC reports."""
     status = entry.runtime_data.coordinator.data.status
     descriptions = [d for d in STATUS if REPORTED[d.key](status)]
+    if status.clock is not None and not entry.runtime_data.client.can_set_clock:
+        descriptions.append(CLOCK)
     descriptions += [extra_description(key) for key in sorted(status.extra)]
     async_add_entities(PlcStatusSensor(entry, description) for description in descriptions)
     add_point_entities(entry, async_add_entities, "sensor", point_sensor)
@@ -150,7 +179,7 @@ class PlcStatusSensor(PlcEntity, SensorEntity):
         self.entity_description = description
 
     @property
-    def native_value(self) -> str | None:
+    def native_value(self) -> str | datetime | None:
         """Return the field as the PLC reported it in the last poll."""
         return self.entity_description.value_fn(self.coordinator.data.status)
 

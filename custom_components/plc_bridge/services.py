@@ -26,7 +26,7 @@ from .const import (
     DOMAIN,
 )
 from .coordinator import PlcBridgeConfigEntry
-from .helpers import check_can_write, invalid, json_value, translated_errors
+from .helpers import invalid, json_value, translated_errors
 from .plc import PlcClient, PlcError, Point, Value
 
 SERVICE_WRITE = "write"
@@ -113,11 +113,7 @@ async def async_read(call: ServiceCall) -> ServiceResponse:
 
 async def async_sync_clock(call: ServiceCall) -> None:
     """Set the PLC clock to Home Assistant's time."""
-    entry = loaded_entry(call)
-    check_can_write(entry)
-    with translated_errors(call.hass, entry):
-        await entry.runtime_data.client.set_clock(dt_util.now())
-    await entry.runtime_data.coordinator.async_request_refresh()  # clock points show it
+    await loaded_entry(call).runtime_data.coordinator.async_set_clock(dt_util.now())
 
 
 @callback

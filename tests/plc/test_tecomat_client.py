@@ -70,7 +70,7 @@ async def test_device_info(tecomat_sim: TecomatSimulator, tecomat_client: Tecoma
     assert result.status.clock == datetime(2018, 1, 31, 16, 50, 39, 949000, tzinfo=PRAGUE)
     assert result.status.extra == {
         "program": "DOC_TECOAPI v1.0",
-        "program_compiled": "2018-01-18T16:39:38.000Z",
+        "program_compiled": "2018-01-18T16:39:38+01:00",  # PLC digits, in its zone
         "program_stamp": "E28AE29B",
     }
     assert tecomat_sim.calls == {"GetInfo": 2}

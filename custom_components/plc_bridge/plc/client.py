@@ -150,6 +150,11 @@ class PlcClient(ABC):
         """List the variables the PLC publishes (empty where the vendor cannot)."""
         return []
 
+    @property
+    def can_set_clock(self) -> bool:
+        """True when `set_clock` can work with the settings given (vendors override)."""
+        return True
+
     @abstractmethod
     async def read_clock(self) -> datetime:
         """Return the PLC's clock as a timezone-aware datetime."""

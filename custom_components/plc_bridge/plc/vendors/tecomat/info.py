@@ -53,9 +53,12 @@ def plc_status(info: Any, zone: tzinfo) -> PlcStatus:
     mode = _text(plc, "mode")
     time = _text(plc, "time")
     program = plc.get("userProg")
+    compiled = _text(program, "compiled")
+    # The same DT form as the clock (PLC digits): passed on with its offset, ISO 8601.
+    moment = parse_datetime("DT", compiled, zone) if compiled else None
     extra = {
         "program": _text(program, "name"),
-        "program_compiled": _text(program, "compiled"),
+        "program_compiled": moment.isoformat() if moment else compiled,
         "program_stamp": _text(program, "stamp"),
     }
     return PlcStatus(
