@@ -168,7 +168,9 @@ async def test_timeout(
     monkeypatch.setattr(config_flow, "CERTIFICATE_TIMEOUT", 0.1)
     result = await submit(hass, await start(hass), connection(flow_sim, port=silent_port))
     assert result["errors"] == {CONF_HOST: "timeout"}
-    assert error_message(result, CONF_HOST, *CONFIG) == "The PLC did not answer in time."
+    assert error_message(result, CONF_HOST, *CONFIG) == (
+        f"The PLC did not answer in time: no answer from 127.0.0.1:{silent_port}"
+    )
 
 
 async def test_not_the_protocol(hass: HomeAssistant, flow_sim: S7SmartSimulator) -> None:

@@ -13,7 +13,14 @@ from pytest_homeassistant_custom_component.common import MockConfigEntry
 from custom_components.plc_bridge.const import CONF_FINGERPRINT, CONF_TLS, CONF_VENDOR, DOMAIN
 from custom_components.plc_bridge.plc.http import format_fingerprint
 from simulators.s7_smart import DEFAULT_PASSWORD, DEFAULT_USER, S7SmartSimulator
-from tests.flow_fixtures import FAKE_VENDOR, FakeClient, smart_data, suggested, translated
+from tests.flow_fixtures import (
+    FAKE_VENDOR,
+    FakeClient,
+    error_message,
+    smart_data,
+    suggested,
+    translated,
+)
 
 pytestmark = pytest.mark.usefixtures("mock_setup_entry")
 CONFIG = ("config",)
@@ -35,10 +42,11 @@ async def test_reauth(
     )
     result = translated(await flow_entry.start_reauth_flow(hass), *CONFIG)
     assert result["step_id"] == "reauth_confirm"
-    assert result["description_placeholders"] == {"name": flow_entry.title}
+    assert result["description_placeholders"] == {"name": flow_entry.title, "problem": ""}
     assert suggested(result, CONF_USERNAME) == DEFAULT_USER
     result = await submit(hass, result, {CONF_USERNAME: DEFAULT_USER, CONF_PASSWORD: "wrong"})
     assert result["errors"] == {CONF_PASSWORD: "invalid_auth"}
+    assert error_message(result, CONF_PASSWORD, *CONFIG).startswith("The PLC refused the login: ")
     result = await submit(
         hass, result, {CONF_USERNAME: DEFAULT_USER, CONF_PASSWORD: DEFAULT_PASSWORD}
     )

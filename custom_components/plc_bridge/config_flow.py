@@ -109,6 +109,7 @@ class PlcBridgeConfigFlow(ConfigFlow, domain=DOMAIN):
         self._vendor = ""
         self._data: dict[str, Any] = {}
         self._trusted: set[str] = set()
+        self._problem = ""  # the protocol layer's words for the last failure, shown in errors
 
     @staticmethod
     @callback
@@ -158,7 +159,7 @@ class PlcBridgeConfigFlow(ConfigFlow, domain=DOMAIN):
     ) -> ConfigFlowResult:
         """Ask where the PLC is and how to log in, then check the certificate and connect."""
         if user_input is None:
-            return self._connection_form("connection", {})
+            return self._connection_form("connection", {}, "")
         return await self._submit_connection("connection", user_input)
 
     async def async_step_reconfigure(
@@ -171,7 +172,7 @@ class PlcBridgeConfigFlow(ConfigFlow, domain=DOMAIN):
             self._data = dict(entry.data)
             self._trusted.add(entry.data.get(CONF_FINGERPRINT, ""))
         if user_input is None:
-            return self._connection_form("reconfigure", {})
+            return self._connection_form("reconfigure", {}, "")
         return await self._submit_connection("reconfigure", user_input)
 
     async def async_step_certificate(
@@ -212,7 +213,7 @@ class PlcBridgeConfigFlow(ConfigFlow, domain=DOMAIN):
                 CREDENTIALS_SCHEMA, {CONF_USERNAME: entry.data.get(CONF_USERNAME)}
             ),
             errors=on_form(errors, CREDENTIALS_SCHEMA),
-            description_placeholders={"name": entry.title},
+            description_placeholders={"name": entry.title, "problem": self._problem},
         )
 
     async def _submit_connection(
@@ -233,7 +234,7 @@ class PlcBridgeConfigFlow(ConfigFlow, domain=DOMAIN):
                     self._data[CONF_HOST], self._data[CONF_PORT], CERTIFICATE_TIMEOUT
                 )
             except PlcError as err:
-                return self._connection_form(step_id, error_for(err))
+                return self._connection_form(step_id, error_for(err), str(err))
             if self._data[CONF_FINGERPRINT] not in self._trusted:
                 return await self.async_step_certificate()
         return await self._finish()
@@ -276,10 +277,12 @@ class PlcBridgeConfigFlow(ConfigFlow, domain=DOMAIN):
     async def _connect(self, data: Mapping[str, Any]) -> tuple[DeviceInfo | None, dict[str, str]]:
         """Connect and log in once; return what the PLC says, or the form errors."""
         client = create_client(self.hass, data)
+        self._problem = ""
         try:
             return await client.connect(), {}
         except PlcError as err:
             LOGGER.debug("Cannot connect to %s: %s", data[CONF_HOST], err)
+            self._problem = str(err)
             return None, error_for(err)
         except Exception:
             LOGGER.exception("Unexpected error connecting to %s", data[CONF_HOST])
@@ -288,9 +291,10 @@ class PlcBridgeConfigFlow(ConfigFlow, domain=DOMAIN):
             await client.close()
 
     def _connection_form(
-        self, step_id: str, errors: dict[str, str], problem: str = ""
+        self, step_id: str, errors: dict[str, str], problem: str | None = None
     ) -> ConfigFlowResult:
         """Show the connection (or reconfigure) form with the values entered so far."""
+        problem = self._problem if problem is None else problem
         schema = connection_schema(
             client_class(self._vendor),
             VENDOR_FIELDS.get(self._vendor, ()),
