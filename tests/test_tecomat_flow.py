@@ -14,7 +14,7 @@ import pytest
 
 from custom_components.plc_bridge.const import CONF_TLS, CONF_VENDOR, DOMAIN, SUBENTRY_POINT
 from simulators.tecomat import DEFAULT_PASSWORD, DEFAULT_USER, TecomatSimulator
-from tests.flow_fixtures import suggested, translated
+from tests.flow_fixtures import error_message, suggested, translated
 from tests.ha_fixtures import point
 from tests.tecomat_ha_fixtures import TECOMAT_SERIAL, make_tecomat_entry
 
@@ -137,6 +137,20 @@ async def test_wrong_method(
         result["flow_id"], connection(auth_sim, other)
     )
     assert result["errors"] == {CONF_PASSWORD: "invalid_auth"}
+
+
+async def test_clock_variable_checked(hass: HomeAssistant, tecomat_sim: TecomatSimulator) -> None:
+    """A clock variable that is no variable path is refused with the client's words."""
+    result = await connection_form(hass)
+    result = await hass.config_entries.flow.async_configure(
+        result["flow_id"], connection(tecomat_sim, "digest", clock_variable="set time")
+    )
+    assert result["errors"] == {"base": "invalid_options"}
+    problem = "clock variable: 'set time' is not a TecoApi variable path; write it like"
+    assert error_message(result, "base", *CONFIG).startswith(
+        f"The connection settings are not valid: {problem}"
+    )
+    assert tecomat_sim.requests == 0
 
 
 async def test_browse_lists_leaves_and_fills_in(

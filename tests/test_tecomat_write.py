@@ -159,7 +159,7 @@ async def test_sync_clock_without_clock_variable(
             DOMAIN, "sync_clock", {ATTR_CONFIG_ENTRY_ID: entry.entry_id}, blocking=True
         )
     assert caught.value.translation_key == "write_refused"
-    assert "clock_variable" in str(caught.value)
+    assert "as the PLC's clock variable" in str(caught.value)
     assert tecomat_sim.calls["PutObject"] == 0
 
 

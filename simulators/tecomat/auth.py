@@ -37,13 +37,13 @@ class Authenticator:
         self.method = method
         self.users = users
         self.opaque = secrets.token_hex(12)
-        self.renew_next = False
+        self.renew_next = 0  # how many digest requests in a row meet a renewed nonce
         self._nonces: dict[str, int] = {}  # each challenge's nonce -> the highest count seen
         self.accepted: Counter[str] = Counter()  # "basic", "digest auth", "digest auth-int"
 
-    def stale_nonce(self) -> None:
-        """Make the next digest request meet a renewed nonce (401.020, stale=true)."""
-        self.renew_next = True
+    def stale_nonce(self, times: int = 1) -> None:
+        """Make the next `times` digest requests meet a renewed nonce (401.020, stale=true)."""
+        self.renew_next = times
 
     def challenge(self, *, stale: bool = False) -> str:
         """Return the WWW-Authenticate header of a 401 answer, with a nonce of its own."""
@@ -88,7 +88,7 @@ class Authenticator:
         count = int(nc, 16) if re.fullmatch(r"[0-9a-fA-F]{1,8}", nc) else 0
         nonce = fields.get("nonce", "")
         if self.renew_next:
-            self.renew_next = False
+            self.renew_next -= 1
             self._nonces.clear()
         if nonce not in self._nonces or (qop and count <= self._nonces[nonce]):
             self._nonces.pop(nonce, None)

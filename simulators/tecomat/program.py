@@ -156,6 +156,24 @@ def resolve(variables: dict[str, Node], parts: list[Segment]) -> tuple[list[Segm
     return canonical, node
 
 
+def stopped_at(variables: dict[str, Node], parts: list[Segment]) -> str:
+    """Return the item where a walk down an unknown path stops: `sport`, `favorites`, `arr1[9]`."""
+    end = 1
+    while end < len(parts):
+        try:
+            resolve(variables, parts[:end])
+        except KeyError:
+            break
+        end += 1
+    return last_item(parts[:end])
+
+
+def last_item(parts: list[Segment]) -> str:
+    """Return the last item of a path: its last name with the indices that follow it."""
+    start = max(index for index, part in enumerate(parts) if isinstance(part, str))
+    return spell(parts[start:])
+
+
 def place(answer: dict[str, Any], canonical: list[Segment], value: Any) -> None:
     """Put a value into a GetObject answer: members nest; "arr1[2]" keys an array element."""
     keys: list[str] = []
@@ -174,8 +192,13 @@ def place(answer: dict[str, Any], canonical: list[Segment], value: Any) -> None:
         node[keys[-1]] = value
 
 
-def read(variables: dict[str, Node], names: list[str], limit: int) -> dict[str, Any]:
-    """Answer GetObject; the first unknown name fails the request (400.005)."""
+def read(
+    variables: dict[str, Node], names: list[str], limit: int, *, leaf_names: bool = False
+) -> dict[str, Any]:
+    """Answer GetObject; the first unknown name fails the request (400.005).
+
+    With `leaf_names` the error names only the item where the walk stopped, not the path.
+    """
     answer: dict[str, Any] = {}
     items = 0
     for name in names:
@@ -185,7 +208,8 @@ def read(variables: dict[str, Node], names: list[str], limit: int) -> dict[str, 
                 raise KeyError(name)
             canonical, node = resolve(variables, parts)
         except KeyError:
-            raise Fault("400.005", f"Variable '{name}' is not found") from None
+            shown = stopped_at(variables, parts) if parts and leaf_names else name
+            raise Fault("400.005", f"Variable '{shown}' is not found") from None
         items += leaves(node)
         place(answer, canonical, render(node))
     if items > limit:
@@ -252,18 +276,26 @@ def _flatten(value: Any, path: list[Segment]) -> list[tuple[list[Segment], Any]]
 
 
 def write(
-    variables: dict[str, Node], pairs: list[tuple[list[Segment], Any]], limit: int
+    variables: dict[str, Node],
+    pairs: list[tuple[list[Segment], Any]],
+    limit: int,
+    *,
+    leaf_names: bool = False,
 ) -> list[tuple[Var, Any]]:
-    """Check every assignment first; return (variable, stored value) to apply all at once."""
+    """Check every assignment first; return (variable, stored value) to apply all at once.
+
+    With `leaf_names` an error names only the body's item, as a PLC walking it nested does.
+    """
     if len(pairs) > limit:
         raise Fault("413.004", f"Too many variables (maximum is {limit})")
     checked: list[tuple[Var, Any]] = []
     for parts, raw in pairs:
-        name = spell(parts)
+        name = last_item(parts) if leaf_names else spell(parts)
         try:
             _canonical, node = resolve(variables, parts)
         except KeyError:
-            raise Fault("400.005", f"Variable '{name}' is not found") from None
+            shown = stopped_at(variables, parts) if leaf_names else name
+            raise Fault("400.005", f"Variable '{shown}' is not found") from None
         if not isinstance(node, Var):
             kind = "STRUCT" if isinstance(node, dict) else "ARRAY"
             raise Fault(

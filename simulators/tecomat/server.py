@@ -11,6 +11,7 @@ from collections import Counter, deque
 from collections.abc import Callable
 from datetime import UTC, datetime
 import json
+import math
 from typing import Any
 from urllib.parse import unquote
 
@@ -50,7 +51,9 @@ class TecomatSimulator(HttpSimulator):
     Knobs for tests: `mode` (RUN/HALT/ERR), `variables` (the program), `instances` (top-level
     entries that are program instances, listed with their variables), `clock` (naive PLC
     time; writing `setTime` sets it, as a PLC program would), `public_file` ("ok", "missing",
-    "too_big", "unreadable"), `rewrite` (edit each JSON answer), `stale_nonce()`, `rename()`.
+    "too_big", "unreadable"), `rewrite` (edit each JSON answer), `leaf_names` (400.005 and
+    400.015 name only the item where the PLC stopped, `sport` for myObject.favorites.sport),
+    `stale_nonce()`, `rename()`; the demo calls `animate()`.
     `bodies` keeps the last PutObject bodies and `uris` the last request targets; `calls`
     counts services; `auth.accepted` counts the credentials accepted, by method and qop.
     """
@@ -82,15 +85,24 @@ class TecomatSimulator(HttpSimulator):
         self.uris: deque[str] = deque(maxlen=HISTORY)
         self.calls: Counter[str] = Counter()
         self.rewrite: Callable[[bytes], bytes] | None = None
+        self.leaf_names = False
 
     def build_app(self, app: web.Application) -> None:
         app.router.add_route("*", "/TecoApi{tail:.*}", self._handle)
 
     # -- the test-facing API ---------------------------------------------------------------
 
-    def stale_nonce(self) -> None:
-        """Renew the digest nonce: the next request gets 401.020 "New balls", stale=true."""
-        self.auth.stale_nonce()
+    def stale_nonce(self, times: int = 1) -> None:
+        """Renew the digest nonce: the next `times` requests get 401.020 "New balls", stale=true."""
+        self.auth.stale_nonce(times)
+
+    def animate(self, elapsed: float) -> None:
+        """Let the outside and inside temperatures of 5.3 drift: slow waves, in 0.1 steps."""
+        outside = -0.5 + 4.0 * math.sin(2 * math.pi * elapsed / 1800)
+        inside = 22.1 + 0.6 * math.sin(2 * math.pi * elapsed / 1200)
+        for path, value in (("Main.myObject1.value", outside), ("Main.myObject2.value", inside)):
+            variable = self.var(path)
+            variable.value = variable.convert(round(value, 1))
 
     def rename(self, old: str, new: str) -> None:
         """Rename a variable or member (a new program version): `old` is a path, `new` a name."""
@@ -246,7 +258,10 @@ class TecomatSimulator(HttpSimulator):
         return names
 
     def _get_object(self, query: str, body: bytes) -> web.Response:
-        return self._json(read(self.variables, self._names(query), self.max_variables))
+        names = self._names(query)
+        return self._json(
+            read(self.variables, names, self.max_variables, leaf_names=self.leaf_names)
+        )
 
     def _set_object(self, query: str, body: bytes) -> web.Response:
         pairs = Pairs()
@@ -274,7 +289,10 @@ class TecomatSimulator(HttpSimulator):
 
     def _apply(self, pairs: Pairs) -> None:
         """Check every assignment, then store them all (nothing is written on an error)."""
-        for variable, value in write(self.variables, assignments(pairs, []), self.max_variables):
+        found = assignments(pairs, [])
+        for variable, value in write(
+            self.variables, found, self.max_variables, leaf_names=self.leaf_names
+        ):
             variable.value = value
             if variable is self.variables.get("setTime"):
                 self.clock = value

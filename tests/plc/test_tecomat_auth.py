@@ -2,12 +2,13 @@
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
 
 import pytest
 
 from custom_components.plc_bridge.plc import (
     PlcAuthenticationError,
+    PlcConnectionError,
     PlcTlsError,
     Point,
     TlsMode,
@@ -61,19 +62,15 @@ async def test_digest_stale_nonce_mid_poll(
     assert tecomat_client.metrics.session_renewals == 1
 
 
-async def test_nonce_refused_twice_fails(
-    tecomat_sim: TecomatSimulator, tecomat_client: TecomatClient, monkeypatch: pytest.MonkeyPatch
+async def test_two_stale_nonces_are_no_wrong_password(
+    tecomat_sim: TecomatSimulator, tecomat_client: TecomatClient
 ) -> None:
-    check = tecomat_sim.auth._digest
-
-    def always_stale(*args: Any) -> Any:
-        tecomat_sim.auth.stale_nonce()
-        return check(*args)
-
-    monkeypatch.setattr(tecomat_sim.auth, "_digest", always_stale)
-    with pytest.raises(PlcAuthenticationError, match="nonce again"):
+    tecomat_sim.stale_nonce(times=2)  # 401.020 "New balls", and again for the renewed nonce
+    with pytest.raises(PlcConnectionError, match="nonce twice in a row") as caught:
         await tecomat_client.read(POINTS)
+    assert not isinstance(caught.value, PlcAuthenticationError)  # no reauth for good credentials
     assert tecomat_client.metrics.session_renewals == 2
+    assert (await tecomat_client.read(POINTS)).values[POINTS[0]].value == "myFoxtrot"
 
 
 async def test_basic(tecomat_config: ConfigFactory) -> None:

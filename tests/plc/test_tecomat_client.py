@@ -287,9 +287,11 @@ async def test_clock(
     assert await tecomat_client.read_clock() == datetime(
         2018, 1, 31, 16, 50, 39, 949000, tzinfo=PRAGUE
     )
-    with pytest.raises(PlcWriteRefusedError, match="clock_variable"):
+    with pytest.raises(PlcWriteRefusedError, match="choose a DT variable that the PLC program"):
         await tecomat_client.set_clock(datetime(2026, 1, 2, 3, 4, 5, tzinfo=PRAGUE))
+    assert not tecomat_client.can_set_clock
     client = TecomatClient(tecomat_config(options={"clock_variable": "setTime"}))
+    assert client.can_set_clock
     await client.set_clock(datetime(2026, 1, 2, 3, 4, 5, tzinfo=PRAGUE))
     assert tecomat_sim.clock == datetime(2026, 1, 2, 3, 4, 5)
     assert await client.read_clock() == datetime(2026, 1, 2, 3, 4, 5, tzinfo=PRAGUE)

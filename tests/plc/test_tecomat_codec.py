@@ -90,6 +90,7 @@ def test_data_types() -> None:
         ("BOOL", "on", True),
         ("USINT", 255.0, 255),
         ("REAL", "2.5", 2.5),
+        ("LREAL", -1e250, -1e250),  # 252 plain digits: within the parser's 255
         ("TIME", 90.5, "00:01:30.500"),
         ("TIME", "1:02:03.4", "01:02:03.400"),
         ("TOD", "07:30:00", "07:30:00.000"),
@@ -108,6 +109,8 @@ def test_values(kind: str, value: Value, checked: Value) -> None:
         ("SINT", 128, "outside -128..127"),
         ("REAL", 1e39, "does not fit a REAL"),
         ("LREAL", math.inf, "does not fit a LREAL"),
+        ("LREAL", 1e300, "1e\\+300 written without an exponent takes 301 characters; the"),
+        ("LREAL", 5e-324, "takes 326 characters; the PLC reads numbers of at most 255"),
         ("TIME", -1, "outside the range of a TIME"),
         ("TIME", 2**31 / 1000, "outside the range of a TIME"),
         ("TIME", math.nan, "takes a TIME as hh:mm:ss.zzz"),
@@ -142,6 +145,32 @@ def test_pack_names() -> None:
     assert sorted(name for group in groups for name in group) == sorted(names)
     assert len(groups) == math.ceil(sum(len(name) + 1 for name in names) / (room + 1))
     assert [len(group) for group in pack_names(["a"] * 300)] == [119, 119, 62]
+
+
+def test_pack_names_fills_each_uri() -> None:
+    names = [f"BENCH.V{index}" for index in range(1000)]  # the bench's poll
+    groups = pack_names(names)
+    assert sorted(name for group in groups for name in group) == sorted(names)
+    assert max(len("/TecoApi/GetObject?" + "&".join(group)) for group in groups) <= 256
+    # First fit decreasing needs 48; the length bound of 46 is out of reach, as 900 names
+    # of 10 characters fill a URI to 21 * 11 = 231 of 238 and the shorter ones are too few.
+    assert len(groups) == 47
+
+
+def test_options() -> None:
+    assert TecomatClient.validate_options({}) == {"auth": "digest"}
+    options = {"auth": " Basic", "clock_variable": " arr2[1, 3] ", "other": 1}
+    assert TecomatClient.validate_options(options) == {
+        "auth": "basic",
+        "clock_variable": "arr2[1][3]",
+    }
+    assert TecomatClient.validate_options({"clock_variable": " "}) == {"auth": "digest"}
+    with pytest.raises(PlcValueError, match="authentication is Digest or Basic, not 'ntlm'"):
+        TecomatClient.validate_options({"auth": "ntlm"})
+    with pytest.raises(PlcValueError, match=r"^clock variable: 'set time' is not a TecoApi"):
+        TecomatClient.validate_options({"clock_variable": "set time"})
+    with pytest.raises(PlcValueError, match="clock variable is a variable path, not 5"):
+        TecomatClient.validate_options({"clock_variable": 5})
 
 
 @pytest.mark.parametrize(

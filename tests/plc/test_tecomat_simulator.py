@@ -13,6 +13,7 @@ import pytest
 from yarl import URL
 
 from simulators.tecomat import DEFAULT_PASSWORD, DEFAULT_USER, TecomatSimulator
+from simulators.tecomat.values import render
 
 AUTH = aiohttp.BasicAuth(DEFAULT_USER, DEFAULT_PASSWORD)
 
@@ -268,3 +269,23 @@ async def test_test_api(basic_sim: TecomatSimulator) -> None:
     assert basic_sim.get("PLCTYPE") == 7
     with pytest.raises(ValueError, match="digest"):
         TecomatSimulator(auth="ntlm")
+
+
+def test_animate() -> None:
+    sim = TecomatSimulator(bench=0)
+    before = render(sim.variables)
+    sim.animate(0.0)
+    assert render(sim.variables) == before  # the demo starts from the program's values
+    outside, inside = "Main.myObject1.value", "Main.myObject2.value"
+    last = (sim.get(outside), sim.get(inside))
+    for second in range(1, 3601):
+        sim.animate(float(second))
+        now = (sim.get(outside), sim.get(inside))
+        assert all(abs(a - b) <= 0.1001 for a, b in zip(now, last, strict=True))
+        last = now
+    sim.animate(450.0)
+    assert (sim.get(outside), round(sim.get(inside), 3)) == (3.5, 22.5)
+    after = render(sim.variables)
+    for name in ("myObject1", "myObject2"):
+        after["Main"][name]["value"] = before["Main"][name]["value"]
+    assert after == before  # nothing else moves

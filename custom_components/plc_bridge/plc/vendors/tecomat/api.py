@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from collections.abc import Sequence
+from dataclasses import dataclass, field
 import json
 from typing import Any
 
@@ -22,6 +23,7 @@ from .errors import (
     TOO_MANY_ITEMS,
     TOO_MANY_REQUESTED,
     TecoError,
+    blame,
     missing_variable,
     parse_error,
     refused_value,
@@ -32,12 +34,19 @@ from .paths import SERVICE, VariablePath, find, get_uri, nest
 AUTH_METHODS = ("digest", "basic")
 
 
-def named(paths: Sequence[VariablePath], name: str) -> list[int]:
-    """Return the positions of the paths an error names: the variable itself, or inside it."""
-    wanted = name.strip().lower()
-    inside = (wanted + ".", wanted + "[")
-    hits = [index for index, path in enumerate(paths) if path.key == wanted]
-    return hits or [index for index, path in enumerate(paths) if path.key.startswith(inside)]
+@dataclass(slots=True)
+class Reading:
+    """What GetObject requests gave: raw values and per-path errors, by path key."""
+
+    found: dict[str, Any] = field(default_factory=dict)
+    failed: dict[str, PlcError] = field(default_factory=dict)
+    unknown: set[str] = field(default_factory=set)  # the paths answered with 400.005
+
+    def merge(self, other: Reading) -> None:
+        """Take in another reading's results."""
+        self.found.update(other.found)
+        self.failed.update(other.failed)
+        self.unknown |= other.unknown
 
 
 def _text(raw: bytes) -> str:
@@ -118,58 +127,71 @@ class TecoApi:
         except TecoError as err:
             raise request_error(err, self.auth) from None
 
-    async def get(
-        self, groups: Sequence[Sequence[VariablePath]]
-    ) -> tuple[dict[str, Any], dict[str, PlcError]]:
-        """Read groups of paths; return raw values and per-path errors, by path key."""
-        found: dict[str, Any] = {}
-        failed: dict[str, PlcError] = {}
+    async def get(self, groups: Sequence[Sequence[VariablePath]]) -> Reading:
+        """Read groups of paths; return raw values and per-path errors."""
+        reading = Reading()
         for group in groups:
-            await self._get(list(group), found, failed)
-        return found, failed
+            await self._get(list(group), reading)
+        return reading
 
-    async def _get(
-        self, pending: list[VariablePath], found: dict[str, Any], failed: dict[str, PlcError]
-    ) -> None:
-        """Read one group; drop an unknown variable (400.005) and ask for the rest again."""
+    async def _get(self, pending: list[VariablePath], reading: Reading) -> None:
+        """Read one group; drop an unknown variable (400.005) and ask for the rest again.
+
+        When the answer does not say which path it means, or the group asks too much
+        (413.002/413.004), each half is read on its own.
+        """
         while pending:
             try:
                 answer = await self.send("GET", get_uri(path.text for path in pending))
             except TecoError as err:
-                if (name := missing_variable(err)) is not None:
-                    lost = named(pending, name) or range(len(pending))
+                name = missing_variable(err)
+                if name is not None and (lost := blame(pending, name)) is not None:
                     for index in lost:
-                        failed[pending[index].key] = PlcAddressError(
-                            f"{pending[index].text}: the PLC has no public variable {name} "
-                            "(400.005)"
+                        reading.unknown.add(pending[index].key)
+                        reading.failed[pending[index].key] = PlcAddressError(
+                            f"{pending[index].text}: the PLC does not know this variable "
+                            f"(400.005: '{name}' is not found)"
                         )
-                    pending = [path for index, path in enumerate(pending) if index not in lost]
+                    pending = [path for path in pending if path.key not in reading.unknown]
                     continue
-                if err.code in (TOO_MANY_REQUESTED, TOO_MANY_ITEMS) and len(pending) > 1:
+                split = name is not None or err.code in (TOO_MANY_REQUESTED, TOO_MANY_ITEMS)
+                if split and len(pending) > 1:
                     half = len(pending) // 2
-                    await self._get(pending[:half], found, failed)
-                    await self._get(pending[half:], found, failed)
+                    await self._get(pending[:half], reading)
+                    await self._get(pending[half:], reading)
                     return
                 if err.code == TOO_MANY_ITEMS:
-                    failed[pending[0].key] = PlcAddressError(
+                    reading.failed[pending[0].key] = PlcAddressError(
                         f"{pending[0].text} holds more items than the PLC answers at once"
                     )
                     return
                 raise request_error(err, self.auth) from None
             for path in pending:
                 try:
-                    found[path.key] = find(answer, path)
+                    reading.found[path.key] = find(answer, path)
                 except KeyError:
-                    failed[path.key] = PlcProtocolError(f"{path.text} is missing from the answer")
+                    reading.failed[path.key] = PlcProtocolError(
+                        f"{path.text} is missing from the answer"
+                    )
             return
 
     async def put(self, pairs: Sequence[tuple[VariablePath, Any]]) -> dict[int, PlcError]:
         """Write (path, JSON value) pairs with one PutObject; return the failures by position.
 
         A variable the PLC refuses (400.005, 400.015) fails alone: the others are sent again.
+        When the answer does not say which one it means, each half is sent on its own.
         """
         failures: dict[int, PlcError] = {}
-        pending = list(range(len(pairs)))
+        await self._put(pairs, list(range(len(pairs))), failures)
+        return failures
+
+    async def _put(
+        self,
+        pairs: Sequence[tuple[VariablePath, Any]],
+        pending: list[int],
+        failures: dict[int, PlcError],
+    ) -> None:
+        """Write the pending pairs; record the refused ones in failures."""
         while pending:
             body = dumps(nest(pairs[index] for index in pending))
             try:
@@ -177,9 +199,14 @@ class TecoApi:
             except TecoError as err:
                 refused, name = refused_value(err), missing_variable(err)
                 target = name if name is not None else (refused[1] if refused else None)
-                lost = named([pairs[i][0] for i in pending], target) if target else []
-                if not lost:
+                if target is None:
                     raise request_error(err, self.auth) from None
+                lost = blame([pairs[index][0] for index in pending], target)
+                if lost is None:
+                    half = len(pending) // 2
+                    await self._put(pairs, pending[:half], failures)
+                    await self._put(pairs, pending[half:], failures)
+                    return
                 for position in lost:
                     text = pairs[pending[position]][0].text
                     failures[pending[position]] = (
@@ -189,10 +216,10 @@ class TecoApi:
                         )
                         if refused is not None
                         else PlcAddressError(
-                            f"{text}: the PLC has no public variable {name} (400.005)"
+                            f"{text}: the PLC does not know this variable "
+                            f"(400.005: '{target}' is not found)"
                         )
                     )
-                pending = [index for position, index in enumerate(pending) if position not in lost]
+                pending = [index for index in pending if index not in failures]
                 continue
-            return failures
-        return failures
+            return

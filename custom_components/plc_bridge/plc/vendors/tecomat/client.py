@@ -16,6 +16,7 @@ from ...errors import (
     PlcAddressError,
     PlcError,
     PlcProtocolError,
+    PlcValueError,
     PlcWriteRefusedError,
 )
 from ...planning import chunks
@@ -31,7 +32,7 @@ from ...types import (
     Value,
     ValueKind,
 )
-from .api import TecoApi
+from .api import AUTH_METHODS, Reading, TecoApi
 from .browse import LIST_URI, browse_items, listed_names
 from .codec import KINDS, TYPES, check_value, data_type, decode, encode
 from .info import device_info, plc_status
@@ -95,6 +96,25 @@ class TecomatClient(PlcClient):
         self._status = PlcStatus()
         self._status_at = -float("inf")
         self._plan: tuple[tuple[str, ...], list[list[VariablePath]]] | None = None
+        self._unknown: dict[str, PlcError] = {}  # paths the PLC said it does not know (400.005)
+        self._probed_at = -float("inf")
+
+    @classmethod
+    def validate_options(cls, options: Mapping[str, object]) -> dict[str, str | int | bool]:
+        """Return the authentication and the clock variable's path; raise PlcValueError."""
+        auth = str(options.get("auth") or "digest").strip().lower()
+        if auth not in AUTH_METHODS:
+            raise PlcValueError(f"the authentication is Digest or Basic, not {auth!r}")
+        settings: dict[str, str | int | bool] = {"auth": auth}
+        clock = options.get("clock_variable") or ""
+        if not isinstance(clock, str):
+            raise PlcValueError(f"the clock variable is a variable path, not {clock!r}")
+        if clock.strip():
+            try:
+                settings["clock_variable"] = parse_path(clock).text
+            except PlcAddressError as err:
+                raise PlcValueError(f"clock variable: {err}") from None
+        return settings
 
     @classmethod
     def validate_point(cls, point: Point) -> Point:
@@ -145,31 +165,49 @@ class TecomatClient(PlcClient):
         """Read every distinct path once, packed into the fewest GetObject requests."""
         values: dict[Point, PointResult] = {}
         wanted: list[tuple[Point, VariablePath, str]] = []
+        paths: dict[str, VariablePath] = {}  # names are case-insensitive: the first spelling
         for point in points:
             try:
                 wanted.append((point, parse_path(point.address), data_type(point.data_type)))
             except PlcError as err:
                 values[point] = PointResult(error=err)
-        found, failed = await self._teco().get(self._planned(wanted))
+                continue
+            paths.setdefault(wanted[-1][1].key, wanted[-1][1])
+        reading = await self._get(paths)
         for point, path, kind in wanted:
-            if path.key in failed:
-                values[point] = PointResult(error=failed[path.key])
+            if path.key in reading.failed:
+                values[point] = PointResult(error=reading.failed[path.key])
                 continue
             try:
                 values[point] = PointResult(
-                    value=decode(kind, found[path.key], self._zone, path.text)
+                    value=decode(kind, reading.found[path.key], self._zone, path.text)
                 )
             except PlcProtocolError as err:
                 values[point] = PointResult(error=err)
         return ReadResult(values=values, status=await self._poll_status())
 
-    def _planned(
-        self, wanted: Sequence[tuple[Point, VariablePath, str]]
-    ) -> list[list[VariablePath]]:
+    async def _get(self, paths: dict[str, VariablePath]) -> Reading:
+        """Read the paths; those the PLC does not know are asked again once a status_interval.
+
+        A renamed variable would otherwise cost a 400.005 answer on every poll.
+        """
+        self._unknown = {key: error for key, error in self._unknown.items() if key in paths}
+        known = {key: path for key, path in paths.items() if key not in self._unknown}
+        reading = await self._teco().get(self._planned(known))
+        now = time.monotonic()
+        if self._unknown and now - self._probed_at >= self.status_interval:
+            again = await self._teco().get(plan(paths[key] for key in self._unknown))
+            self._unknown = {key: again.failed[key] for key in again.unknown}
+            reading.merge(again)
+            self._probed_at = now
+        reading.failed.update(self._unknown)
+        if reading.unknown - self._unknown.keys():
+            self._probed_at = now
+        self._unknown.update({key: reading.failed[key] for key in reading.unknown})
+        return reading
+
+    def _planned(self, paths: dict[str, VariablePath]) -> list[list[VariablePath]]:
         """Return the request groups of a poll; the last poll's plan is kept (polls repeat)."""
-        paths: dict[str, VariablePath] = {}
-        for _point, path, _kind in wanted:
-            paths.setdefault(path.key, path)
         names = tuple(paths)
         if self._plan is None or self._plan[0] != names:
             self._plan = names, plan(paths.values())
@@ -187,6 +225,8 @@ class TecomatClient(PlcClient):
             failures = await self._teco().put(pairs)
             for index, item in enumerate(group):
                 error = failures.get(index)
+                if error is None:
+                    self._unknown.pop(item.path.key, None)
                 results[item.point] = PointResult(value=None if error else item.value, error=error)
         return results
 
@@ -199,12 +239,17 @@ class TecomatClient(PlcClient):
             except PlcAddressError:
                 continue
             paths.setdefault(path.key, path)
-        found, _failed = await self._teco().get(plan(paths.values()))
+        found = (await self._teco().get(plan(paths.values()))).found
         items: list[BrowseItem] = []
         for key, path in paths.items():
             if key in found:
                 items.extend(browse_items(path, found[key]))
         return items
+
+    @property
+    def can_set_clock(self) -> bool:
+        """True once a clock variable is chosen: TecoApi has no service that sets the clock."""
+        return bool(str(self.config.options.get("clock_variable", "")).strip())
 
     async def read_clock(self) -> datetime:
         """Return the PLC time GetInfo reports (3.2), in the configured time zone."""
@@ -215,16 +260,12 @@ class TecomatClient(PlcClient):
         return status.clock
 
     async def set_clock(self, when: datetime) -> None:
-        """Write the time to the DT variable named in options["clock_variable"].
-
-        TecoApi has no service that sets the PLC clock: the PLC program must copy that
-        variable into its real-time clock.
-        """
+        """Write the time to the clock variable (a DT the PLC program copies into its clock)."""
         variable = str(self.config.options.get("clock_variable", "")).strip()
         if not variable:
             raise PlcWriteRefusedError(
-                "TecoApi cannot set the PLC clock; name a DT variable the PLC program copies "
-                "into its clock (vendor option clock_variable)"
+                "TecoApi has no service that sets the PLC clock: choose a DT variable that the "
+                "PLC program copies into its clock as the PLC's clock variable"
             )
         point = Point(variable, "DT")
         error = (await self.write({point: when}))[point].error

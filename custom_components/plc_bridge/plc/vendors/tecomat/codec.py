@@ -53,12 +53,23 @@ def check_value(kind: str, value: Value, what: str) -> Value:
     if kind in INTEGER_RANGES:
         return check_integer(value, *INTEGER_RANGES[kind], what)
     if kind in ("REAL", "LREAL"):
-        return check_float(value, single=kind == "REAL", what=what)
+        return _check_number(check_float(value, single=kind == "REAL", what=what), what)
     if kind in ("TIME", "TOD"):
         return _format_clock(_check_clock(kind, value, what))
     if kind in ("DATE", "DT"):
         return _check_date(kind, value, what)
     return _check_text(value, what)
+
+
+def _check_number(number: float, what: str) -> float:
+    """Refuse a number whose digits, written without an exponent, pass the parser's limit."""
+    length = len(plain_decimal(number))
+    if length > MAX_VALUE:
+        raise PlcValueError(
+            f"{what}: {number!r} written without an exponent takes {length} characters; "
+            f"the PLC reads numbers of at most {MAX_VALUE}"
+        )
+    return number
 
 
 def _check_text(value: Value, what: str) -> str:

@@ -2,12 +2,20 @@
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 import contextlib
 import json
 import re
 from typing import Any
 
-from ...errors import PlcAuthenticationError, PlcError, PlcProtocolError
+from ...errors import (
+    PlcAddressError,
+    PlcAuthenticationError,
+    PlcConnectionError,
+    PlcError,
+    PlcProtocolError,
+)
+from .paths import Segment, VariablePath, parse_path
 
 NOT_FOUND = "400.005"  # Variable 'NNN' is not found
 NOT_WRITTEN = "400.015"  # Value VVV was not written to variable 'NNN' (type of variable is TTT)
@@ -60,14 +68,44 @@ def refused_value(error: TecoError) -> tuple[str, str, str] | None:
     return (match[1], match[2], match[3]) if match else None
 
 
+def blame(paths: Sequence[VariablePath], name: str) -> list[int] | None:
+    """Return the positions of the paths an error's variable name points at; None when unsure.
+
+    The PLC names the whole path, or only the item where it stopped walking it: `sport` for
+    myObject.favorites.sport, `favorites` when that member is gone. A name that fits one
+    variable (with all that lies inside it) is sure; fitting none or several, the caller splits
+    the request to find out. A lone path is always the one.
+    """
+    if len(paths) == 1:
+        return [0]
+    try:
+        wanted = _folded(parse_path(name).segments)
+    except PlcAddressError:
+        return None
+    variables: dict[tuple[Segment, ...], list[int]] = {}
+    for index, path in enumerate(paths):
+        parts = _folded(path.segments)
+        for start in range(len(parts) - len(wanted) + 1):
+            if parts[start : start + len(wanted)] == wanted:
+                variables.setdefault(parts[: start + len(wanted)], []).append(index)
+                break
+    return next(iter(variables.values())) if len(variables) == 1 else None
+
+
+def _folded(segments: tuple[Segment, ...]) -> tuple[Segment, ...]:
+    """Return path segments as the PLC compares them: names case-insensitively."""
+    return tuple(part.lower() if isinstance(part, str) else part for part in segments)
+
+
 def request_error(error: TecoError, auth: str) -> PlcError:
     """Return the exception for an error answer to a whole request."""
     code, message = error.code, error.message
     if code == BAD_CREDENTIALS:
         return PlcAuthenticationError("the PLC refused the user name or password")
-    if code == NEW_BALLS:
-        return PlcAuthenticationError(
-            "the PLC refused the digest nonce again right after renewing it"
+    if code == NEW_BALLS:  # a nonce renewed twice in a row says nothing about the password
+        return PlcConnectionError(
+            "the PLC renewed its digest nonce twice in a row (401.020); the next request "
+            "uses the new one"
         )
     if code == UNSUPPORTED_AUTH:
         return PlcAuthenticationError(f"the PLC does not accept {auth} authentication")

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from collections import deque
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass, field
 import functools
@@ -13,6 +14,7 @@ from ...errors import PlcAddressError, PlcValueError
 SERVICE = "/TecoApi/"
 GET_OBJECT = SERVICE + "GetObject?"
 MAX_URI = 256  # "Celková délka dotazu může být max. 256 znaků" (3.4, 3.5)
+ROOM = MAX_URI - len(GET_OBJECT) + 1  # the names of a GetObject URI, each paying one "&"
 MAX_VARIABLES = 128  # 413.002/413.004: Foxtrot CP-1xxx 128, CP-2xxx 256; the smaller is safe
 MAX_PATH = 128  # 400.007: a variable name of CP-1xxx is at most 128 characters
 MAX_NAME = 64  # chapter 4: an IEC name is at most 64 characters; 400.008: an item name too
@@ -104,25 +106,79 @@ def check_writable(path: VariablePath) -> None:
 
 
 def pack_names(names: Sequence[str]) -> list[list[str]]:
-    """Group names into the fewest GetObject URIs of at most 256 characters and 128 names.
+    """Group names into the fewest GetObject URIs of at most 256 characters.
 
-    First fit, longest names first: the URI limit is the only cost, so this nearly always
-    reaches the bound of total length divided by room.
+    Minimum bin slack: each URI takes the longest name left, then the names that fill its
+    room most closely (a subset sum over name lengths, longer names preferred); first fit
+    decreasing instead in the rare plans where that needs fewer. A name costs its length plus
+    an "&"; a URI holds at most 119 names, so the 128-name limit cannot bind.
     """
-    room = MAX_URI - len(GET_OBJECT) + 1  # every name but the first pays one "&"
+    ordered = sorted(names, key=len, reverse=True)
+    closest, first = _closest_fit(ordered), _first_fit(ordered)
+    return first if len(first) < len(closest) else closest
+
+
+def _first_fit(ordered: list[str]) -> list[list[str]]:
+    """Pack names, longest first, each into the first URI with room for it."""
     groups: list[list[str]] = []
-    left: list[int] = []
-    for name in sorted(names, key=len, reverse=True):
+    free: list[int] = []
+    for name in ordered:
         cost = len(name) + 1
-        for index, free in enumerate(left):
-            if free >= cost and len(groups[index]) < MAX_VARIABLES:
+        for index, left in enumerate(free):
+            if left >= cost:
                 groups[index].append(name)
-                left[index] -= cost
+                free[index] -= cost
                 break
         else:
             groups.append([name])
-            left.append(room - cost)
+            free.append(ROOM - cost)
     return groups
+
+
+def _closest_fit(ordered: list[str]) -> list[list[str]]:
+    """Pack names, longest first, filling each URI as closely as the names left allow."""
+    by_cost: dict[int, deque[str]] = {}
+    for name in ordered:
+        by_cost.setdefault(len(name) + 1, deque()).append(name)
+    groups: list[list[str]] = []
+    while by_cost:
+        largest = max(by_cost)
+        taken = {largest: 1}
+        fill = _fill({cost: len(left) for cost, left in by_cost.items()}, taken, ROOM - largest)
+        group: list[str] = []
+        for cost in sorted(fill, reverse=True):
+            left = by_cost[cost]
+            group.extend(left.popleft() for _ in range(fill[cost]))
+            if not left:
+                del by_cost[cost]
+        groups.append(group)
+    return groups
+
+
+def _fill(counts: dict[int, int], taken: dict[int, int], space: int) -> dict[int, int]:
+    """Add to taken the costs (name counts by cost) whose sum comes closest to space.
+
+    Counts are split into powers of two, so reachable sums are one integer bit set per step.
+    """
+    pieces: list[tuple[int, int]] = []
+    for cost in sorted(counts, reverse=True):
+        left = min(counts[cost] - taken.get(cost, 0), max(space, 0) // cost)
+        step = 1
+        while left > 0:
+            pieces.append((cost, min(step, left)))
+            left -= step
+            step *= 2
+    mask = (1 << max(space, 0) + 1) - 1
+    reach = [1]
+    for cost, count in pieces:
+        reach.append((reach[-1] | reach[-1] << cost * count) & mask)
+    total = reach[-1].bit_length() - 1
+    for index in range(len(pieces), 0, -1):  # undo the last pieces first: longer names win
+        if not reach[index - 1] >> total & 1:
+            cost, count = pieces[index - 1]
+            taken[cost] = taken.get(cost, 0) + count
+            total -= cost * count
+    return taken
 
 
 def plan(paths: Iterable[VariablePath]) -> list[list[VariablePath]]:

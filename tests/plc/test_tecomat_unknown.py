@@ -1,0 +1,123 @@
+"""Variables the PLC does not know or refuses, named by path or by their last item only."""
+
+from __future__ import annotations
+
+import pytest
+
+from custom_components.plc_bridge.plc import PlcAddressError, PlcValueError, Point
+from custom_components.plc_bridge.plc.vendors.tecomat import TecomatClient
+from simulators.tecomat import TecomatSimulator
+
+pytest_plugins = ["tests.plc.tecomat_fixtures"]
+
+SPORT, COLOR = (
+    Point("myObject.favorites.sport", "STRING"),
+    Point("myObject.favorites.color", "STRING"),
+)
+NAME, REQUESTED = Point("plcName", "STRING"), Point("Main.myObject3.value", "REAL")
+PUMP = Point("Main.pump.value", "BOOL")
+
+
+async def test_unknown_variable_named_by_its_last_item(
+    tecomat_sim: TecomatSimulator, tecomat_client: TecomatClient
+) -> None:
+    tecomat_sim.leaf_names = True
+    tecomat_sim.rename("myObject.favorites.sport", "hobby")
+    before = tecomat_sim.requests
+    result = await tecomat_client.read([SPORT, COLOR, NAME, REQUESTED])
+    assert tecomat_sim.requests - before == 2  # the answer names 'sport': only that one goes
+    error = result.values[SPORT].error
+    assert isinstance(error, PlcAddressError)
+    assert str(error) == (
+        "myObject.favorites.sport: the PLC does not know this variable "
+        "(400.005: 'sport' is not found)"
+    )
+    assert [result.values[p].value for p in (COLOR, NAME, REQUESTED)] == ['"Blue"', "myFoxtrot", 23]
+
+
+async def test_unknown_structure_member(
+    tecomat_sim: TecomatSimulator, tecomat_client: TecomatClient
+) -> None:
+    tecomat_sim.leaf_names = True
+    tecomat_sim.rename("myObject.favorites", "likes")
+    before = tecomat_sim.requests
+    result = await tecomat_client.read([SPORT, COLOR, NAME])
+    assert tecomat_sim.requests - before == 2  # 'favorites' holds both: both go at once
+    assert "'favorites' is not found" in str(result.values[SPORT].error)
+    assert isinstance(result.values[COLOR].error, PlcAddressError)
+    assert result.values[NAME].value == "myFoxtrot"
+
+
+async def test_unknown_variable_the_answer_does_not_single_out(
+    tecomat_sim: TecomatSimulator, tecomat_client: TecomatClient
+) -> None:
+    tecomat_sim.leaf_names = True
+    tecomat_sim.rename("Main.pump.value", "state")  # 'value' fits both Main objects
+    before = tecomat_sim.requests
+    result = await tecomat_client.read([REQUESTED, PUMP, NAME])
+    assert tecomat_sim.requests - before == 4  # halves: one reads, the other drops the pump
+    assert isinstance(result.values[PUMP].error, PlcAddressError)
+    assert (result.values[REQUESTED].value, result.values[NAME].value) == (23, "myFoxtrot")
+
+
+async def test_write_refusal_naming_the_leaf(
+    tecomat_sim: TecomatSimulator, tecomat_client: TecomatClient
+) -> None:
+    tecomat_sim.leaf_names = True
+    age, food = Point("myObject.age", "INT"), Point("myObject.favorites.food", "STRING")
+    missing = Point("myObject.favorites.drink", "STRING")
+    results = await tecomat_client.write({SPORT: "Chess", age: 300, food: "Pizza", missing: "Tea"})
+    assert str(results[age].error) == (
+        "myObject.age: the PLC did not take 300 (the variable is a USINT; 400.015)"
+    )
+    assert "'drink' is not found" in str(results[missing].error)
+    assert results[SPORT].ok
+    assert results[food].ok
+    assert (tecomat_sim.get("myObject.favorites.sport"), tecomat_sim.get("myObject.age")) == (
+        "Chess",
+        39,
+    )
+    assert tecomat_sim.get("myObject.favorites.food") == "Pizza"
+    assert tecomat_sim.calls["PutObject"] == 3
+
+
+async def test_write_refusal_the_answer_does_not_single_out(
+    tecomat_sim: TecomatSimulator, tecomat_client: TecomatClient
+) -> None:
+    tecomat_sim.leaf_names = True
+    pump = Point("Main.pump.value", "INT")  # the PLC's BOOL refuses 5, naming only 'value'
+    results = await tecomat_client.write({pump: 5, REQUESTED: 21.5, NAME: "x"})
+    error = results[pump].error
+    assert isinstance(error, PlcValueError)
+    assert "400.015" in str(error)
+    assert results[REQUESTED].ok
+    assert results[NAME].ok
+    assert (tecomat_sim.get("Main.myObject3.value"), tecomat_sim.get("plcName")) == (21.5, "x")
+    assert tecomat_sim.calls["PutObject"] == 3  # all, then each half
+
+
+async def test_unknown_variable_costs_no_request_per_poll(
+    tecomat_sim: TecomatSimulator, tecomat_client: TecomatClient, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    good = [NAME, Point("plcDesc", "STRING"), REQUESTED]
+    lost = Point("plcType", "UINT")
+    await tecomat_client.read(good)
+    usual = tecomat_client.metrics.last_poll_requests
+    tecomat_sim.rename("plcType", "plcKind")
+    await tecomat_client.read([*good, lost])
+    assert tecomat_client.metrics.last_poll_requests == usual + 1  # found out once
+    tecomat_sim.rename("plcKind", "plcType")  # the PLC program is fixed
+    for _ in range(3):
+        result = await tecomat_client.read([*good, lost])
+        assert tecomat_client.metrics.last_poll_requests == usual
+        assert isinstance(result.values[lost].error, PlcAddressError)
+        assert result.values[NAME].value == "myFoxtrot"
+    assert all("plcType" not in uri for uri in list(tecomat_sim.uris)[-3:])
+    monkeypatch.setattr(TecomatClient, "status_interval", 0.0)
+    getting = tecomat_sim.calls["GetObject"]
+    result = await tecomat_client.read([*good, lost])
+    assert tecomat_sim.calls["GetObject"] - getting == usual + 1  # asked again, on its own
+    assert result.values[lost].value == 2005
+    getting = tecomat_sim.calls["GetObject"]
+    await tecomat_client.read([*good, lost])
+    assert tecomat_sim.calls["GetObject"] - getting == usual  # back in the plan
