@@ -1,9 +1,11 @@
 """Start every simulator that exists on loopback: `python -m simulators [--only VENDOR ...]`.
 
 Prints where each one listens, its credentials and, for TLS ones, the certificate fingerprint
-to pin. Runs until Ctrl-C (or SIGTERM). With `--control`, it runs until standard input closes
-and answers each line "requests" with one JSON line of request counters per vendor: the
-benchmarks drive a simulator in a subprocess this way, so their CPU figures are the client's own.
+to pin. Runs until Ctrl-C (or SIGTERM). With `--demo`, a simulator that has `animate(elapsed)`
+is called about once a second, so that some of its values move as a running process would.
+With `--control`, it runs until standard input closes and answers each line "requests" with one
+JSON line of request counters per vendor: the benchmarks drive a simulator in a subprocess this
+way, so their CPU figures are the client's own.
 """
 
 from __future__ import annotations
@@ -18,6 +20,7 @@ import json
 import signal
 import sys
 import threading
+import time
 from typing import Any
 
 
@@ -137,12 +140,25 @@ def _control(
     loop.call_soon_threadsafe(stop.set)
 
 
+async def _animate(simulators: list[tuple[Entry, Any]], stop: asyncio.Event) -> None:
+    """Call `animate(seconds since start)` of the simulators that have it, once a second."""
+    movers = [sim for _entry, sim in simulators if callable(getattr(sim, "animate", None))]
+    started = time.monotonic()
+    while movers and not stop.is_set():
+        for sim in movers:
+            sim.animate(time.monotonic() - started)
+        with contextlib.suppress(TimeoutError):
+            await asyncio.wait_for(stop.wait(), 1.0)
+
+
 async def run(
     only: list[str] | None,
     port: int | None,
     as_json: bool,
     control: bool,
     options: dict[str, dict[str, Any]] | None = None,
+    *,
+    demo: bool = False,
 ) -> int:
     """Start the simulators, report them, and serve until told to stop.
 
@@ -168,6 +184,8 @@ async def run(
             print("simulators running; Ctrl-C stops them", flush=True)
         if control:
             threading.Thread(target=_control, args=(loop, running, stop), daemon=True).start()
+        if demo:
+            await _animate(running, stop)
         await stop.wait()
     finally:
         for _entry, simulator in reversed(running):
@@ -187,9 +205,10 @@ def main() -> int:
     parser.add_argument(
         "--control", action="store_true", help="serve until stdin closes; answer 'requests'"
     )
+    parser.add_argument("--demo", action="store_true", help="let some values move, once a second")
     args = parser.parse_args()
     try:
-        return asyncio.run(run(args.only, args.port, args.json, args.control))
+        return asyncio.run(run(args.only, args.port, args.json, args.control, demo=args.demo))
     except KeyboardInterrupt:
         return 0
 

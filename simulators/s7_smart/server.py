@@ -14,6 +14,7 @@ import contextlib
 from datetime import datetime
 import hashlib
 import json
+import math
 import secrets
 import time
 from typing import Any
@@ -129,6 +130,11 @@ class S7SmartSimulator(HttpSimulator):
             return self.clock
         value = self.memory.load(where)
         return bool(value) if where.bit is not None else value
+
+    def animate(self, elapsed: float) -> None:
+        """The demo's process: a tank temperature (VD100) drifts, a counter (VW10) counts."""
+        self.set("VD100", round(21.5 + 1.5 * math.sin(2 * math.pi * elapsed / 900), 1), "float")
+        self.set("VW10", int(elapsed) % 32768)
 
     def invalidate_tokens(self) -> None:
         """Drop every token, as if another client had logged in with each online user."""

@@ -1,0 +1,44 @@
+"""The demo mode of `python -m simulators`: values that move, once a second, until stopped."""
+
+from __future__ import annotations
+
+import asyncio
+from typing import Any
+
+from simulators.__main__ import SIMULATORS, _animate
+from simulators.s7_smart import S7SmartSimulator
+
+
+class Recorder:
+    """A simulator stand-in that records the times it was animated."""
+
+    def __init__(self) -> None:
+        self.calls: list[float] = []
+
+    def animate(self, elapsed: float) -> None:
+        self.calls.append(elapsed)
+
+
+async def test_animate_until_stopped() -> None:
+    """Animated at once and then about every second; a simulator without animate is left."""
+    recorder, stop = Recorder(), asyncio.Event()
+    running: list[tuple[Any, Any]] = [(SIMULATORS[0], recorder), (SIMULATORS[1], object())]
+    task = asyncio.create_task(_animate(running, stop))
+    await asyncio.sleep(0.05)
+    assert len(recorder.calls) == 1
+    assert recorder.calls[0] < 0.05
+    stop.set()
+    await asyncio.wait_for(task, 1)
+
+
+def test_s7_smart_process() -> None:
+    """The tank temperature drifts in 0.1 steps, the counter counts; nothing else moves."""
+    sim = S7SmartSimulator()
+    sim.set("VD104", 5.0, "float")
+    sim.animate(0.0)
+    assert sim.get("VD100", "float") == 21.5
+    assert sim.get("VW10") == 0
+    sim.animate(225.0)  # a quarter of the 15-minute wave
+    assert sim.get("VD100", "float") == 23.0
+    assert sim.get("VW10") == 225
+    assert sim.get("VD104", "float") == 5.0
