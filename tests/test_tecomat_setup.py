@@ -165,6 +165,21 @@ async def test_unknown_variable_from_the_start(
     assert not issue_registry.issues
 
 
+async def test_clock_read_only_without_clock_variable(
+    hass: HomeAssistant, tecomat_sim: TecomatSimulator, entity_registry: er.EntityRegistry
+) -> None:
+    """No clock variable: TecoApi cannot set the clock, so it is a timestamp sensor."""
+    entry = make_tecomat_entry(hass, tecomat_sim, vendor_options={"auth": "digest"})
+    assert await hass.config_entries.async_setup(entry.entry_id)
+    await hass.async_block_till_done()
+    assert hass.states.get("datetime.fx2_cp2080_plc_clock") is None
+    clock = hass.states.get("sensor.fx2_cp2080_plc_clock")
+    assert clock.state == "2018-02-01T00:50:39+00:00"
+    assert clock.attributes["device_class"] == "timestamp"
+    registered = entity_registry.async_get("sensor.fx2_cp2080_plc_clock")
+    assert registered.entity_category is er.EntityCategory.DIAGNOSTIC
+
+
 async def test_operating_mode(
     hass: HomeAssistant,
     tecomat_sim: TecomatSimulator,
