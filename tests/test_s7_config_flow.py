@@ -76,7 +76,7 @@ async def test_rack_slot_default(
     result = await submit(hass, await connection_form(hass), where(sim))
     assert result["type"] is FlowResultType.CREATE_ENTRY
     assert result["title"] == TITLE
-    assert result["data"] == s7_data(sim)
+    assert result["data"] == s7_data(sim, family="s7_300_1500")  # the client's default
     assert result["result"].unique_id == SERIAL
     assert sim.connections == 1
     assert sim.calls["szl"] >= 2  # order code (0x0011) and identity (0x001C)
@@ -93,7 +93,7 @@ async def test_slot_two(hass: HomeAssistant, s7_ha_sims: SimFactory) -> None:
     assert sim.connections == 0
     result = await submit(hass, result, where(sim, rack=0.0, slot=2.0))  # as the UI sends
     assert result["type"] is FlowResultType.CREATE_ENTRY
-    assert result["data"] == s7_data(sim, slot=2)
+    assert result["data"] == s7_data(sim, slot=2, family="s7_300_1500")
     assert result["result"].unique_id == SERIAL
 
 
@@ -108,6 +108,7 @@ async def test_tsap(hass: HomeAssistant, s7_ha_sims: SimFactory) -> None:
         "connection": "tsap",
         "local_tsap": "01.00",
         "remote_tsap": "10.01",
+        "family": "s7_300_1500",
     }
     assert result["result"].unique_id == SERIAL
     assert sim.connections == 1
@@ -176,4 +177,5 @@ async def test_reconfigure_to_tsap(hass: HomeAssistant, s7_ha_sims: SimFactory) 
         "connection": "tsap",
         "local_tsap": "10.00",
         "remote_tsap": "03.02",
+        "family": "s7_300_1500",
     }

@@ -93,10 +93,15 @@ async def test_sync_clock(
 ) -> None:
     """sync_clock sets the CPU clock to Home Assistant's time, in the PLC's (HA's) zone."""
     s7_ha_sim.clock = datetime(2001, 2, 3, 4, 5, 6)
+    clocks = s7_ha_sim.calls["clock"]
     await call(hass, "sync_clock", s7_setup)
+    await hass.async_block_till_done()
     local = dt_util.now().astimezone(ZoneInfo(hass.config.time_zone)).replace(tzinfo=None)
-    assert s7_ha_sim.calls["clock"] == 1
+    assert s7_ha_sim.calls["clock"] == clocks + 2  # set, then read again by the refresh
     assert abs(s7_ha_sim.clock - local) < timedelta(seconds=1)
+    shown = s7_setup.runtime_data.coordinator.data.status.clock
+    assert shown is not None
+    assert abs(shown.replace(tzinfo=None) - local) < timedelta(seconds=1)
 
 
 async def test_sync_clock_refused(

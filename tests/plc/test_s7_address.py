@@ -155,26 +155,30 @@ def test_value_kind(data_type: str, kind: ValueKind | None) -> None:
     assert S7Client.value_kind(Point("DB1.DBB0", data_type)) == kind
 
 
+S7_300 = {"family": "s7_300_1500"}  # the default: S7-300/400/1200/1500
+S7_200 = {"family": "s7_200"}
+
+
 @pytest.mark.parametrize(
     ("options", "normal"),
     [
-        ({}, {"connection": "rack_slot", "rack": 0, "slot": 1}),
-        ({"rack": "0", "slot": 2.0}, {"connection": "rack_slot", "rack": 0, "slot": 2}),
+        ({}, {"connection": "rack_slot", "rack": 0, "slot": 1} | S7_300),
+        ({"rack": "0", "slot": 2.0}, {"connection": "rack_slot", "rack": 0, "slot": 2} | S7_300),
         (
             {"connection": "rack_slot", "rack": 7, "slot": 31, "model": "S7-1500"},
-            {"connection": "rack_slot", "rack": 7, "slot": 31},
+            {"connection": "rack_slot", "rack": 7, "slot": 31} | S7_300,
         ),
         (
-            {"connection": "tsap", "local_tsap": "10.00", "remote_tsap": "10.01"},
-            {"connection": "tsap", "local_tsap": "10.00", "remote_tsap": "10.01"},
+            {"connection": "tsap", "local_tsap": "10.00", "remote_tsap": "10.01"} | S7_200,
+            {"connection": "tsap", "local_tsap": "10.00", "remote_tsap": "10.01"} | S7_200,
         ),
         (
             {"connection": "tsap", "remote_tsap": 0x0200},
-            {"connection": "tsap", "local_tsap": "01.00", "remote_tsap": "02.00"},
+            {"connection": "tsap", "local_tsap": "01.00", "remote_tsap": "02.00"} | S7_300,
         ),
         (
             {"connection": "tsap", "local_tsap": "0x4d57", "remote_tsap": " 4d.57 "},
-            {"connection": "tsap", "local_tsap": "4D.57", "remote_tsap": "4D.57"},
+            {"connection": "tsap", "local_tsap": "4D.57", "remote_tsap": "4D.57"} | S7_300,
         ),
     ],
 )  # fmt: skip
@@ -195,6 +199,7 @@ def test_options(options: dict[str, Any], normal: dict[str, Any]) -> None:
         ({"connection": "tsap", "remote_tsap": "10.001"}, "not a TSAP"),
         ({"connection": "tsap", "remote_tsap": 0x10000}, "not a TSAP"),
         ({"connection": "tsap", "remote_tsap": "10.01", "local_tsap": None}, "local_tsap None"),
+        ({"family": "s7_1200"}, "family must be one of s7_300_1500, s7_200, not 's7_1200'"),
     ],
 )
 def test_options_refused(options: dict[str, Any], message: str) -> None:
@@ -209,7 +214,8 @@ def test_endpoints() -> None:
     assert endpoint({}) == Endpoint(0x0100, 0x0101)  # S7-1200/1500
     assert endpoint({"rack": 1, "slot": 3}) == Endpoint(0x0100, 0x0123)
     tsap = {"connection": "tsap", "local_tsap": "10.00", "remote_tsap": "10.01"}
-    assert endpoint(tsap) == Endpoint(0x1000, 0x1001)  # S7-200 with a CP 243-1
+    assert endpoint(tsap) == Endpoint(0x1000, 0x1001)  # a CP 243-1, T and C as on an S7-300
+    assert endpoint(tsap | {"family": "s7_200"}) == Endpoint(0x1000, 0x1001, s7_200=True)
 
 
 @pytest.mark.parametrize(

@@ -74,8 +74,8 @@ VALUES: list[tuple[str, str, Value]] = [
 
 
 async def test_connect(s7_sim: S7Simulator, s7_client: S7Client) -> None:
-    assert s7_sim.calls == {"setup": 1, "szl": 2}
-    assert s7_client.metrics.requests == s7_sim.requests == 3
+    assert s7_sim.calls == {"setup": 1, "szl": 2, "clock": 1}
+    assert s7_client.metrics.requests == s7_sim.requests == 4
     assert s7_client.pdu_size == 480
     assert s7_sim.connections == 1
 
@@ -98,18 +98,19 @@ async def test_device_info(s7_client: S7Client) -> None:
 
 async def test_every_address_form_and_type(s7_sim: S7Simulator, s7_client: S7Client) -> None:
     values = {Point(address, data_type): value for address, data_type, value in VALUES}
-    before = s7_sim.calls["write"]
+    s7_sim.set_db(1, 34, b"\x0c")  # a CPU's STRING[12] declares its maximum length
+    before = dict(s7_sim.calls)
     written = await s7_client.write(values)
     assert {point: result.value for point, result in written.items()} == values
-    assert s7_sim.get_db(1, 34, 5) == b"\x00\x0aPLC"  # the maximum length byte is not ours
-    assert s7_sim.calls["write"] == before + 2  # 35 items, at most 20 a request
-    s7_sim.set_db(1, 34, b"\x0a")  # a CPU's STRING[10] declares its maximum length
+    assert s7_sim.get_db(1, 34, 5) == b"\x0c\x0aPLC"  # the maximum length byte is not ours
+    assert s7_sim.calls["write"] == before.get("write", 0) + 2  # 35 items, 20 a request at most
+    assert s7_sim.calls["read"] == before.get("read", 0) + 1  # the STRING's header, first
     result = await s7_client.read(list(values))
     assert {point: outcome.value for point, outcome in result.values.items()} == values
     assert s7_client.metrics.last_poll_requests == S7Client.requests_for(list(values))
     assert s7_sim.get_db(1, 0, 2) == b"\x81\xc8"  # bits 0 and 7 of DBB0, then DBB1
     assert s7_sim.get_db(1, 4, 2) == struct.pack(">h", -1234)  # big-endian like the CPU
-    assert s7_sim.get_db(1, 34, 5) == b"\x0a\x0aPLC"
+    assert s7_sim.get_db(1, 34, 5) == b"\x0c\x0aPLC"
     assert s7_sim.get_bytes("V", 104, 4) == s7_sim.get_db(1, 104, 4) == struct.pack(">f", 6.5)
     assert s7_sim.get_bytes("T", 5, 2) == b"\x21\x23"
     assert s7_sim.get_bytes("Q", 10, 2) == b"\x01\x02"  # PQW writes reach the outputs
@@ -244,10 +245,10 @@ async def test_long_strings_on_a_small_pdu(s7_config: ConfigFactory) -> None:
         assert client.pdu_size == 240
         text = "0123456789" * 25 + "abcd"
         points = {Point("DB1.DBB0", "STRING"): text, Point("DB1.DBB300", "STRING"): "x"}
-        assert all(result.ok for result in (await client.write(points)).values())
-        assert sim.get_db(1, 0, 3) == b"\x00\xfe0"  # the CPU's declared maximum stays
-        sim.set_db(1, 0, b"\xfe")
+        sim.set_db(1, 0, b"\xfe")  # the CPU declares STRING[254] and STRING[16]
         sim.set_db(1, 300, b"\x10")
+        assert all(result.ok for result in (await client.write(points)).values())
+        assert sim.get_db(1, 0, 3) == b"\xfe\xfe0"
         read = (await client.read(list(points))).values
         assert read[Point("DB1.DBB0", "STRING")].value == text
     finally:

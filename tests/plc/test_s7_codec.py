@@ -18,7 +18,14 @@ from custom_components.plc_bridge.plc import (
     Point,
     Value,
 )
-from custom_components.plc_bridge.plc.vendors.s7.address import AREA_C, AREA_DB, AREA_P, variable
+from custom_components.plc_bridge.plc.vendors.s7.address import (
+    AREA_C,
+    AREA_C200,
+    AREA_DB,
+    AREA_P,
+    AREA_T200,
+    variable,
+)
 from custom_components.plc_bridge.plc.vendors.s7.codec import (
     decode,
     encode,
@@ -110,7 +117,7 @@ def test_write_items() -> None:
     text = write_items(variable(Point("DB1.DBB10", "STRING[20]")), "ab", PRAGUE, 480)
     assert text == [WriteItem(Span(AREA_DB, 1, 11, 3), b"\x02ab")]  # max-length byte untouched
     long = write_items(variable(Point("DB1.DBB0", "STRING")), "x" * 254, PRAGUE, 240)
-    assert [item.span for item in long] == [Span(AREA_DB, 1, 1, 210), Span(AREA_DB, 1, 211, 45)]
+    assert [item.span for item in long] == [Span(AREA_DB, 1, 1, 212), Span(AREA_DB, 1, 213, 43)]
     counter = write_items(variable(Point("C7", "WORD")), 0x0123, PRAGUE, 240)
     assert counter == [WriteItem(Span(AREA_C, 0, 7, 1), b"\x01\x23")]
 
@@ -120,6 +127,30 @@ def test_address_specs() -> None:
     assert address_spec(Span(AREA_DB, 1, 2, 1), bit=7).hex() == "120a10010001000184000017"
     assert address_spec(Span(AREA_C, 0, 5, 2)).hex() == "120a101c000200001c000005"
     assert address_spec(Span(AREA_P, 0, 256, 2)).hex() == "120a10020002000080000800"
+    assert address_spec(Span(AREA_T200, 0, 5, 1)).hex() == "120a101f000100001f000005"
+
+
+def test_address_specs_as_hand_packed() -> None:
+    """python-snap7's encode_address gives the bytes the S7-ANY format defines, for every kind."""
+    for area, db, start, length, bit in [
+        (AREA_DB, 65535, 65534, 2, None),
+        (AREA_DB, 3, 100, 1, 6),
+        (AREA_P, 0, 512, 4, None),
+        (AREA_C, 0, 255, 3, None),
+        (AREA_C200, 0, 7, 1, None),
+    ]:
+        counted = area in (AREA_C, AREA_C200)
+        word_length = area if counted else 0x01 if bit is not None else 0x02
+        where = start if counted else start * 8 + (bit or 0)
+        count = 1 if bit is not None else length
+        hand = struct.pack(">BBBBHHB", 0x12, 0x0A, 0x10, word_length, count, db, area)
+        assert address_spec(Span(area, db, start, length), bit) == hand + where.to_bytes(3)
+
+
+def test_peripheral_inputs_are_not_written() -> None:
+    with pytest.raises(PlcValueError, match="PIW256: peripheral inputs cannot be written"):
+        encode(variable(Point("PIW256", "WORD")), 1, PRAGUE)
+    assert encode(variable(Point("PQW256", "WORD")), 1, PRAGUE) == b"\x00\x01"
 
 
 def test_read_request() -> None:
@@ -183,14 +214,32 @@ def test_item_errors() -> None:
     assert "code 0x42" in str(unknown)
 
 
-def test_cpu_mode() -> None:
+@pytest.mark.parametrize(
+    ("bzu_id", "mode"),
+    [
+        (0x08, "RUN"),
+        (0x58, "RUN"),  # bits 4..7 hold the mode before (here STARTUP)
+        (0x09, "RUN"),  # RUN in a redundant (H) system
+        (0x04, "STOP"),
+        (0x03, "STOP"),  # older CPUs
+        (0x01, "STOP"),
+        (0x05, "STARTUP"),
+        (0x87, "STARTUP"),
+        (0x0A, "HOLD"),
+        (0x0D, "ERROR"),  # DEFECT
+        (0x0B, None),  # link-up of an H system: no mode to show, and surely no STOP
+        (0x0F, None),
+        (0x00, None),
+    ],
+)
+def test_cpu_mode(bzu_id: int, mode: str | None) -> None:
     head = struct.pack(">HHHB", 20, 1, 0x4302, 0xFF)
-    assert cpu_mode(head + b"\x08" + bytes(16)) == "RUN"
-    assert cpu_mode(head + b"\x04" + bytes(16)) == "STOP"
-    assert cpu_mode(head + b"\x03" + bytes(16)) == "STOP"  # older CPUs
-    assert cpu_mode(head + b"\x00" + bytes(16)) is None
+    assert cpu_mode(head + bytes([bzu_id]) + bytes(16)) == mode
+
+
+def test_cpu_mode_too_short() -> None:
     with pytest.raises(PlcProtocolError, match="too short"):
-        cpu_mode(head)
+        cpu_mode(struct.pack(">HHHB", 20, 1, 0x4302, 0xFF))
 
 
 def test_identity() -> None:

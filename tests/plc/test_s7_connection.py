@@ -19,6 +19,7 @@ from custom_components.plc_bridge.plc import (
 )
 from custom_components.plc_bridge.plc.vendors.s7 import S7Client
 from custom_components.plc_bridge.plc.vendors.s7.link import S7Link
+from custom_components.plc_bridge.plc.vendors.s7.session import longest_wait
 from simulators.s7 import S7Simulator
 
 from . import s7_fixtures
@@ -145,6 +146,72 @@ async def test_backoff_while_the_plc_is_away(
     levels = [r.levelno for r in caplog.records if r.name == LOGGER]
     assert levels.count(logging.WARNING) == 1  # one line on loss, not one per poll
     assert levels.count(logging.INFO) == 1  # one line on recovery
+
+
+async def test_stopped_and_restarted_mid_poll(
+    s7_sim: S7Simulator, s7_config: ConfigFactory, caplog: pytest.LogCaptureFixture
+) -> None:
+    """The CPU reboots inside a poll; every poll then tries once, the first after it is back wins.
+
+    Default backoff (1 s, doubling) under a 0.4 s poll interval: the wait is capped at 0.2 s.
+    """
+    caplog.set_level(logging.DEBUG, LOGGER)
+    client = S7Client(s7_config(poll_interval=0.4))
+    await client.connect()
+    back: list[threading.Event] = []
+
+    def reboot_inside_the_read(pdu: bytes) -> None:
+        if s7_sim.calls["read"] == 2 and not back:
+            back.append(s7_sim.reboot(downtime=0.9))
+
+    s7_sim.on_request = reboot_inside_the_read
+    try:
+        assert (await client.read([MW0])).values[MW0].ok
+        with pytest.raises(PlcConnectionError, match="broke"):
+            await client.read([MW0])  # the answer to this read never leaves the CPU
+        outcomes: list[tuple[bool, str]] = []  # (the CPU was back before the poll, outcome)
+        for _ in range(10):
+            await asyncio.sleep(0.4)  # the poll interval
+            was_back = back[0].is_set()
+            try:
+                await client.read([MW0])
+            except PlcConnectionError as err:
+                outcomes.append((was_back, str(err)))
+            else:
+                outcomes.append((was_back, "ok"))
+                break
+        assert outcomes[-1][1] == "ok"
+        assert 1 <= len(outcomes) - 1 <= 4  # away ~0.9 s: the polls made meanwhile
+        assert all(not was_back and "cannot connect" in text for was_back, text in outcomes[:-1])
+    finally:
+        await client.close()
+    levels = [r.levelno for r in caplog.records if r.name == LOGGER]
+    assert levels.count(logging.WARNING) == levels.count(logging.INFO) == 1
+
+
+@pytest.mark.parametrize(
+    ("interval", "wait"), [(10.0, 9.0), (2.0, 1.0), (1.5, 0.75), (0.4, 0.2), (600.0, 60.0)]
+)
+def test_longest_wait(interval: float, wait: float) -> None:
+    assert longest_wait(S7Client.reconnect_delay[1], interval) == wait
+
+
+async def test_backoff_capped_by_the_poll_interval(
+    s7_sim: S7Simulator, s7_config: ConfigFactory
+) -> None:
+    """Every poll tries once; a request between polls (a write, an action) still backs off."""
+    client = S7Client(s7_config(poll_interval=0.4))  # backoff 1 s, 2 s, ... capped at 0.2 s
+    await client.connect()
+    await s7_sim.stop()
+    with pytest.raises(PlcConnectionError, match="broke"):
+        await client.read([MW0])
+    for _ in range(4):
+        with pytest.raises(PlcConnectionError, match="cannot connect"):
+            await client.read([MW0])
+        with pytest.raises(PlcConnectionError, match=r"next attempt in 0\.[12] s"):
+            await client.write({MW0: 1})
+        await asyncio.sleep(0.2)
+    await client.close()
 
 
 async def test_timeout(s7_sim: S7Simulator, s7_config: ConfigFactory) -> None:

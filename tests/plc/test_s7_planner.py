@@ -17,9 +17,10 @@ from custom_components.plc_bridge.plc.vendors.s7.address import (
     AREA_T,
 )
 from custom_components.plc_bridge.plc.vendors.s7.planner import (
-    HEADER,
     MAX_ITEMS,
     PARAMETER,
+    REPLY_HEADER,
+    REQUEST_HEADER,
     SPEC,
     Span,
     WriteItem,
@@ -62,8 +63,8 @@ def check_budgets(plan: list[list[Span]], pdu: int, max_items: int = MAX_ITEMS) 
     """Every request and its reply fit the PDU, and no request has too many items."""
     for request in plan:
         assert 1 <= len(request) <= max_items
-        assert HEADER + PARAMETER + SPEC * len(request) <= pdu
-        assert HEADER + PARAMETER + sum(span.reply_cost for span in request) <= pdu
+        assert REQUEST_HEADER + PARAMETER + SPEC * len(request) <= pdu
+        assert REPLY_HEADER + PARAMETER + sum(span.reply_cost for span in request) <= pdu
 
 
 def test_merge_neighbours() -> None:
@@ -116,8 +117,13 @@ def test_pack_reply_budget() -> None:
 
 def test_pack_request_budget_on_a_small_pdu() -> None:
     plan = pack([db(n, 0, 1) for n in range(1, 21)], 240)
-    assert [len(request) for request in plan] == [18, 2]  # 14 + 18 * 12 = 230 <= 240
+    assert [len(request) for request in plan] == [19, 1]  # a job header is 10 bytes: 12 + 19 * 12
     check_budgets(plan, 240)
+    words = pack([db(n, 0, 2) for n in range(1, 20)], 240)
+    assert words == [sorted(db(n, 0, 2) for n in range(1, 20))]  # reply: 14 + 19 * 6 <= 240
+    reals = pack([db(n, 0, 12) for n in range(1, 20)], 240)
+    assert [len(request) for request in reals] == [14, 5]  # the reply binds: 14 + 14 * 16 = 238
+    check_budgets(reals, 240)
 
 
 def test_plan_reads_a_poll_of_100_points() -> None:
@@ -199,7 +205,7 @@ def test_plan_writes() -> None:
 
 def test_write_pieces() -> None:
     pieces = write_pieces(db(1, 10, 256), bytes(range(256)), 240)
-    assert [piece.span for piece in pieces] == [db(1, 10, 210), db(1, 220, 46)]
+    assert [piece.span for piece in pieces] == [db(1, 10, 212), db(1, 222, 44)]  # 10+2+16+212
     assert b"".join(piece.data for piece in pieces) == bytes(range(256))
     assert write_pieces(Span(AREA_C, 0, 3, 1), b"\x00\x07", 240) == [
         WriteItem(Span(AREA_C, 0, 3, 1), b"\x00\x07")

@@ -1,4 +1,10 @@
-"""S7 addresses as STEP 7 / TIA Portal show them, and the data types each width takes."""
+"""S7 addresses as STEP 7 / TIA Portal show them, and the data types each width takes.
+
+python-snap7's tag parser (`snap7.tags.parse_tag`, 3.3.0) is not used: its `Area` knows only
+DB, M, I and Q, so it rejects V (S7-200 memory), T, C, PIW/PQW and the German E/A/Z spellings;
+bare forms such as `M10.1` or `IW64` need `strict=False`, and it accepts what a CPU refuses
+(`DB1.DBW4:REAL`, bit 9 in `DB1.DBX0.9`). The point form needs those refused with a hint.
+"""
 
 from __future__ import annotations
 
@@ -16,6 +22,9 @@ AREA_M = 0x83
 AREA_DB = 0x84
 AREA_C = 0x1C
 AREA_T = 0x1D
+AREA_C200 = 0x1E  # an S7-200 (CP 243-1) serves its counters and timers under codes of its own
+AREA_T200 = 0x1F
+COUNTED = (AREA_C, AREA_T, AREA_C200, AREA_T200)  # addressed by number, two bytes each
 V_DB = 1  # an S7-200 (CP 243-1) serves V memory as DB1 over S7comm
 
 DATA_TYPES: tuple[str, ...] = (
@@ -34,7 +43,10 @@ DATA_TYPES: tuple[str, ...] = (
     "DATE_AND_TIME",
     "DTL",
 )
-"""The point form's data types; STRING means STRING[254], and STRING[n] is accepted too."""
+"""The point form's data types; STRING (read as STRING[254]) and STRING[n] are accepted.
+
+A write never trusts either length: it reads the STRING's header in the PLC first.
+"""
 
 STRING_MAX = 254
 SIZES: dict[str, int] = {
@@ -111,7 +123,7 @@ class Variable:
     @property
     def counted(self) -> bool:
         """True for timers and counters, addressed by number (two bytes each), not by byte."""
-        return self.area in (AREA_T, AREA_C)
+        return self.area in COUNTED
 
     @property
     def string_length(self) -> int:
@@ -127,6 +139,15 @@ class Variable:
         if self.string_length:
             return 2 + self.string_length
         return SIZES[self.data_type]
+
+
+def on_s7_200(found: Variable) -> Variable:
+    """Return a timer or counter with the S7-200's area codes; any other variable as it is."""
+    if found.area == AREA_T:
+        return replace(found, area=AREA_T200)
+    if found.area == AREA_C:
+        return replace(found, area=AREA_C200)
+    return found
 
 
 def normalize_type(data_type: str) -> str:

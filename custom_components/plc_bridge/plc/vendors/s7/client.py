@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 from collections.abc import Awaitable, Callable, Mapping, Sequence
-from dataclasses import dataclass
 from datetime import datetime
 import logging
 from typing import ClassVar
@@ -12,16 +11,10 @@ from zoneinfo import ZoneInfo
 import aiohttp
 
 from ...client import PlcClient
-from ...errors import (
-    PlcAddressError,
-    PlcProtocolError,
-    PlcValueError,
-    PlcWriteRefusedError,
-)
+from ...errors import PlcAddressError, PlcWriteRefusedError
 from ...types import (
     ConnectionConfig,
     DeviceInfo,
-    PlcStatus,
     Point,
     PointResult,
     ReadResult,
@@ -29,36 +22,17 @@ from ...types import (
     Value,
     ValueKind,
 )
-from .address import DATA_TYPES, Variable, value_kind, variable
-from .codec import check_value, decode, plc_time, span_of, write_items
+from .address import DATA_TYPES, Variable, on_s7_200, value_kind, variable
+from .codec import check_value, plc_time, span_of
 from .link import S7Link, S7RequestError, endpoint, tsap_text, validate_options
-from .planner import (
-    DEFAULT_PDU,
-    Span,
-    WriteItem,
-    assemble,
-    extract,
-    failed_needs,
-    locate,
-    plan_reads,
-    plan_writes,
-)
-from .protocol import OK, SZL_IDENTITY, SZL_ORDER_CODE, SZL_STATE, cpu_mode, identity, item_error
+from .planner import DEFAULT_PDU, Span, plan_reads
+from .protocol import SZL_IDENTITY, SZL_ORDER_CODE, identity
+from .reading import Reader, outcome
 from .session import Session
+from .status import StatusReader
+from .writing import write_values
 
 _LOGGER = logging.getLogger(__name__)
-
-type Fetched = dict[Span, bytes | int]
-
-
-@dataclass(frozen=True, slots=True)
-class _Layout:
-    """The points of a poll resolved: errors of invalid ones, variables, ranges to read."""
-
-    points: tuple[Point, ...]
-    errors: dict[Point, PointResult]
-    groups: list[tuple[Variable, Span, list[Point]]]  # a variable, its range, its points
-    needs: frozenset[Span]
 
 
 class S7Client(PlcClient):
@@ -73,6 +47,7 @@ class S7Client(PlcClient):
     default_scan_interval: ClassVar[float] = 2.0
     requested_pdu: ClassVar[int] = 960  # the PLC answers with what it can (240, 480, 960)
     reconnect_delay: ClassVar[tuple[float, float]] = (1.0, 60.0)  # first and longest wait
+    status_interval: ClassVar[float] = 60.0  # the clock costs a round trip: once a minute
 
     def __init__(
         self, config: ConnectionConfig, session: aiohttp.ClientSession | None = None
@@ -84,10 +59,13 @@ class S7Client(PlcClient):
         self._where = f"{config.host}:{config.port}"
         self._connection = Session(config, self._ends, self.metrics, lambda: self.reconnect_delay)
         self._seen = 0  # the session's link count when this client last looked
-        self._alone: set[Span] = set()  # ranges that failed inside a merged item: read alone
-        self._last_layout: _Layout | None = None
-        self._last_plan: tuple[object, list[list[Span]], dict[Span, list[int]]] | None = None
-        self._state_known = True  # False once the PLC refused SZL 0x0424 (S7-200, LOGO!)
+        self._reader = Reader(self._variable)
+        self._status = StatusReader(self._zone, self._where)
+
+    def _variable(self, point: Point) -> Variable:
+        """Resolve a point for this PLC (an S7-200 has timers and counters of its own)."""
+        found = variable(point)
+        return on_s7_200(found) if self._ends.s7_200 else found
 
     @classmethod
     def validate_options(cls, options: Mapping[str, object]) -> dict[str, str | int | bool]:
@@ -112,10 +90,11 @@ class S7Client(PlcClient):
 
     @classmethod
     def requests_for(cls, points: Sequence[Point], pdu_size: int = DEFAULT_PDU) -> int:
-        """Round trips of one poll: the packed reads, plus one for the CPU state.
+        """Round trips of a typical poll: the packed reads, plus one for the CPU state.
 
         A class knows no PLC: it plans for the default PDU (480). Pass `client.pdu_size` for
-        the size the PLC negotiated (240 on an S7-300, 960 on an S7-1500).
+        the size the PLC negotiated (240 on an S7-300, 960 on an S7-1500). Not counted: the
+        PLC clock, one round trip more once every `status_interval` (60 s; read at connect).
         """
         needs: set[Span] = set()
         for point in points:
@@ -135,11 +114,13 @@ class S7Client(PlcClient):
         return self._connection.pdu_size
 
     async def connect(self) -> DeviceInfo:
-        """Open the S7 session and read the CPU's identity (SZL 0x0011 and 0x001C)."""
+        """Open the S7 session; read the identity (SZL 0x0011 and 0x001C) and the clock."""
 
         async def read_identity(link: S7Link) -> dict[str, str]:
             order_code = await self._szl(link, SZL_ORDER_CODE)
-            return identity(order_code, await self._szl(link, SZL_IDENTITY))
+            found = identity(order_code, await self._szl(link, SZL_IDENTITY))
+            await self._status.read_clock(link)
+            return found
 
         found = await self._run(read_identity, fresh=True)
         extra: dict[str, str] = {
@@ -165,131 +146,23 @@ class S7Client(PlcClient):
             return None
 
     async def _read(self, points: Sequence[Point]) -> ReadResult:
-        """Read every point in the fewest requests, then the CPU state (one more)."""
-        layout = self._layout(points)
+        """Read every point in the fewest requests, then the CPU state (and clock when due)."""
+        layout = self._reader.layout(points)
 
-        async def poll(link: S7Link) -> tuple[Fetched, str | None]:
-            return await self._fetch(link, layout.needs), await self._mode(link)
+        async def poll(link: S7Link) -> ReadResult:
+            got = await self._reader.fetch(link, layout.needs)
+            values = dict(layout.errors)
+            for found, need, group in layout.groups:
+                values.update(dict.fromkeys(group, outcome(found, got[need], self._zone)))
+            status = await self._status.read(link, self.status_interval)
+            return ReadResult(values=values, status=status)
 
-        got, mode = await self._run(poll)
-        values = dict(layout.errors)
-        for found, need, group in layout.groups:
-            values.update(dict.fromkeys(group, self._outcome(found, got[need])))
-        return ReadResult(values=values, status=PlcStatus(mode=mode))
-
-    def _layout(self, points: Sequence[Point]) -> _Layout:
-        """Resolve the points of a poll; a coordinator asks the same ones each time: kept."""
-        if self._last_layout is None or self._last_layout.points != tuple(points):
-            errors: dict[Point, PointResult] = {}
-            wanted: dict[Variable, list[Point]] = {}
-            for point in points:
-                try:
-                    wanted.setdefault(variable(point), []).append(point)
-                except PlcAddressError as err:
-                    errors[point] = PointResult(error=err)
-            groups = [(found, span_of(found), group) for found, group in wanted.items()]
-            needs = frozenset(need for _, need, _ in groups)
-            self._last_layout = _Layout(tuple(points), errors, groups, needs)
-        return self._last_layout
-
-    async def _fetch(self, link: S7Link, needs: frozenset[Span]) -> Fetched:
-        """Read the ranges; re-read alone (once) the ones that shared a failed item.
-
-        The ones that fail alone stay alone in later polls; the others merge again.
-        """
-        plan, where = self._plan(needs, link.pdu_size)
-        got = await self._read_plan(link, plan)
-        fetched = {need: assemble(need, [got[p] for p in where[need]]) for need in needs}
-        retry = failed_needs(needs, got) - self._alone
-        if retry:
-            again = await self._read_plan(link, plan_reads(retry, link.pdu_size, alone=retry))
-            fetched |= extract(retry, again)
-            self._alone |= {need for need in retry if isinstance(fetched[need], int)}
-        return fetched
-
-    def _plan(
-        self, needs: frozenset[Span], pdu_size: int
-    ) -> tuple[list[list[Span]], dict[Span, list[int]]]:
-        """Plan the reads and where each need lies in them; kept while nothing changes."""
-        key = (needs, pdu_size, frozenset(self._alone))
-        if self._last_plan is None or self._last_plan[0] != key:
-            plan = plan_reads(needs, pdu_size, alone=self._alone)
-            where = locate(needs, [span for request in plan for span in request])
-            self._last_plan = (key, plan, where)
-        return self._last_plan[1], self._last_plan[2]
-
-    @staticmethod
-    async def _read_plan(link: S7Link, plan: list[list[Span]]) -> list[tuple[Span, bytes | int]]:
-        """Send the planned read requests; pair each item with its data or return code."""
-        got: list[tuple[Span, bytes | int]] = []
-        for request in plan:
-            try:
-                items = await link.read(request)
-            except S7RequestError as err:
-                raise PlcProtocolError(
-                    f"the PLC refused the read: {err} (an S7-1200/1500 must permit PUT/GET access)"
-                ) from err
-            for span, item in zip(request, items, strict=True):
-                if isinstance(item, bytes) and len(item) != span.size:
-                    raise PlcProtocolError(
-                        f"the PLC answered {len(item)} bytes for an item of {span.size}"
-                    )
-                got.append((span, item))
-        return got
-
-    async def _mode(self, link: S7Link) -> str | None:
-        """Return RUN or STOP (one SZL request); None where the PLC cannot tell."""
-        if not self._state_known:
-            return None
-        try:
-            return cpu_mode(await link.read_szl(SZL_STATE))
-        except PlcProtocolError as err:
-            _LOGGER.debug("%s reports no CPU state, not asking again: %s", self._where, err)
-            self._state_known = False
-            return None
-
-    def _outcome(self, found: Variable, item: bytes | int) -> PointResult:
-        """Return one point's value, or its own error."""
-        if isinstance(item, int):
-            return PointResult(error=item_error(item, found.text))
-        try:
-            return PointResult(value=decode(found, item, self._zone))
-        except PlcProtocolError as err:
-            return PointResult(error=err)
+        return await self._run(poll)
 
     async def _write(self, values: Mapping[Point, Value]) -> dict[Point, PointResult]:
         """Write every value in as few multi-variable requests as the PDU allows."""
-        results: dict[Point, PointResult] = {}
-
-        async def write(link: S7Link) -> dict[Point, list[int]]:
-            flat: list[tuple[Point, WriteItem]] = []
-            for point, value in values.items():
-                try:
-                    pieces = write_items(variable(point), value, self._zone, link.pdu_size)
-                except PlcValueError as err:
-                    results[point] = PointResult(error=err)
-                    continue
-                flat += [(point, piece) for piece in pieces]
-            codes: dict[Point, list[int]] = {point: [] for point, _ in flat}
-            done = 0
-            for request in plan_writes([item for _, item in flat], link.pdu_size):
-                try:
-                    answers = await link.write(request)
-                except S7RequestError as err:
-                    raise PlcWriteRefusedError(f"the PLC refused the write: {err}") from err
-                for code in answers:
-                    codes[flat[done][0]].append(code)
-                    done += 1
-            return codes
-
-        for point, codes in (await self._run(write)).items():
-            bad = next((code for code in codes if code != OK), None)
-            if bad is None:
-                results[point] = PointResult(value=values[point])
-            else:
-                error = item_error(bad, variable(point).text, write=True)
-                results[point] = PointResult(error=error)
-        return results
+        checked = {point: (self._variable(point), value) for point, value in values.items()}
+        return await self._run(lambda link: write_values(link, checked, self._zone))
 
     async def read_clock(self) -> datetime:
         """Return the PLC clock in the configured time zone."""
@@ -304,6 +177,7 @@ class S7Client(PlcClient):
                 await link.set_clock(local)
             except S7RequestError as err:
                 raise PlcWriteRefusedError(f"the PLC refused to set its clock: {err}") from err
+            self._status.clock_due()
 
         await self._run(set_clock)
 
@@ -318,8 +192,8 @@ class S7Client(PlcClient):
         async def checked(link: S7Link) -> T:
             if self._seen != self._connection.opened:  # another link: maybe a new CPU or program
                 self._seen = self._connection.opened
-                self._alone.clear()
-                self._state_known = True
+                self._reader.forget()
+                self._status.forget()
             return await job(link)
 
         return await self._connection.run(checked, self.requested_pdu, fresh=fresh)

@@ -11,7 +11,7 @@ from snap7.util import get_date_time_object, get_dtl, set_dt, set_dtl
 from ...codec import INTEGER_RANGES, check_bool, check_float, check_integer
 from ...errors import PlcProtocolError, PlcValueError
 from ...types import Value
-from .address import Variable
+from .address import AREA_P, Variable
 from .planner import Span, WriteItem, write_pieces
 
 SIGNED = ("INT", "DINT")
@@ -28,6 +28,9 @@ def span_of(variable: Variable) -> Span:
 def check_value(variable: Variable, value: Value) -> Value:
     """Return the value coerced to the variable's type; raise PlcValueError."""
     what, kind = variable.text, variable.data_type
+    if variable.area == AREA_P and not variable.write_area:
+        # A write to area 0x80 reaches the peripheral outputs of the same address.
+        raise PlcValueError(f"{what}: peripheral inputs cannot be written")
     if kind == "BOOL":
         return check_bool(value, what)
     if kind in INTEGER_RANGES:

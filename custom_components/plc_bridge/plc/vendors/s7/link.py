@@ -33,6 +33,7 @@ from .protocol import read_items, read_request, write_codes, write_request
 PG = 0x01  # connection type in a rack/slot TSAP, as Snap7 connects by default
 LOCAL_TSAP = 0x0100
 MAX_FRAGMENTS = 16
+FAMILIES = ("s7_300_1500", "s7_200")  # the first is the default
 _TSAP = re.compile(r"([0-9A-F]{1,2})\.([0-9A-F]{1,2})|0X([0-9A-F]{1,4})")
 
 
@@ -46,10 +47,11 @@ class S7RequestError(PlcProtocolError):
 
 @dataclass(frozen=True, slots=True)
 class Endpoint:
-    """The TSAP pair of a connection: ours (calling) and the PLC's (called)."""
+    """The TSAP pair of a connection, ours (calling) and the PLC's (called); the CPU family."""
 
     local_tsap: int
     remote_tsap: int
+    s7_200: bool = False  # an S7-200 with a CP 243-1: timers and counters on 0x1F/0x1E
 
 
 def parse_tsap(value: object, what: str) -> int:
@@ -85,13 +87,17 @@ def validate_options(options: Mapping[str, object]) -> dict[str, str | int | boo
     """Return the connection options normalized; raise PlcValueError (a ValueError) when bad.
 
     "connection": "rack_slot" (default: "rack" 0..7, "slot" 0..31) or "tsap" ("local_tsap",
-    default 01.00, and "remote_tsap", e.g. 10.00/10.01 for an S7-200 CP 243-1). Other keys are
-    not the protocol's and are left out.
+    default 01.00, and "remote_tsap", e.g. 10.00/10.01 for an S7-200 CP 243-1). "family":
+    "s7_300_1500" (default: S7-300/400/1200/1500) or "s7_200" (S7-200 with a CP 243-1, whose
+    timers and counters have area codes of their own). Other keys are left out.
     """
+    family = options.get("family", FAMILIES[0])
+    if family not in FAMILIES:
+        raise PlcValueError(f"family must be one of {', '.join(FAMILIES)}, not {family!r}")
     connection = options.get("connection", "rack_slot")
     if connection == "rack_slot":
         rack, slot = _number(options, "rack", 0, 7), _number(options, "slot", 1, 31)
-        return {"connection": "rack_slot", "rack": rack, "slot": slot}
+        return {"connection": "rack_slot", "rack": rack, "slot": slot, "family": str(family)}
     if connection == "tsap":
         if options.get("remote_tsap") in (None, ""):
             raise PlcValueError("remote_tsap is needed to connect by TSAP, e.g. 10.01")
@@ -101,18 +107,20 @@ def validate_options(options: Mapping[str, object]) -> dict[str, str | int | boo
             "connection": "tsap",
             "local_tsap": tsap_text(local),
             "remote_tsap": tsap_text(remote),
+            "family": str(family),
         }
     raise PlcValueError(f"connection must be 'rack_slot' or 'tsap', not {connection!r}")
 
 
 def endpoint(options: Mapping[str, object]) -> Endpoint:
-    """Return the TSAP pair the options ask for (rack/slot: PG connection 01.xx)."""
+    """Return the TSAP pair (rack/slot: PG connection 01.xx) and family the options ask for."""
     settings = validate_options(options)
+    s7_200 = settings["family"] == "s7_200"
     if settings["connection"] == "tsap":
         local = parse_tsap(settings["local_tsap"], "local_tsap")
-        return Endpoint(local, parse_tsap(settings["remote_tsap"], "remote_tsap"))
+        return Endpoint(local, parse_tsap(settings["remote_tsap"], "remote_tsap"), s7_200)
     rack, slot = int(settings["rack"]), int(settings["slot"])
-    return Endpoint(LOCAL_TSAP, PG << 8 | rack << 5 | slot)
+    return Endpoint(LOCAL_TSAP, PG << 8 | rack << 5 | slot, s7_200)
 
 
 class S7Link:

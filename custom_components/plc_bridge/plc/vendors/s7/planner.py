@@ -2,7 +2,8 @@
 
 No sockets here. A `Span` is one item of a multi-variable request (one address spec). Reads
 merge the byte ranges the points need into few spans, split spans a PDU cannot carry, and pack
-them first-fit-decreasing under three limits: the request PDU, the reply PDU and the item count.
+them first-fit-decreasing under three limits: the request PDU (10-byte job header), the reply
+PDU (12-byte ACK_DATA header) and the item count.
 Merging across a gap trades bytes read in vain for items saved; which trade wins depends on
 whether the PDU or the item cap binds, so several gap limits are planned and the plan with the
 fewest requests (then the fewest bytes) is kept.
@@ -17,12 +18,13 @@ from dataclasses import dataclass
 from itertools import accumulate
 from typing import NamedTuple
 
-from .address import AREA_C, AREA_P, AREA_T
+from .address import AREA_P, COUNTED
 
 DEFAULT_PDU = 480  # what a client assumes before the PLC negotiates (python-snap7's default)
 MAX_ITEMS = 20  # items per request, as Snap7 and pyS7 cap it (S7-300/400 CPUs)
 GAPS = (8, 16, 32, 64, 128)  # gap limits tried, in bytes read in vain to save one item
-HEADER = 12  # S7 header of a request or an ACK_DATA reply
+REQUEST_HEADER = 10  # S7 header of a job request
+REPLY_HEADER = 12  # S7 header of an ACK_DATA reply (two more bytes: error class and code)
 PARAMETER = 2  # function code and item count
 SPEC = 12  # one address spec in a request
 ITEM_HEADER = 4  # return code, transport size, length of one data item
@@ -42,7 +44,7 @@ class Span(NamedTuple):
     @property
     def counted(self) -> bool:
         """True for timers and counters (the length counts elements, not bytes)."""
-        return self.area in (AREA_T, AREA_C)
+        return self.area in COUNTED
 
     @property
     def end(self) -> int:
@@ -84,12 +86,12 @@ class WriteItem:
 
 def max_data(pdu_size: int) -> int:
     """The most data bytes one read item can carry in a reply of this PDU size."""
-    return pdu_size - HEADER - PARAMETER - ITEM_HEADER
+    return pdu_size - REPLY_HEADER - PARAMETER - ITEM_HEADER
 
 
 def max_write_data(pdu_size: int) -> int:
     """The most data bytes one write item can carry in a request of this PDU size."""
-    return pdu_size - HEADER - PARAMETER - SPEC - ITEM_HEADER
+    return pdu_size - REQUEST_HEADER - PARAMETER - SPEC - ITEM_HEADER
 
 
 def merge(needs: Iterable[Span], *, alone: Collection[Span] = (), max_gap: int = 8) -> list[Span]:
@@ -129,16 +131,13 @@ def split(span: Span, limit: int) -> list[Span]:
 
 def pack(spans: Iterable[Span], pdu_size: int, max_items: int = MAX_ITEMS) -> list[list[Span]]:
     """Pack read items first-fit-decreasing into requests within both PDUs and the item cap."""
-    budget = pdu_size - HEADER - PARAMETER
+    budget = pdu_size - REPLY_HEADER - PARAMETER
+    specs = (pdu_size - REQUEST_HEADER - PARAMETER) // SPEC  # address specs a request holds
     requests: list[list[Span]] = []
     used: list[int] = []
     for span in sorted(spans, key=lambda item: (-item.reply_cost, item)):
         for index, request in enumerate(requests):
-            if (
-                len(request) < max_items
-                and used[index] + span.reply_cost <= budget
-                and (len(request) + 1) * SPEC <= budget
-            ):
+            if len(request) < min(max_items, specs) and used[index] + span.reply_cost <= budget:
                 request.append(span)
                 used[index] += span.reply_cost
                 break
@@ -241,7 +240,7 @@ def plan_writes(
     items: Iterable[WriteItem], pdu_size: int, max_items: int = MAX_ITEMS
 ) -> list[list[WriteItem]]:
     """Pack write items in order into requests within the PDU and the item cap."""
-    budget = pdu_size - HEADER - PARAMETER
+    budget = pdu_size - REQUEST_HEADER - PARAMETER
     requests: list[list[WriteItem]] = []
     used = budget + 1
     for item in items:

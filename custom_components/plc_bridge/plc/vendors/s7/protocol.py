@@ -1,32 +1,54 @@
 """S7comm multi-variable read and write PDUs, per-item return codes, and what SZL lists say.
 
-python-snap7's `S7Protocol` builds the session PDUs (setup, SZL, clock) and parses every reply;
-its `build_multi_read_request` only knows byte items of its own `S7Area` enum, and
-`extract_multi_read_data` raises on the first failing item, so the multi-variable requests are
-built here (same wire format) and their data items read one by one.
+python-snap7 3.3.0 builds the session PDUs (setup, SZL, clock), parses every reply, and encodes
+each address spec here (`S7DataTypes.encode_address`). Its multi-variable layer does not fit, as
+its source shows:
+
+- `S7Protocol.build_multi_read_request` forces word length BYTE and casts the area to its
+  `S7Area` enum, which has no P area (0x80) nor the S7-200 timer/counter codes (0x1E/0x1F):
+  those raise ValueError, and T/C items need their own word length. There is no multi-write
+  builder at all, so no BIT items.
+- `S7Protocol.extract_multi_read_data` raises on the first item whose code is not 0xFF: one
+  missing DB would hide every other value of the request.
+- `AsyncClient.read_multi_vars` / `write_multi_vars` send one request per item (a loop over
+  `read_area`) and refuse more than `MAX_VARS` = 20 items.
+- The sync `Client.read_multi_vars` refuses more than 20 items as well; its optimizer packs by
+  PDU but decodes through `extract_multi_read_data` and blocks on sockets (an executor).
+- `get_cpu_state` answers "S7CpuStatusRun" without asking (`extract_cpu_state` is a stub).
+
+So the job header, the item count, the write data items and the per-item walk of a read reply
+are built and read here, in the same wire format. bench/s7_libraries.py measures the choice.
 """
 
 from __future__ import annotations
 
 import struct
-from typing import Any
+from typing import Any, cast
 
+from snap7.datatypes import S7Area, S7DataTypes, S7WordLen
+from snap7.s7protocol import S7Function, S7PDUType
 from snap7.szl import parse_cpu_info_szl, parse_order_code_szl
 from snap7.type import S7SZL
 
 from ...errors import PlcAddressError, PlcError, PlcProtocolError, PlcWriteRefusedError
 from .planner import Span, WriteItem
 
-READ = 0x04
-WRITE = 0x05
-REQUEST = 0x01
+READ = S7Function.READ_AREA
+WRITE = S7Function.WRITE_AREA
 OK = 0xFF
-BIT, BYTE = 0x01, 0x02  # word lengths of an address spec (T/C use their area code)
 TRANSPORT_BIT, TRANSPORT_BYTE, TRANSPORT_OCTETS = 0x03, 0x04, 0x09
 _LENGTH_IN_BYTES = (0x03, 0x07, 0x09)  # bit (one byte), real, octet string; others count bits
 SZL_IDENTITY = 0x001C
 SZL_ORDER_CODE = 0x0011
 SZL_STATE = 0x0424
+# SZL 0x0424 bzu-id, bits 0..3: the mode the CPU is in (bits 4..7: the one before).
+_MODES = {
+    **dict.fromkeys((0x1, 0x2, 0x3, 0x4), "STOP"),  # update, memory reset, init, internal
+    **dict.fromkeys((0x5, 0x6, 0x7), "STARTUP"),  # complete, cold and hot restart
+    **dict.fromkeys((0x8, 0x9), "RUN"),  # RUN, RUN in a redundant (H) system
+    0xA: "HOLD",
+    0xD: "ERROR",  # DEFECT
+}
 
 _ITEM_ERRORS = {
     0x01: "hardware fault (is there a module at this address?)",
@@ -40,19 +62,22 @@ _ITEM_ERRORS = {
 
 def address_spec(span: Span, bit: int | None = None) -> bytes:
     """Return the 12-byte S7-ANY address spec of an item (a bit, bytes, or T/C elements)."""
-    if span.counted:
-        word_length, count, address = span.area, span.length, span.start
+    if span.counted:  # the area code doubles as word length; the address is the number
+        word_length, count, start = span.area, span.length, span.start
     elif bit is not None:
-        word_length, count, address = BIT, 1, span.start * 8 + bit
+        word_length, count, start = S7WordLen.BIT, 1, span.start * 8 + bit
     else:
-        word_length, count, address = BYTE, span.length, span.start * 8
-    head = struct.pack(">BBBBHHB", 0x12, 0x0A, 0x10, word_length, count, span.db, span.area)
-    return head + address.to_bytes(3, "big")
+        word_length, count, start = S7WordLen.BYTE, span.length, span.start
+    # The library's enums lack 0x80 and 0x1E/0x1F; it packs the plain numbers all the same.
+    area, length = cast(S7Area, span.area), cast(S7WordLen, word_length)
+    return S7DataTypes.encode_address(area, span.db, start, length, count)
 
 
 def _request(sequence: int, parameters: bytes, data: bytes = b"") -> bytes:
     """Return a job PDU: S7 header, parameters, data."""
-    header = struct.pack(">BBHHHH", 0x32, REQUEST, 0, sequence, len(parameters), len(data))
+    header = struct.pack(
+        ">BBHHHH", 0x32, S7PDUType.REQUEST, 0, sequence, len(parameters), len(data)
+    )
     return header + parameters + data
 
 
@@ -131,17 +156,15 @@ def item_error(code: int, address: str, *, write: bool = False) -> PlcError:
 
 
 def cpu_mode(szl: bytes) -> str | None:
-    """Return RUN or STOP from SZL 0x0424 (None: unknown).
+    """Return RUN, STOP, STARTUP, HOLD or ERROR (DEFECT) from SZL 0x0424; None when unknown.
 
-    As Snap7's opGetPlcStatus reads it: byte 3 of the record (after the 4-byte list header) is
-    the mode; RUN is 0x08 on every CPU and CP, STOP 0x04, or 0x03 on older CPUs.
+    Byte 3 of the record (after the 4-byte list header) is the bzu-id; its low nibble is the
+    mode the CPU is in. Snap7 (the C library) compares the whole byte with 0x08 and calls
+    anything else STOP, a STARTUP or HOLD included.
     """
     if len(szl) < 8:
         raise PlcProtocolError("the PLC's CPU state list (SZL 0x0424) is too short")
-    mode = szl[7]
-    if mode == 0:
-        return None
-    return "RUN" if mode == 0x08 else "STOP"
+    return _MODES.get(szl[7] & 0x0F)
 
 
 def _szl(data: bytes) -> S7SZL:

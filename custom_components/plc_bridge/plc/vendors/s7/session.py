@@ -4,6 +4,11 @@ A lost connection fails the poll that meets it (PlcConnectionError) and is logge
 warning; the next poll reconnects at once, and while that fails, attempts are spaced by an
 exponential backoff (the client's `reconnect_delay`), logged at debug. The first success resets
 the backoff and logs once at info.
+
+The window never outlasts the poll interval, so every poll makes one attempt at most and the
+first poll after the PLC is back reconnects: it is capped at the interval less a second (a
+scheduler may start a poll up to a second early: Home Assistant aligns polls to whole seconds),
+but never below half the interval, and it counts from the start of the failed attempt.
 """
 
 from __future__ import annotations
@@ -19,6 +24,11 @@ from .link import Endpoint, S7Link
 from .planner import DEFAULT_PDU
 
 _LOGGER = logging.getLogger(__name__)
+
+
+def longest_wait(longest: float, poll_interval: float) -> float:
+    """Return the longest reconnect wait a poll interval allows (see the module docstring)."""
+    return min(longest, max(poll_interval - 1.0, poll_interval / 2))
 
 
 class Session:
@@ -65,15 +75,17 @@ class Session:
         if self._link is not None and self._link.usable:
             return self._link
         await self._drop()
-        wait = self._retry_at - time.monotonic()
+        started = time.monotonic()
+        wait = self._retry_at - started
         if wait > 0:
             raise PlcConnectionError(f"{self._where} is unreachable; next attempt in {wait:.1f} s")
         try:
             return await self._open(requested_pdu)
         except PlcError as err:
             first, longest = self._delays()
+            longest = longest_wait(longest, self._config.poll_interval)
             self._delay = min(longest, self._delay * 2 if self._delay else first)
-            self._retry_at = time.monotonic() + self._delay
+            self._retry_at = started + self._delay
             self._note_lost(err)
             raise
 

@@ -1,0 +1,112 @@
+"""One S7 poll's reads: points resolved once, ranges planned once, failed merges re-read alone."""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass
+from datetime import tzinfo
+
+from ...errors import PlcAddressError, PlcProtocolError
+from ...types import Point, PointResult
+from .address import Variable
+from .codec import decode, span_of
+from .link import S7Link, S7RequestError
+from .planner import Span, assemble, extract, failed_needs, locate, plan_reads
+from .protocol import item_error
+
+type Fetched = dict[Span, bytes | int]
+
+
+@dataclass(frozen=True, slots=True)
+class Layout:
+    """The points of a poll resolved: errors of invalid ones, variables, ranges to read."""
+
+    points: tuple[Point, ...]
+    errors: dict[Point, PointResult]
+    groups: list[tuple[Variable, Span, list[Point]]]  # a variable, its range, its points
+    needs: frozenset[Span]
+
+
+async def read_plan(link: S7Link, plan: list[list[Span]]) -> list[tuple[Span, bytes | int]]:
+    """Send the planned read requests; pair each item with its data or return code."""
+    got: list[tuple[Span, bytes | int]] = []
+    for request in plan:
+        try:
+            items = await link.read(request)
+        except S7RequestError as err:
+            raise PlcProtocolError(
+                f"the PLC refused the read: {err} (an S7-1200/1500 must permit PUT/GET access)"
+            ) from err
+        for span, item in zip(request, items, strict=True):
+            if isinstance(item, bytes) and len(item) != span.size:
+                raise PlcProtocolError(
+                    f"the PLC answered {len(item)} bytes for an item of {span.size}"
+                )
+            got.append((span, item))
+    return got
+
+
+def outcome(found: Variable, item: bytes | int, zone: tzinfo) -> PointResult:
+    """Return one point's value, or its own error."""
+    if isinstance(item, int):
+        return PointResult(error=item_error(item, found.text))
+    try:
+        return PointResult(value=decode(found, item, zone))
+    except PlcProtocolError as err:
+        return PointResult(error=err)
+
+
+class Reader:
+    """Plans and reads the points of a poll; a coordinator asks the same ones each time: kept."""
+
+    def __init__(self, resolve: Callable[[Point], Variable]) -> None:
+        """Resolve points with `resolve` (raising PlcAddressError for invalid ones)."""
+        self._resolve = resolve
+        self._alone: set[Span] = set()  # ranges that failed inside a merged item: read alone
+        self._last_layout: Layout | None = None
+        self._last_plan: tuple[object, list[list[Span]], dict[Span, list[int]]] | None = None
+
+    def forget(self) -> None:
+        """Forget what a previous link taught (a new one may be another CPU or program)."""
+        self._alone.clear()
+
+    def layout(self, points: Sequence[Point]) -> Layout:
+        """Resolve the points of a poll, or return the last layout for the same points."""
+        if self._last_layout is None or self._last_layout.points != tuple(points):
+            errors: dict[Point, PointResult] = {}
+            wanted: dict[Variable, list[Point]] = {}
+            for point in points:
+                try:
+                    wanted.setdefault(self._resolve(point), []).append(point)
+                except PlcAddressError as err:
+                    errors[point] = PointResult(error=err)
+            groups = [(found, span_of(found), group) for found, group in wanted.items()]
+            needs = frozenset(need for _, need, _ in groups)
+            self._last_layout = Layout(tuple(points), errors, groups, needs)
+        return self._last_layout
+
+    async def fetch(self, link: S7Link, needs: frozenset[Span]) -> Fetched:
+        """Read the ranges; re-read alone (once) the ones that shared a failed item.
+
+        The ones that fail alone stay alone in later polls; the others merge again.
+        """
+        plan, where = self._plan(needs, link.pdu_size)
+        got = await read_plan(link, plan)
+        fetched = {need: assemble(need, [got[p] for p in where[need]]) for need in needs}
+        retry = failed_needs(needs, got) - self._alone
+        if retry:
+            again = await read_plan(link, plan_reads(retry, link.pdu_size, alone=retry))
+            fetched |= extract(retry, again)
+            self._alone |= {need for need in retry if isinstance(fetched[need], int)}
+        return fetched
+
+    def _plan(
+        self, needs: frozenset[Span], pdu_size: int
+    ) -> tuple[list[list[Span]], dict[Span, list[int]]]:
+        """Plan the reads and where each need lies in them; kept while nothing changes."""
+        key = (needs, pdu_size, frozenset(self._alone))
+        if self._last_plan is None or self._last_plan[0] != key:
+            plan = plan_reads(needs, pdu_size, alone=self._alone)
+            where = locate(needs, [span for request in plan for span in request])
+            self._last_plan = (key, plan, where)
+        return self._last_plan[1], self._last_plan[2]
