@@ -46,12 +46,13 @@ def where(sim: S7Simulator, **fields: Any) -> dict[str, Any]:
 
 
 async def test_form_defaults(hass: HomeAssistant) -> None:
-    """Port 102, rack 0, slot 1 by rack/slot; no TLS choice, no credentials."""
+    """Port 102, an S7-300..1500, rack 0, slot 1 by rack/slot; no TLS choice, no credentials."""
     form = await connection_form(hass)
     fields = {str(marker) for marker in form["data_schema"].schema}
     assert fields == {
         "host",
         "port",
+        "family",
         "connection",
         "rack",
         "slot",
@@ -62,6 +63,7 @@ async def test_form_defaults(hass: HomeAssistant) -> None:
     assert values == {
         CONF_HOST: "plc",
         CONF_PORT: 102,
+        "family": "s7_300_1500",
         "connection": "rack_slot",
         "rack": 0,
         "slot": 1,
@@ -112,6 +114,18 @@ async def test_tsap(hass: HomeAssistant, s7_ha_sims: SimFactory) -> None:
     }
     assert result["result"].unique_id == SERIAL
     assert sim.connections == 1
+
+
+async def test_s7_200_by_tsap(hass: HomeAssistant, s7_ha_sims: SimFactory) -> None:
+    """An S7-200 with a CP 243-1: its family is stored for its timer and counter areas."""
+    sim = await s7_ha_sims(remote_tsap=0x1000, family="s7_200")
+    result = await submit(
+        hass,
+        await connection_form(hass),
+        where(sim, family="s7_200", connection="tsap", remote_tsap="10.00"),
+    )
+    assert result["type"] is FlowResultType.CREATE_ENTRY
+    assert result["data"]["vendor_options"]["family"] == "s7_200"
 
 
 async def test_tsap_wrong_remote(hass: HomeAssistant, s7_ha_sims: SimFactory) -> None:

@@ -76,6 +76,7 @@ VENDOR_FIELDS: dict[str, tuple[VendorField, ...]] = {
         VendorField("clock_variable", TextSelector()),
     ),
     "s7": (
+        VendorField("family", _choice("family", ["s7_300_1500", "s7_200"]), "s7_300_1500"),
         VendorField("connection", _choice("connection", ["rack_slot", "tsap"]), "rack_slot"),
         VendorField("rack", _whole(0, 7), 0),
         VendorField("slot", _whole(0, 31), 1),
