@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import math
+
 import pytest
 
 from custom_components.plc_bridge.plc import PlcValueError
@@ -13,6 +15,7 @@ from custom_components.plc_bridge.plc.codec import (
     check_integer,
     integer_range,
     plain_decimal,
+    shortest_real,
 )
 
 
@@ -82,3 +85,22 @@ def test_check_ascii() -> None:
     with pytest.raises(PlcValueError, match="text"):
         check_ascii(5, 10)
     assert check_ascii("line 1\r\nline 2\tend", 30) == "line 1\r\nline 2\tend"
+
+
+@pytest.mark.parametrize(
+    ("value", "shown"),
+    [
+        (22.299999, 22.3),
+        (21.299999237060547, 21.3),
+        (0.1, 0.1),
+        (1e-05, 1e-05),
+        (16777217.0, 16777216.0),
+    ],
+)
+def test_shortest_real(value: float, shown: float) -> None:
+    assert shortest_real(value) == shown
+
+
+def test_shortest_real_passes_what_is_no_real() -> None:
+    assert shortest_real(1e300) == 1e300
+    assert math.isinf(shortest_real(float("inf")))

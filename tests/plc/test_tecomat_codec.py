@@ -230,6 +230,9 @@ def test_dumps() -> None:
         ("BOOL", 1, True),
         ("INT", 7.0, 7),
         ("LREAL", 3, 3.0),
+        ("REAL", 22.299999, 22.3),  # the PLC prints a REAL's 32 bits with six decimals
+        ("REAL", 1000.000000, 1000.0),
+        ("LREAL", 22.299999, 22.299999),
         ("TOD", "7:30:00", "07:30:00.000"),
         ("DATE", "2015-06-17", datetime(2015, 6, 17, tzinfo=PRAGUE)),
         ("DT", "2018-05-11T11:22:33.4Z", datetime(2018, 5, 11, 11, 22, 33, 400000, tzinfo=PRAGUE)),

@@ -5,6 +5,7 @@ from __future__ import annotations
 from decimal import Decimal
 import math
 import re
+import struct
 
 from .errors import PlcValueError
 from .types import Value, ValueKind
@@ -76,6 +77,22 @@ def check_float(value: Value, *, single: bool = True, what: str = "value") -> fl
     if not math.isfinite(number) or (single and abs(number) > REAL_MAX):
         raise PlcValueError(f"{what} {value!r} does not fit a {'REAL' if single else 'LREAL'}")
     return number
+
+
+def shortest_real(value: float) -> float:
+    """Return the shortest decimal that is the same 32-bit float as value (21.3, not 21.2999...).
+
+    A REAL read back, or printed by a PLC with six decimals ("22.299999"), shows as typed.
+    """
+    if not math.isfinite(value) or abs(value) > REAL_MAX:
+        return value
+    packed = struct.pack("<f", value)
+    single = float(struct.unpack("<f", packed)[0])
+    for digits in range(6, 10):
+        short = float(f"{single:.{digits}g}")
+        if struct.pack("<f", short) == packed:
+            return short
+    return single  # not reached: nine digits always name a 32-bit float
 
 
 def check_bool(value: Value, what: str = "value") -> bool:

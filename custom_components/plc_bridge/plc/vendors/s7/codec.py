@@ -8,7 +8,7 @@ import struct
 
 from snap7.util import get_date_time_object, get_dtl, set_dt, set_dtl
 
-from ...codec import INTEGER_RANGES, check_bool, check_float, check_integer
+from ...codec import INTEGER_RANGES, check_bool, check_float, check_integer, shortest_real
 from ...errors import PlcProtocolError, PlcValueError
 from ...types import Value
 from .address import AREA_P, Variable
@@ -93,12 +93,7 @@ def decode(variable: Variable, data: bytes, zone: tzinfo) -> Value:
 
 def real(data: bytes) -> float:
     """Return a REAL as the shortest decimal of the same 32-bit float (21.3, not 21.2999...)."""
-    number = float(struct.unpack(">f", data)[0])
-    for digits in range(6, 10):
-        short = float(f"{number:.{digits}g}")
-        if struct.pack(">f", short) == data:
-            return short
-    return number  # NaN and infinities
+    return shortest_real(float(struct.unpack(">f", data)[0]))
 
 
 def _decode_datetime(variable: Variable, data: bytes, zone: tzinfo) -> datetime:

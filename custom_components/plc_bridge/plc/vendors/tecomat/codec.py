@@ -8,7 +8,14 @@ import math
 import re
 from typing import Any
 
-from ...codec import INTEGER_RANGES, check_bool, check_float, check_integer, plain_decimal
+from ...codec import (
+    INTEGER_RANGES,
+    check_bool,
+    check_float,
+    check_integer,
+    plain_decimal,
+    shortest_real,
+)
 from ...errors import PlcAddressError, PlcProtocolError, PlcValueError
 from ...types import Value, ValueKind
 
@@ -152,7 +159,8 @@ def decode(kind: str, raw: Any, zone: tzinfo, what: str) -> Value:
         if low <= raw <= high:
             return int(raw)
     if kind in ("REAL", "LREAL") and number:
-        return float(raw)
+        # The PLC prints a REAL with six decimals (4: "1000.000000"): 22.3 comes as 22.299999.
+        return shortest_real(float(raw)) if kind == "REAL" else float(raw)
     if kind == "STRING" and isinstance(raw, str):
         return raw
     if isinstance(raw, str):
