@@ -142,6 +142,8 @@ async def test_sync_clock_writes_clock_variable(
     written = tecomat_sim.get("setTime")
     assert written.replace(microsecond=0) == now.replace(tzinfo=None, microsecond=0)
     assert tecomat_sim.clock == written  # the simulated program copies it into its clock
+    shown = hass.states.get("datetime.fx2_cp2080_plc_clock").state  # GetInfo asked at once
+    assert shown == now.replace(microsecond=0).astimezone(dt_util.UTC).isoformat()
 
 
 async def test_sync_clock_without_clock_variable(

@@ -271,6 +271,7 @@ class TecomatClient(PlcClient):
         error = (await self.write({point: when}))[point].error
         if error is not None:
             raise error
+        self._status_at = -float("inf")  # the next poll asks GetInfo: the clock shows it
 
     async def close(self) -> None:
         """Release the client's own session (TecoApi has no logout)."""
