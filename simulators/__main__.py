@@ -17,11 +17,14 @@ from dataclasses import dataclass
 import importlib
 import inspect
 import json
+from pathlib import Path
 import signal
 import sys
 import threading
 import time
 from typing import Any
+
+from .base import make_certificate
 
 
 @dataclass(frozen=True, slots=True)
@@ -140,6 +143,21 @@ def _control(
     loop.call_soon_threadsafe(stop.set)
 
 
+def keep_certificate(simulator: Any, folder: Path, vendor: str) -> None:
+    """Serve the certificate kept in folder (made and kept there the first time).
+
+    The demo's entries pin it: a new certificate at every start would look like another device.
+    """
+    chain_file, key_file = folder / f"{vendor}.pem", folder / f"{vendor}.key"
+    if not (chain_file.exists() and key_file.exists()):
+        chain, key = make_certificate(simulator.common_name)
+        folder.mkdir(parents=True, exist_ok=True)
+        key_file.touch(mode=0o600)
+        key_file.write_bytes(key)
+        chain_file.write_bytes(chain)
+    simulator.use_certificate(chain_file.read_bytes(), key_file.read_bytes())
+
+
 async def _animate(simulators: list[tuple[Entry, Any]], stop: asyncio.Event) -> None:
     """Call `animate(seconds since start)` of the simulators that have it, once a second."""
     movers = [sim for _entry, sim in simulators if callable(getattr(sim, "animate", None))]
@@ -159,6 +177,7 @@ async def run(
     options: dict[str, dict[str, Any]] | None = None,
     *,
     demo: bool = False,
+    certificates: Path | None = None,
 ) -> int:
     """Start the simulators, report them, and serve until told to stop.
 
@@ -176,6 +195,8 @@ async def run(
     try:
         for entry, module, cls in found:
             simulator = cls(**(options or {}).get(entry.vendor, {}))
+            if certificates is not None and getattr(simulator, "tls", False):
+                keep_certificate(simulator, certificates, entry.vendor)
             await _maybe_await(simulator.start("127.0.0.1", entry.port if port is None else port))
             running.append((entry, simulator))
             info = describe(entry, module, simulator)
@@ -206,9 +227,13 @@ def main() -> int:
         "--control", action="store_true", help="serve until stdin closes; answer 'requests'"
     )
     parser.add_argument("--demo", action="store_true", help="let some values move, once a second")
+    parser.add_argument(
+        "--certs", type=Path, metavar="DIR", help="keep TLS certificates in DIR across starts"
+    )
     args = parser.parse_args()
+    settings = {"demo": args.demo, "certificates": args.certs}
     try:
-        return asyncio.run(run(args.only, args.port, args.json, args.control, demo=args.demo))
+        return asyncio.run(run(args.only, args.port, args.json, args.control, **settings))
     except KeyboardInterrupt:
         return 0
 

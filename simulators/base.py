@@ -93,7 +93,10 @@ class HttpSimulator:
 
     def new_certificate(self) -> None:
         """Generate a fresh certificate (a PLC whose certificate was replaced)."""
-        chain, key = make_certificate(self.common_name)
+        self.use_certificate(*make_certificate(self.common_name))
+
+    def use_certificate(self, chain: bytes, key: bytes) -> None:
+        """Serve this certificate chain and private key (PEM) from the next start on."""
         with (
             tempfile.NamedTemporaryFile(suffix=".pem") as cert_file,
             tempfile.NamedTemporaryFile(suffix=".pem") as key_file,

@@ -3,9 +3,10 @@
 from __future__ import annotations
 
 import asyncio
+from pathlib import Path
 from typing import Any
 
-from simulators.__main__ import SIMULATORS, _animate
+from simulators.__main__ import SIMULATORS, _animate, keep_certificate
 from simulators.s7_smart import S7SmartSimulator
 
 
@@ -42,3 +43,16 @@ def test_s7_smart_process() -> None:
     assert sim.get("VD100", "float") == 23.0
     assert sim.get("VW10") == 225
     assert sim.get("VD104", "float") == 5.0
+
+
+def test_certificate_kept_across_starts(tmp_path: Path) -> None:
+    """The demo's pinned entries keep working: a restarted simulator shows the same certificate."""
+    first, second = S7SmartSimulator(), S7SmartSimulator()
+    keep_certificate(first, tmp_path / "certs", "s7_smart")
+    keep_certificate(second, tmp_path / "certs", "s7_smart")
+    assert first.fingerprint is not None
+    assert first.fingerprint == second.fingerprint
+    assert (tmp_path / "certs" / "s7_smart.key").stat().st_mode & 0o077 == 0
+    fresh = S7SmartSimulator()
+    fresh.new_certificate()
+    assert fresh.fingerprint != first.fingerprint
