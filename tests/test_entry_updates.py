@@ -6,6 +6,7 @@ from homeassistant.config_entries import ConfigEntryState
 from homeassistant.const import CONF_HOST, CONF_PASSWORD, CONF_PORT, CONF_USERNAME
 from homeassistant.core import HomeAssistant
 from homeassistant.helpers import device_registry as dr, entity_registry as er
+from pytest_homeassistant_custom_component.common import MockConfigEntry
 
 from custom_components.plc_bridge.const import CONF_TLS, DOMAIN
 from simulators.s7_smart import DEFAULT_PASSWORD, DEFAULT_USER, S7SmartSimulator
@@ -23,6 +24,16 @@ def registered(
     }
     devices = {item.id for item in dr.async_entries_for_config_entry(device_registry, entry_id)}
     return entities, devices
+
+
+async def move(hass: HomeAssistant, entry: MockConfigEntry, port: int) -> None:
+    """Reconfigure the entry to the simulator's port on loopback, and wait for its reload."""
+    result = await entry.start_reconfigure_flow(hass)
+    result = await hass.config_entries.flow.async_configure(
+        result["flow_id"], {CONF_HOST: "127.0.0.1", CONF_PORT: port, CONF_TLS: "pin"}
+    )
+    assert result["reason"] == "reconfigure_successful"
+    await hass.async_block_till_done()
 
 
 async def test_moving_an_address_only_plc_keeps_its_entities(
@@ -45,12 +56,7 @@ async def test_moving_an_address_only_plc_keeps_its_entities(
     await s7_smart_sim.stop()
     await s7_smart_sim.start()  # a free port: the PLC moved
     assert s7_smart_sim.port != old_port
-    result = await entry.start_reconfigure_flow(hass)
-    result = await hass.config_entries.flow.async_configure(
-        result["flow_id"], {CONF_HOST: "127.0.0.1", CONF_PORT: s7_smart_sim.port, CONF_TLS: "pin"}
-    )
-    assert result["reason"] == "reconfigure_successful"
-    await hass.async_block_till_done()
+    await move(hass, entry, s7_smart_sim.port)
 
     assert entry.state is ConfigEntryState.LOADED
     assert entry.unique_id == f"127.0.0.1:{s7_smart_sim.port}"
@@ -82,10 +88,5 @@ async def test_reconfigure_after_a_failed_setup_loads_the_entry(
     entry = make_entry(hass, s7_smart_sim, port=1)
     await hass.config_entries.async_setup(entry.entry_id)
     assert entry.state is ConfigEntryState.SETUP_RETRY
-    result = await entry.start_reconfigure_flow(hass)
-    result = await hass.config_entries.flow.async_configure(
-        result["flow_id"], {CONF_HOST: "127.0.0.1", CONF_PORT: s7_smart_sim.port, CONF_TLS: "pin"}
-    )
-    assert result["reason"] == "reconfigure_successful"
-    await hass.async_block_till_done()
+    await move(hass, entry, s7_smart_sim.port)
     assert entry.state is ConfigEntryState.LOADED
