@@ -116,6 +116,29 @@ def sim_data(sim: S7SmartSimulator, **changes: Any) -> dict[str, Any]:
     return data | changes
 
 
+def add_entry(
+    hass: HomeAssistant,
+    *,
+    title: str,
+    entry_id: str,
+    unique_id: str,
+    data: dict[str, Any],
+    points: Iterable[ConfigSubentryDataWithId],
+) -> MockConfigEntry:
+    """Add a PLC's entry with the given points, polled every SCAN_INTERVAL (not set up yet)."""
+    entry = MockConfigEntry(
+        domain=DOMAIN,
+        title=title,
+        entry_id=entry_id,
+        unique_id=unique_id,
+        data=data,
+        options={CONF_SCAN_INTERVAL: SCAN_INTERVAL},
+        subentries_data=list(points),
+    )
+    entry.add_to_hass(hass)
+    return entry
+
+
 def make_entry(
     hass: HomeAssistant,
     sim: S7SmartSimulator,
@@ -123,17 +146,27 @@ def make_entry(
     **changes: Any,
 ) -> MockConfigEntry:
     """Add an entry of the simulator with the given points (not set up yet)."""
-    entry = MockConfigEntry(
-        domain=DOMAIN,
+    return add_entry(
+        hass,
         title="S7-200 SMART",
         entry_id=ENTRY_ID,
         unique_id=UNIQUE_ID,
         data=sim_data(sim, **changes),
-        options={CONF_SCAN_INTERVAL: SCAN_INTERVAL},
-        subentries_data=list(points),
+        points=points,
     )
-    entry.add_to_hass(hass)
-    return entry
+
+
+async def call(
+    hass: HomeAssistant, service: str, entry: MockConfigEntry, **data: Any
+) -> dict[str, Any] | None:
+    """Call an action of the integration for an entry and return its response."""
+    return await hass.services.async_call(
+        DOMAIN,
+        service,
+        {"config_entry_id": entry.entry_id, **data},
+        blocking=True,
+        return_response=service == "read",
+    )
 
 
 async def poll(hass: HomeAssistant, freezer: FrozenDateTimeFactory, times: int = 1) -> None:

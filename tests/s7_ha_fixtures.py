@@ -16,7 +16,6 @@ from homeassistant.const import (
     CONF_HOST,
     CONF_PASSWORD,
     CONF_PORT,
-    CONF_SCAN_INTERVAL,
     CONF_USERNAME,
 )
 from homeassistant.core import HomeAssistant
@@ -28,12 +27,11 @@ from custom_components.plc_bridge.const import (
     CONF_OPTIONS,
     CONF_TLS,
     CONF_VENDOR,
-    DOMAIN,
 )
 from custom_components.plc_bridge.plc.vendors.s7 import S7Client
 from simulators.s7 import S7Simulator
 
-from .ha_fixtures import SCAN_INTERVAL, point, unload_all
+from .ha_fixtures import add_entry, point, unload_all
 
 S7_ENTRY_ID = "01JPLCBR1DGE00000000S7TEST"
 S7_TITLE = "S7-300"
@@ -84,17 +82,14 @@ def make_s7_entry(
     **options: Any,
 ) -> MockConfigEntry:
     """Add an entry of the simulator with the given points (not set up yet)."""
-    entry = MockConfigEntry(
-        domain=DOMAIN,
+    return add_entry(
+        hass,
         title=S7_TITLE,
         entry_id=S7_ENTRY_ID,
         unique_id=S7Simulator.serial,
         data=s7_data(sim, **options),
-        options={CONF_SCAN_INTERVAL: SCAN_INTERVAL},
-        subentries_data=list(points),
+        points=points,
     )
-    entry.add_to_hass(hass)
-    return entry
 
 
 def spread(count: int) -> list[ConfigSubentryDataWithId]:

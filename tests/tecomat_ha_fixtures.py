@@ -14,7 +14,6 @@ from homeassistant.const import (
     CONF_HOST,
     CONF_PASSWORD,
     CONF_PORT,
-    CONF_SCAN_INTERVAL,
     CONF_USERNAME,
 )
 from homeassistant.core import HomeAssistant
@@ -26,10 +25,9 @@ from custom_components.plc_bridge.const import (
     CONF_OPTIONS,
     CONF_TLS,
     CONF_VENDOR,
-    DOMAIN,
 )
 from simulators.tecomat import DEFAULT_PASSWORD, DEFAULT_USER, TecomatSimulator
-from tests.ha_fixtures import SCAN_INTERVAL, point, unload_all
+from tests.ha_fixtures import add_entry, point, unload_all
 
 TECOMAT_ENTRY_ID = "01JPLCBR1DGE00000000TECOMAT"
 TECOMAT_SERIAL = "PP 0004"  # GetInfo's plc.serialNumber: the entry's unique id
@@ -90,17 +88,14 @@ def make_tecomat_entry(
     **changes: Any,
 ) -> MockConfigEntry:
     """Add an entry of the simulator with the given points (not set up yet)."""
-    entry = MockConfigEntry(
-        domain=DOMAIN,
+    return add_entry(
+        hass,
         title="Fx2 CP2080",
         entry_id=TECOMAT_ENTRY_ID,
         unique_id=TECOMAT_SERIAL,
         data=tecomat_data(sim, **changes),
-        options={CONF_SCAN_INTERVAL: SCAN_INTERVAL},
-        subentries_data=list(points),
+        points=points,
     )
-    entry.add_to_hass(hass)
-    return entry
 
 
 @pytest.fixture

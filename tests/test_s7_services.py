@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 from datetime import datetime, timedelta
-from typing import Any
 from zoneinfo import ZoneInfo
 
 from freezegun.api import FrozenDateTimeFactory
@@ -17,24 +16,10 @@ from pytest_homeassistant_custom_component.components.diagnostics import (
 )
 from pytest_homeassistant_custom_component.typing import ClientSessionGenerator
 
-from custom_components.plc_bridge.const import DOMAIN
 from simulators.s7 import S7Simulator
 
-from .ha_fixtures import poll
+from .ha_fixtures import call, poll
 from .s7_ha_fixtures import SimFactory, make_s7_entry, spread
-
-
-async def call(
-    hass: HomeAssistant, service: str, entry: MockConfigEntry, **data: Any
-) -> dict[str, Any] | None:
-    """Call an action of the integration for an entry and return its response."""
-    return await hass.services.async_call(
-        DOMAIN,
-        service,
-        {"config_entry_id": entry.entry_id, **data},
-        blocking=True,
-        return_response=service == "read",
-    )
 
 
 async def test_write_two_points_one_request(

@@ -17,18 +17,7 @@ from pytest_homeassistant_custom_component.common import MockConfigEntry
 from custom_components.plc_bridge.const import DOMAIN
 from simulators.s7_smart import DEFAULT_USER, S7SmartSimulator
 
-
-async def call(
-    hass: HomeAssistant, service: str, entry: MockConfigEntry, **data: Any
-) -> dict[str, Any] | None:
-    """Call an action of the integration for an entry and return its response."""
-    return await hass.services.async_call(
-        DOMAIN,
-        service,
-        {"config_entry_id": entry.entry_id, **data},
-        blocking=True,
-        return_response=service == "read",
-    )
+from .ha_fixtures import call
 
 
 async def test_write_in_one_request(
