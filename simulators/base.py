@@ -77,6 +77,7 @@ class HttpSimulator:
         self.host = "127.0.0.1"
         self.port = 0
         self.requests = 0
+        self.peers: set[tuple[str, int]] = set()  # client addresses seen: one per connection
         self.fingerprint: str | None = None
         self._runner: web.AppRunner | None = None
         self._ssl: ssl.SSLContext | None = None
@@ -87,8 +88,10 @@ class HttpSimulator:
 
     @web.middleware
     async def _count(self, request: web.Request, handler: web.Handler) -> web.StreamResponse:
-        """Count each request before it is handled."""
+        """Count each request, and the connection it came on, before it is handled."""
         self.requests += 1
+        if request.transport is not None and (peer := request.transport.get_extra_info("peername")):
+            self.peers.add((peer[0], peer[1]))
         return await handler(request)
 
     def new_certificate(self) -> None:

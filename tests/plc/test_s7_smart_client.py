@@ -157,6 +157,17 @@ async def test_requests_counted(
     assert S7SmartClient.requests_for(points) == -(-count // 32)
 
 
+async def test_one_keep_alive_connection(
+    s7_smart_sim: S7SmartSimulator, s7_smart_client: S7SmartClient
+) -> None:
+    """Login, permission and three polls of four requests each travel on one TCP connection."""
+    points = [Point(f"VW{2 * i}", "signed") for i in range(100)]
+    for _ in range(3):
+        await s7_smart_client.read(points)
+    assert s7_smart_sim.requests >= 14
+    assert len(s7_smart_sim.peers) == 1
+
+
 async def test_duplicates_read_once(
     s7_smart_sim: S7SmartSimulator, s7_smart_client: S7SmartClient
 ) -> None:
