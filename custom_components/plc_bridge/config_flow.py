@@ -160,7 +160,7 @@ class PlcBridgeConfigFlow(ConfigFlow, domain=DOMAIN):
     ) -> ConfigFlowResult:
         """Ask where the PLC is and how to log in, then check the certificate and connect."""
         if user_input is None:
-            return self._connection_form("connection", {}, "")
+            return self._connection_form("connection", {})
         return await self._submit_connection("connection", user_input)
 
     async def async_step_reconfigure(
@@ -173,7 +173,7 @@ class PlcBridgeConfigFlow(ConfigFlow, domain=DOMAIN):
             self._data = dict(entry.data)
             self._trusted.add(entry.data.get(CONF_FINGERPRINT, ""))
         if user_input is None:
-            return self._connection_form("reconfigure", {}, "")
+            return self._connection_form("reconfigure", {})
         return await self._submit_connection("reconfigure", user_input)
 
     async def async_step_certificate(
@@ -227,7 +227,8 @@ class PlcBridgeConfigFlow(ConfigFlow, domain=DOMAIN):
         try:
             self._data[CONF_OPTIONS] = client.validate_options(self._data[CONF_OPTIONS])
         except PlcValueError as err:
-            return self._connection_form(step_id, {"base": "invalid_options"}, str(err))
+            self._problem = str(err)
+            return self._connection_form(step_id, {"base": "invalid_options"})
         self._data[CONF_FINGERPRINT] = ""
         if self._data[CONF_TLS] == TlsMode.PIN:
             try:
@@ -235,7 +236,8 @@ class PlcBridgeConfigFlow(ConfigFlow, domain=DOMAIN):
                     self._data[CONF_HOST], self._data[CONF_PORT], CERTIFICATE_TIMEOUT
                 )
             except PlcError as err:
-                return self._connection_form(step_id, error_for(err), str(err))
+                self._problem = str(err)
+                return self._connection_form(step_id, error_for(err))
             if self._data[CONF_FINGERPRINT] not in self._trusted:
                 return await self.async_step_certificate()
         return await self._finish()
@@ -291,11 +293,8 @@ class PlcBridgeConfigFlow(ConfigFlow, domain=DOMAIN):
         finally:
             await client.close()
 
-    def _connection_form(
-        self, step_id: str, errors: dict[str, str], problem: str | None = None
-    ) -> ConfigFlowResult:
+    def _connection_form(self, step_id: str, errors: dict[str, str]) -> ConfigFlowResult:
         """Show the connection (or reconfigure) form with the values entered so far."""
-        problem = self._problem if problem is None else problem
         schema = connection_schema(
             client_class(self._vendor),
             VENDOR_FIELDS.get(self._vendor, ()),
@@ -305,5 +304,5 @@ class PlcBridgeConfigFlow(ConfigFlow, domain=DOMAIN):
             step_id=step_id,
             data_schema=self.add_suggested_values_to_schema(schema, form_values(self._data)),
             errors=on_form(errors, schema),
-            description_placeholders={"problem": problem},
+            description_placeholders={"problem": self._problem},
         )

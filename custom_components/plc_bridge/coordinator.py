@@ -39,6 +39,7 @@ from .repairs import (
     async_clear_issue,
     async_clear_point_issue,
     async_clear_point_issues,
+    async_point_issues,
     async_raise_issue,
     async_raise_point_issue,
 )
@@ -121,9 +122,10 @@ class PlcCoordinator(DataUpdateCoordinator[ReadResult]):
             update_interval=timedelta(seconds=interval),
         )
         self._failing: set[Point] = set()
-        self._unknown: set[str] = set()
-        # A removed point's issue goes with it (removing a subentry reloads the entry).
+        # A removed point's issue goes with it (removing a subentry reloads the entry); the
+        # others stay open until their point reads, even those a previous setup raised.
         async_clear_point_issues(hass, entry, keep=self.points)
+        self._unknown = async_point_issues(hass, entry)
         self._renewals: deque[int] = deque(maxlen=RENEWAL_WINDOW)
         self._renewals_seen = client.metrics.session_renewals
 
@@ -172,8 +174,7 @@ class PlcCoordinator(DataUpdateCoordinator[ReadResult]):
                     async_raise_point_issue(
                         self.hass, self.config_entry, subentry_id, point.address, str(outcome.error)
                     )
-            elif outcome.ok:
-                # Also after a reload, when the issue was raised by the previous coordinator.
+            elif outcome.ok and subentry_id in self._unknown:
                 self._unknown.discard(subentry_id)
                 async_clear_point_issue(self.hass, self.config_entry, subentry_id)
 

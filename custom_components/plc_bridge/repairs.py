@@ -86,15 +86,23 @@ def async_clear_point_issue(hass: HomeAssistant, entry: ConfigEntry[Any], subent
 
 
 @callback
+def async_point_issues(hass: HomeAssistant, entry: ConfigEntry[Any]) -> set[str]:
+    """Return the subentry ids of the entry's points that have an unknown-address issue."""
+    prefix = point_issue_id(entry, "")
+    return {
+        issue[len(prefix) :]
+        for domain, issue in ir.async_get(hass).issues
+        if domain == DOMAIN and issue.startswith(prefix)
+    }
+
+
+@callback
 def async_clear_point_issues(
     hass: HomeAssistant, entry: ConfigEntry[Any], keep: Collection[str] = ()
 ) -> None:
     """Delete the point issues of an entry, except those of the subentry ids in `keep`."""
-    prefix = point_issue_id(entry, "")
-    registry = ir.async_get(hass)
-    for domain, issue in list(registry.issues):
-        if domain == DOMAIN and issue.startswith(prefix) and issue[len(prefix) :] not in keep:
-            ir.async_delete_issue(hass, DOMAIN, issue)
+    for subentry_id in async_point_issues(hass, entry) - set(keep):
+        async_clear_point_issue(hass, entry, subentry_id)
 
 
 class CertificateRepairFlow(RepairsFlow):
