@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from datetime import UTC, datetime, timedelta
+import datetime as dt
 import hashlib
 from ipaddress import ip_address
 import ssl
@@ -21,7 +21,9 @@ def make_certificate(common_name: str) -> tuple[bytes, bytes]:
     Like an S7-200 SMART in "internal certificate" mode: the device's own CA, unknown to any
     trust store, so clients must pin or turn verification off.
     """
-    now = datetime.now(UTC)
+    # Looked up at call time: under a test's frozen clock, cryptography checks for the frozen
+    # datetime class, which a `from datetime import datetime` taken at import is not.
+    now = dt.datetime.now(dt.UTC)
     ca_key = ec.generate_private_key(ec.SECP256R1())
     ca_name = x509.Name([x509.NameAttribute(NameOID.COMMON_NAME, f"{common_name} CA")])
     ca = (
@@ -30,8 +32,8 @@ def make_certificate(common_name: str) -> tuple[bytes, bytes]:
         .issuer_name(ca_name)
         .public_key(ca_key.public_key())
         .serial_number(x509.random_serial_number())
-        .not_valid_before(now - timedelta(days=1))
-        .not_valid_after(now + timedelta(days=3650))
+        .not_valid_before(now - dt.timedelta(days=1))
+        .not_valid_after(now + dt.timedelta(days=3650))
         .add_extension(x509.BasicConstraints(ca=True, path_length=0), critical=True)
         .sign(ca_key, hashes.SHA256())
     )
@@ -42,8 +44,8 @@ def make_certificate(common_name: str) -> tuple[bytes, bytes]:
         .issuer_name(ca_name)
         .public_key(key.public_key())
         .serial_number(x509.random_serial_number())
-        .not_valid_before(now - timedelta(days=1))
-        .not_valid_after(now + timedelta(days=3650))
+        .not_valid_before(now - dt.timedelta(days=1))
+        .not_valid_after(now + dt.timedelta(days=3650))
         .add_extension(
             x509.SubjectAlternativeName(
                 [x509.DNSName("localhost"), x509.IPAddress(ip_address("127.0.0.1"))]

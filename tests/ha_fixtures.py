@@ -14,6 +14,7 @@ from freezegun.api import FrozenDateTimeFactory
 from homeassistant.config_entries import ConfigEntryState, ConfigSubentryDataWithId
 from homeassistant.const import (
     CONF_HOST,
+    CONF_NAME,
     CONF_PASSWORD,
     CONF_PORT,
     CONF_SCAN_INTERVAL,
@@ -21,6 +22,7 @@ from homeassistant.const import (
     Platform,
 )
 from homeassistant.core import HomeAssistant
+from homeassistant.helpers import device_registry as dr
 import pytest
 from pytest_homeassistant_custom_component.common import MockConfigEntry, async_fire_time_changed
 
@@ -32,11 +34,13 @@ from custom_components.plc_bridge.const import (
     CONF_OFFSET,
     CONF_OPTIONS,
     CONF_PLATFORM,
+    CONF_POINTS,
     CONF_READ_ONLY,
     CONF_SCALE,
     CONF_TLS,
     CONF_VENDOR,
     DOMAIN,
+    SUBENTRY_DEVICE,
     SUBENTRY_POINT,
 )
 from simulators.s7_smart import DEFAULT_PASSWORD, DEFAULT_USER, S7SmartSimulator
@@ -47,11 +51,18 @@ UNIQUE_ID = "plc-bridge-test"
 CLOCK = datetime(2026, 3, 1, 12, 30, 0)  # the simulator's clock (naive PLC local time)
 
 
+DEVICE_ID = "boiler"
+"""The subentry id of the device that holds the points of the test entries."""
+type PointData = tuple[str, dict[str, Any]]
+"""A point as a device subentry stores it: its id and its data."""
+
+
 def point(
-    subentry_id: str, title: str, platform: str, address: str, data_type: str, **extra: Any
-) -> ConfigSubentryDataWithId:
-    """Return a point subentry as the subentry flow stores it."""
+    point_id: str, title: str, platform: str, address: str, data_type: str, **extra: Any
+) -> PointData:
+    """Return a point as the device subentry flow stores it."""
     data = {
+        CONF_NAME: title,
         CONF_PLATFORM: platform,
         CONF_ADDRESS: address,
         CONF_DATA_TYPE: data_type,
@@ -59,12 +70,33 @@ def point(
         CONF_OFFSET: 0.0,
         CONF_READ_ONLY: False,
     }
+    return point_id, data | extra
+
+
+def device(
+    points: Iterable[PointData], subentry_id: str = DEVICE_ID, title: str = "Boiler"
+) -> ConfigSubentryDataWithId:
+    """Return a device subentry holding the points."""
     return ConfigSubentryDataWithId(
-        data=data | extra,
+        data={CONF_POINTS: dict(points)},
         subentry_id=subentry_id,
+        subentry_type=SUBENTRY_DEVICE,
+        title=title,
+        unique_id=None,
+    )
+
+
+def legacy_point(point_data: PointData) -> ConfigSubentryDataWithId:
+    """Return a point as a version 1 entry stored it: one subentry of its own."""
+    point_id, data = point_data
+    data = dict(data)
+    title = data.pop(CONF_NAME)
+    return ConfigSubentryDataWithId(
+        data=data,
+        subentry_id=point_id,
         subentry_type=SUBENTRY_POINT,
         title=title,
-        unique_id=f"{address}|{data_type}",
+        unique_id=f"{data[CONF_ADDRESS]}|{data[CONF_DATA_TYPE]}",
     )
 
 
@@ -123,9 +155,13 @@ def add_entry(
     entry_id: str,
     unique_id: str,
     data: dict[str, Any],
-    points: Iterable[ConfigSubentryDataWithId],
+    points: Iterable[PointData],
 ) -> MockConfigEntry:
-    """Add a PLC's entry with the given points, polled every SCAN_INTERVAL (not set up yet)."""
+    """Add a PLC's entry with its points in one device, polled every SCAN_INTERVAL (not set up).
+
+    The device has the PLC's name, as a migrated entry's has: entity ids stay the PLC's.
+    """
+    points = list(points)
     entry = MockConfigEntry(
         domain=DOMAIN,
         title=title,
@@ -133,7 +169,8 @@ def add_entry(
         unique_id=unique_id,
         data=data,
         options={CONF_SCAN_INTERVAL: SCAN_INTERVAL},
-        subentries_data=list(points),
+        subentries_data=[device(points, title=title)] if points else [],
+        version=2,
     )
     entry.add_to_hass(hass)
     return entry
@@ -142,7 +179,7 @@ def add_entry(
 def make_entry(
     hass: HomeAssistant,
     sim: S7SmartSimulator,
-    points: Iterable[ConfigSubentryDataWithId] = POINTS,
+    points: Iterable[PointData] = POINTS,
     **changes: Any,
 ) -> MockConfigEntry:
     """Add an entry of the simulator with the given points (not set up yet)."""
@@ -236,3 +273,40 @@ def entity_registry_enabled_by_default() -> Generator[None]:
     """Create the entities that are disabled by default as enabled."""
     with patch("homeassistant.helpers.entity.Entity.entity_registry_enabled_default", True):
         yield
+
+
+def plc_device(registry: dr.DeviceRegistry, identifier: str) -> dr.DeviceEntry | None:
+    """Return the device of the test entry registered under an identifier, if any.
+
+    Through the entry's devices: the registry's look-up by identifier is deprecated on the
+    current release and missing on the oldest.
+    """
+    devices = dr.async_entries_for_config_entry(registry, ENTRY_ID)
+    return next((dev for dev in devices if (DOMAIN, identifier) in dev.identifiers), None)
+
+
+def set_points(
+    hass: HomeAssistant,
+    entry: MockConfigEntry,
+    points: dict[str, Any],
+    subentry_id: str = DEVICE_ID,
+) -> None:
+    """Store a device subentry's points as its flow would (the entry follows in place)."""
+    subentry = entry.subentries[subentry_id]
+    hass.config_entries.async_update_subentry(
+        entry, subentry, data={**subentry.data, CONF_POINTS: points}
+    )
+
+
+def edit_point(hass: HomeAssistant, entry: MockConfigEntry, point_id: str, **changes: Any) -> None:
+    """Change fields of one point of the test device."""
+    points = dict(entry.subentries[DEVICE_ID].data[CONF_POINTS])
+    points[point_id] = {**points[point_id], **changes}
+    set_points(hass, entry, points)
+
+
+def remove_point(hass: HomeAssistant, entry: MockConfigEntry, point_id: str) -> None:
+    """Remove one point of the test device."""
+    points = dict(entry.subentries[DEVICE_ID].data[CONF_POINTS])
+    del points[point_id]
+    set_points(hass, entry, points)

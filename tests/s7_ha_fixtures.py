@@ -11,7 +11,6 @@ import threading
 from typing import Any
 
 from freezegun.api import FrozenDateTimeFactory
-from homeassistant.config_entries import ConfigSubentryDataWithId
 from homeassistant.const import (
     CONF_HOST,
     CONF_PASSWORD,
@@ -31,7 +30,7 @@ from custom_components.plc_bridge.const import (
 from custom_components.plc_bridge.plc.vendors.s7 import S7Client
 from simulators.s7 import S7Simulator
 
-from .ha_fixtures import add_entry, point, unload_all
+from .ha_fixtures import PointData, add_entry, point, unload_all
 
 S7_ENTRY_ID = "01JPLCBR1DGE00000000S7TEST"
 S7_TITLE = "S7-300"
@@ -78,7 +77,7 @@ def s7_data(sim: S7Simulator, **options: Any) -> dict[str, Any]:
 def make_s7_entry(
     hass: HomeAssistant,
     sim: S7Simulator,
-    points: Iterable[ConfigSubentryDataWithId] = S7_POINTS,
+    points: Iterable[PointData] = S7_POINTS,
     **options: Any,
 ) -> MockConfigEntry:
     """Add an entry of the simulator with the given points (not set up yet)."""
@@ -92,7 +91,7 @@ def make_s7_entry(
     )
 
 
-def spread(count: int) -> list[ConfigSubentryDataWithId]:
+def spread(count: int) -> list[PointData]:
     """Return `count` REAL sensors over DB1..DB3, 34 bytes apart: the PDU decides the packing."""
     return [
         point(

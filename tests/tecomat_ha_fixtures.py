@@ -9,7 +9,6 @@ from collections.abc import AsyncGenerator, Iterable
 from typing import Any
 
 from freezegun.api import FrozenDateTimeFactory
-from homeassistant.config_entries import ConfigSubentryDataWithId
 from homeassistant.const import (
     CONF_HOST,
     CONF_PASSWORD,
@@ -27,7 +26,7 @@ from custom_components.plc_bridge.const import (
     CONF_VENDOR,
 )
 from simulators.tecomat import DEFAULT_PASSWORD, DEFAULT_USER, TecomatSimulator
-from tests.ha_fixtures import add_entry, point, unload_all
+from tests.ha_fixtures import PointData, add_entry, point, unload_all
 
 TECOMAT_ENTRY_ID = "01JPLCBR1DGE00000000TECOMAT"
 TECOMAT_SERIAL = "PP 0004"  # GetInfo's plc.serialNumber: the entry's unique id
@@ -84,7 +83,7 @@ def tecomat_data(sim: TecomatSimulator, **changes: Any) -> dict[str, Any]:
 def make_tecomat_entry(
     hass: HomeAssistant,
     sim: TecomatSimulator,
-    points: Iterable[ConfigSubentryDataWithId] = TECOMAT_POINTS,
+    points: Iterable[PointData] = TECOMAT_POINTS,
     **changes: Any,
 ) -> MockConfigEntry:
     """Add an entry of the simulator with the given points (not set up yet)."""

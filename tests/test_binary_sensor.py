@@ -12,6 +12,7 @@ from syrupy.assertion import SnapshotAssertion
 
 from simulators.s7_smart import S7SmartSimulator
 
+from .conftest import current_release_only
 from .ha_fixtures import poll
 
 
@@ -21,6 +22,7 @@ def platforms() -> list[Platform]:
     return [Platform.BINARY_SENSOR]
 
 
+@current_release_only
 async def test_snapshot(
     hass: HomeAssistant,
     setup_integration: MockConfigEntry,

@@ -8,10 +8,10 @@ from homeassistant.core import HomeAssistant
 from homeassistant.helpers import device_registry as dr, entity_registry as er
 from pytest_homeassistant_custom_component.common import MockConfigEntry
 
-from custom_components.plc_bridge.const import CONF_TLS, DOMAIN
+from custom_components.plc_bridge.const import CONF_TLS
 from simulators.s7_smart import DEFAULT_PASSWORD, DEFAULT_USER, S7SmartSimulator
 
-from .ha_fixtures import ENTRY_ID, make_entry
+from .ha_fixtures import ENTRY_ID, make_entry, plc_device
 
 
 def registered(
@@ -49,8 +49,8 @@ async def test_moving_an_address_only_plc_keeps_its_entities(
     await hass.async_block_till_done()
     before = registered(entity_registry, device_registry, entry.entry_id)
     assert len(before[0]) > 5
-    assert len(before[1]) == 1
-    assert device_registry.async_get_device(identifiers={(DOMAIN, ENTRY_ID)}) is not None
+    assert len(before[1]) == 2  # the PLC's device and its points' device
+    assert plc_device(device_registry, ENTRY_ID) is not None
 
     old_port = s7_smart_sim.port
     await s7_smart_sim.stop()

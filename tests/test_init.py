@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from freezegun.api import FrozenDateTimeFactory
 from homeassistant.components.repairs import repairs_flow_manager
-from homeassistant.config_entries import SOURCE_REAUTH, ConfigEntryState, ConfigSubentry
+from homeassistant.config_entries import SOURCE_REAUTH, ConfigEntryState
 from homeassistant.const import CONF_SCAN_INTERVAL, STATE_UNAVAILABLE
 from homeassistant.core import HomeAssistant
 from homeassistant.data_entry_flow import FlowResultType
@@ -16,7 +16,7 @@ from custom_components.plc_bridge.const import CONF_FINGERPRINT, CONF_TLS, DOMAI
 from custom_components.plc_bridge.plc.http import format_fingerprint
 from simulators.s7_smart import S7SmartSimulator
 
-from .ha_fixtures import ENTRY_ID, make_entry, point, poll
+from .ha_fixtures import ENTRY_ID, make_entry, plc_device, poll
 
 
 async def test_setup_and_unload(
@@ -28,7 +28,7 @@ async def test_setup_and_unload(
     entry = setup_integration
     assert entry.state is ConfigEntryState.LOADED
     # No serial or MAC: the device is the entry's, whatever address it moves to.
-    device = device_registry.async_get_device(identifiers={(DOMAIN, ENTRY_ID)})
+    device = plc_device(device_registry, ENTRY_ID)
     assert device is not None
     assert (device.manufacturer, device.model, device.sw_version) == (
         "Siemens",
@@ -184,29 +184,6 @@ async def test_options_change_reloads(
     await hass.async_block_till_done()
     assert entry.state is ConfigEntryState.LOADED
     assert entry.runtime_data.coordinator.update_interval.total_seconds() == 30.0
-
-
-async def test_subentry_changes_reload(
-    hass: HomeAssistant, setup_integration: MockConfigEntry
-) -> None:
-    entry = setup_integration
-    new = point("level", "Level", "sensor", "VW30", "unsigned")
-    hass.config_entries.async_add_subentry(
-        entry,
-        ConfigSubentry(
-            data=new["data"],
-            subentry_type=new["subentry_type"],
-            title=new["title"],
-            unique_id=new["unique_id"],
-        ),
-    )
-    await hass.async_block_till_done()
-    assert hass.states.get("sensor.s7_200_smart_level").state == "0"
-
-    hass.config_entries.async_remove_subentry(entry, "pump")
-    await hass.async_block_till_done()
-    assert hass.states.get("switch.s7_200_smart_pump") is None
-    assert entry.state is ConfigEntryState.LOADED
 
 
 async def test_removing_entry_deletes_issues(

@@ -98,7 +98,7 @@ def repo_files(name_filter: str) -> list[Path]:
     """Return the repository's files whose names end with `name_filter` (no venv, no caches)."""
     found = []
     for folder, dirs, files in os.walk(ROOT):
-        dirs[:] = sorted(d for d in dirs if d not in SKIP_DIRS)
+        dirs[:] = sorted(d for d in dirs if d not in SKIP_DIRS and not d.startswith(".venv"))
         found += [Path(folder, f) for f in sorted(files) if f.endswith(name_filter)]
     return found
 

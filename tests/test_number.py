@@ -17,6 +17,7 @@ from syrupy.assertion import SnapshotAssertion
 
 from simulators.s7_smart import S7SmartSimulator
 
+from .conftest import current_release_only
 from .ha_fixtures import make_entry, point
 
 SETPOINT = "number.s7_200_smart_setpoint"
@@ -28,6 +29,7 @@ def platforms() -> list[Platform]:
     return [Platform.NUMBER]
 
 
+@current_release_only
 async def test_snapshot(
     hass: HomeAssistant,
     setup_integration: MockConfigEntry,

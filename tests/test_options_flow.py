@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-from homeassistant.config_entries import ConfigSubentryData
 from homeassistant.const import CONF_SCAN_INTERVAL
 from homeassistant.core import HomeAssistant
 from homeassistant.data_entry_flow import FlowResultType
@@ -13,18 +12,14 @@ from custom_components.plc_bridge.const import DOMAIN
 from custom_components.plc_bridge.plc.vendors.s7_smart import S7SmartClient
 from simulators.s7_smart import S7SmartSimulator
 from tests.flow_fixtures import error_message, smart_data, suggested, translated
+from tests.ha_fixtures import PointData, device, point
 
 OPTIONS = ("options",)
 
 
-def point(index: int) -> ConfigSubentryData:
-    """Return a word point subentry."""
-    return ConfigSubentryData(
-        data={"platform": "sensor", "address": f"VW{2 * index}", "data_type": "signed"},
-        subentry_type="point",
-        title=f"Word {index}",
-        unique_id=f"VW{2 * index}|signed",
-    )
+def words(count: int) -> list[PointData]:
+    """Return `count` word sensors."""
+    return [point(f"w{i}", f"Word {i}", "sensor", f"VW{2 * i}", "signed") for i in range(count)]
 
 
 @pytest.fixture
@@ -39,7 +34,8 @@ async def test_minimum_follows_the_points(hass: HomeAssistant, flow_sim: S7Smart
     entry = MockConfigEntry(
         domain=DOMAIN,
         data=smart_data(flow_sim),
-        subentries_data=[point(index) for index in range(100)],
+        subentries_data=[device(words(100))],
+        version=2,
     )
     entry.add_to_hass(hass)
     result = translated(await hass.config_entries.options.async_init(entry.entry_id), *OPTIONS)

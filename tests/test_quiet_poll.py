@@ -23,7 +23,7 @@ async def test_quiet_poll_writes_nothing(
     await hass.async_block_till_done()
     await poll(hass, freezer)
     ours = {
-        e.entity_id: e.config_subentry_id
+        e.entity_id: e.unique_id.rsplit("_", 1)[-1]
         for e in er.async_entries_for_config_entry(er.async_get(hass), entry.entry_id)
         if e.config_subentry_id is not None
     }

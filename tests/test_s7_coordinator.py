@@ -11,8 +11,8 @@ from homeassistant.core import HomeAssistant
 import pytest
 from pytest_homeassistant_custom_component.common import MockConfigEntry
 
-from custom_components.plc_bridge.coordinator import entry_points
 from custom_components.plc_bridge.plc.vendors.s7 import S7Client
+from custom_components.plc_bridge.points import entry_points
 from simulators.s7 import S7Simulator
 
 from .ha_fixtures import poll
@@ -38,7 +38,9 @@ async def test_requests_per_poll_as_planned(
     client = entry.runtime_data.client
     assert isinstance(client, S7Client)
     assert client.pdu_size == pdu_size
-    planned = client.requests_for(list(entry_points(entry).values()), client.pdu_size)
+    planned = client.requests_for(
+        [config.point for config in entry_points(entry).values()], client.pdu_size
+    )
     assert planned == expected  # the reads, plus one for the CPU state
     before = sim.requests
     await poll(hass, freezer)

@@ -59,7 +59,11 @@ async def test_device_from_szl(
     hass: HomeAssistant, device_registry: dr.DeviceRegistry, s7_setup: MockConfigEntry
 ) -> None:
     """The device carries what the CPU's SZL says: type, serial, firmware."""
-    (device,) = dr.async_entries_for_config_entry(device_registry, s7_setup.entry_id)
+    (device,) = [
+        device
+        for device in dr.async_entries_for_config_entry(device_registry, s7_setup.entry_id)
+        if device.via_device_id is None  # the PLC's own; its points' devices hang off it
+    ]
     assert device.model == "CPU 315-2 PN/DP"
     assert device.serial_number == S7Simulator.serial
     assert device.sw_version is not None

@@ -9,17 +9,19 @@ from unittest.mock import patch
 from freezegun.api import FrozenDateTimeFactory
 from homeassistant.const import STATE_UNAVAILABLE, STATE_UNKNOWN, Platform
 from homeassistant.core import HomeAssistant
-from homeassistant.helpers import entity_registry as er
+from homeassistant.helpers import device_registry as dr, entity_registry as er
 import pytest
 from pytest_homeassistant_custom_component.common import MockConfigEntry, snapshot_platform
 from syrupy.assertion import SnapshotAssertion
 
+from custom_components.plc_bridge.const import DOMAIN
 from custom_components.plc_bridge.entity import PlcPointDescription, scaled
 from custom_components.plc_bridge.plc import Point, ReadResult, ValueKind
 from custom_components.plc_bridge.plc.vendors.s7_smart import S7SmartClient
 from simulators.s7_smart import S7SmartSimulator
 
-from .ha_fixtures import make_entry, point, poll
+from .conftest import current_release_only
+from .ha_fixtures import DEVICE_ID, make_entry, point, poll
 
 
 @pytest.fixture
@@ -28,6 +30,7 @@ def platforms() -> list[Platform]:
     return [Platform.SENSOR]
 
 
+@current_release_only
 @pytest.mark.usefixtures("entity_registry_enabled_by_default")
 async def test_snapshot(
     hass: HomeAssistant,
@@ -111,14 +114,27 @@ def test_inverse_scaling(kind: ValueKind, value: float, raw: float) -> None:
 
 
 async def test_entities_belong_to_their_subentry(
-    hass: HomeAssistant, setup_integration: MockConfigEntry, entity_registry: er.EntityRegistry
+    hass: HomeAssistant,
+    setup_integration: MockConfigEntry,
+    entity_registry: er.EntityRegistry,
+    device_registry: dr.DeviceRegistry,
 ) -> None:
+    """Points belong to their device subentry's device, hanging off the PLC's own device."""
     point_entry = entity_registry.async_get("sensor.s7_200_smart_temperature")
     status_entry = entity_registry.async_get("sensor.s7_200_smart_operating_mode")
     assert point_entry is not None
     assert status_entry is not None
-    assert point_entry.config_subentry_id == "temperature"
+    assert point_entry.config_subentry_id == DEVICE_ID
     assert status_entry.config_subentry_id is None
+    assert point_entry.device_id is not None
+    assert status_entry.device_id is not None
+    point_device = device_registry.async_get(point_entry.device_id)
+    plc_device = device_registry.async_get(status_entry.device_id)
+    assert point_device is not None
+    assert plc_device is not None
+    assert point_device.via_device_id == plc_device.id
+    assert point_device.identifiers == {(DOMAIN, DEVICE_ID)}
+    assert plc_device.model == "S7-200 SMART"
 
 
 async def test_other_kinds_of_points(hass: HomeAssistant, s7_smart_sim: S7SmartSimulator) -> None:

@@ -19,6 +19,7 @@ from syrupy.assertion import SnapshotAssertion
 
 from simulators.s7_smart import S7SmartSimulator
 
+from .conftest import current_release_only
 from .ha_fixtures import make_entry, point
 
 PUMP = "switch.s7_200_smart_pump"
@@ -30,6 +31,7 @@ def platforms() -> list[Platform]:
     return [Platform.SWITCH]
 
 
+@current_release_only
 async def test_snapshot(
     hass: HomeAssistant,
     setup_integration: MockConfigEntry,

@@ -15,7 +15,7 @@ from pytest_homeassistant_custom_component.typing import ClientSessionGenerator
 
 from custom_components.plc_bridge.const import DOMAIN
 from simulators.tecomat import DEFAULT_PASSWORD, DEFAULT_USER, TecomatSimulator
-from tests.ha_fixtures import point, poll
+from tests.ha_fixtures import edit_point, point, poll, remove_point
 from tests.tecomat_ha_fixtures import TECOMAT_SERIAL, make_tecomat_entry
 
 INSIDE = "sensor.fx2_cp2080_inside_temperature"
@@ -114,7 +114,7 @@ async def test_removing_the_point_clears_its_issue(
     tecomat_sim.rename("plcData.varInt", "varInteger")
     await poll(hass, freezer)
     assert issue_registry.async_get_issue(DOMAIN, issue_of(tecomat_entry, "int")) is not None
-    assert hass.config_entries.async_remove_subentry(tecomat_entry, "int")
+    remove_point(hass, tecomat_entry, "int")
     await hass.async_block_till_done()
     assert tecomat_entry.state is ConfigEntryState.LOADED
     assert not issue_registry.issues
@@ -132,13 +132,7 @@ async def test_fixing_the_address_clears_the_issue(
     tecomat_sim.rename("plcData.varInt", "varInteger")
     await poll(hass, freezer)
     assert issue_registry.async_get_issue(DOMAIN, issue_of(tecomat_entry, "int")) is not None
-    subentry = tecomat_entry.subentries["int"]
-    hass.config_entries.async_update_subentry(
-        tecomat_entry,
-        subentry,
-        data={**subentry.data, "address": "plcData.varInteger"},
-        unique_id="plcData.varInteger|INT",
-    )
+    edit_point(hass, tecomat_entry, "int", address="plcData.varInteger")
     await hass.async_block_till_done()
     assert hass.states.get("sensor.fx2_cp2080_int").state == "-2222"
     assert not issue_registry.issues

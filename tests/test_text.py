@@ -18,7 +18,7 @@ import pytest
 
 from simulators.s7_smart import S7SmartSimulator
 from simulators.tecomat import TecomatSimulator
-from tests.ha_fixtures import make_entry, point
+from tests.ha_fixtures import DEVICE_ID, make_entry, point
 from tests.tecomat_ha_fixtures import TECOMAT_SERIAL, make_tecomat_entry
 
 GREETING = "text.fx2_cp2080_greeting"
@@ -69,11 +69,13 @@ async def test_text_entities(
     registered = entity_registry.async_get(GREETING)
     assert registered is not None
     assert registered.unique_id == f"{TECOMAT_SERIAL}_greeting"
-    assert registered.config_subentry_id == "greeting"
+    assert registered.config_subentry_id == DEVICE_ID
     device = device_registry.async_get(registered.device_id or "")
     assert device is not None
-    assert device.manufacturer == "Teco"
-    assert device.serial_number == TECOMAT_SERIAL
+    plc = device_registry.async_get(device.via_device_id or "")
+    assert plc is not None
+    assert plc.manufacturer == "Teco"
+    assert plc.serial_number == TECOMAT_SERIAL
 
 
 async def test_set_value(hass: HomeAssistant, text_sim: TecomatSimulator) -> None:

@@ -5,13 +5,16 @@ from __future__ import annotations
 from homeassistant.config_entries import ConfigEntry
 from homeassistant.const import Platform
 from homeassistant.core import HomeAssistant
-from homeassistant.helpers import config_validation as cv
+from homeassistant.helpers import config_validation as cv, device_registry as dr
 from homeassistant.helpers.typing import ConfigType
 
 from .connection import create_client
 from .const import CONF_TLS, DOMAIN
 from .coordinator import PlcBridgeConfigEntry, PlcCoordinator, PlcRuntimeData, link_error
+from .entity import device_info
+from .migration import async_migrate_points
 from .plc import PlcError, TlsMode
+from .points import PointEntities, async_register_devices
 from .repairs import (
     CERTIFICATE_CHANGED,
     ISSUES,
@@ -52,17 +55,44 @@ async def async_setup_entry(hass: HomeAssistant, entry: PlcBridgeConfigEntry) ->
     except PlcError as err:
         raise link_error(hass, entry, err, setup=True) from err
     async_clear_issue(hass, entry, CERTIFICATE_CHANGED)
-    coordinator = PlcCoordinator(hass, entry, client)
+    points = PointEntities(entry)
+    coordinator = PlcCoordinator(hass, entry, client, points.configs)
     await coordinator.async_config_entry_first_refresh()
-    entry.runtime_data = PlcRuntimeData(client=client, coordinator=coordinator, device=device)
+    entry.runtime_data = PlcRuntimeData(
+        client=client,
+        coordinator=coordinator,
+        device=device,
+        points=points,
+        settings=(dict(entry.data), dict(entry.options)),
+    )
+    plc = dr.async_get(hass).async_get_or_create(
+        config_entry_id=entry.entry_id, **device_info(entry)
+    )
+    async_register_devices(hass, entry, plc.id)
     await hass.config_entries.async_forward_entry_setups(entry, PLATFORMS)
-    entry.async_on_unload(entry.add_update_listener(async_reload_entry))
+    entry.async_on_unload(entry.add_update_listener(async_update_entry))
     return True
 
 
-async def async_reload_entry(hass: HomeAssistant, entry: PlcBridgeConfigEntry) -> None:
-    """Apply changed options, connection or points (subentries) by setting the PLC up again."""
-    await hass.config_entries.async_reload(entry.entry_id)
+async def async_update_entry(hass: HomeAssistant, entry: PlcBridgeConfigEntry) -> None:
+    """Reload for a new connection or poll interval; follow edited devices and points in place."""
+    runtime = entry.runtime_data
+    if (dict(entry.data), dict(entry.options)) != runtime.settings:
+        await hass.config_entries.async_reload(entry.entry_id)
+        return
+    plc = dr.async_get(hass).async_get_or_create(
+        config_entry_id=entry.entry_id, **device_info(entry)
+    )
+    await runtime.points.async_sync(hass, plc.id)
+
+
+async def async_migrate_entry(hass: HomeAssistant, entry: ConfigEntry) -> bool:
+    """Migrate an entry of an older version; refuse one from a newer release."""
+    if entry.version > 2:
+        return False
+    if entry.version == 1:
+        async_migrate_points(hass, entry)
+    return True
 
 
 async def async_unload_entry(hass: HomeAssistant, entry: PlcBridgeConfigEntry) -> bool:

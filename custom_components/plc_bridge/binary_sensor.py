@@ -4,12 +4,11 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from homeassistant.components.binary_sensor import (
+from homeassistant.components.binary_sensor import (  # type: ignore[attr-defined]
     BinarySensorDeviceClass,
     BinarySensorEntity,
     BinarySensorEntityDescription,
 )
-from homeassistant.config_entries import ConfigSubentry
 from homeassistant.core import HomeAssistant
 from homeassistant.helpers.entity_platform import AddConfigEntryEntitiesCallback
 
@@ -17,10 +16,10 @@ from .coordinator import PlcBridgeConfigEntry
 from .entity import (
     PlcPointDescription,
     PlcPointEntity,
-    add_point_entities,
     device_class,
     point_fields,
 )
+from .points import PointConfig
 
 PARALLEL_UPDATES = 0
 
@@ -30,13 +29,13 @@ class PlcBinarySensorDescription(BinarySensorEntityDescription, PlcPointDescript
     """A point shown as a binary sensor."""
 
 
-def point_binary_sensor(entry: PlcBridgeConfigEntry, subentry: ConfigSubentry) -> PlcBinarySensor:
+def point_binary_sensor(entry: PlcBridgeConfigEntry, config: PointConfig) -> PlcBinarySensor:
     """Return the binary sensor of a point."""
     description = PlcBinarySensorDescription(
-        **point_fields(entry, subentry),
-        device_class=device_class(subentry, BinarySensorDeviceClass),
+        **point_fields(entry, config),
+        device_class=device_class(config, BinarySensorDeviceClass),
     )
-    return PlcBinarySensor(entry, description)
+    return PlcBinarySensor(entry, config, description)
 
 
 async def async_setup_entry(
@@ -45,7 +44,9 @@ async def async_setup_entry(
     async_add_entities: AddConfigEntryEntitiesCallback,
 ) -> None:
     """Add a binary sensor for each binary sensor point."""
-    add_point_entities(entry, async_add_entities, "binary_sensor", point_binary_sensor)
+    entry.runtime_data.points.async_setup_platform(
+        "binary_sensor", point_binary_sensor, async_add_entities
+    )
 
 
 class PlcBinarySensor(PlcPointEntity, BinarySensorEntity):

@@ -103,7 +103,7 @@ def device_unique_id(device: DeviceInfo, data: Mapping[str, Any]) -> str:
 class PlcBridgeConfigFlow(ConfigFlow, domain=DOMAIN):
     """Add a PLC: vendor, connection, certificate; reauth and reconfigure reuse the checks."""
 
-    VERSION = 1
+    VERSION = 2
 
     def __init__(self) -> None:
         """Start with nothing chosen and no certificate trusted."""

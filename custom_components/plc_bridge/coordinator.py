@@ -6,6 +6,7 @@ from collections import deque
 from collections.abc import Mapping
 from dataclasses import dataclass, replace
 from datetime import datetime, timedelta
+from typing import TYPE_CHECKING, Any
 
 from homeassistant.config_entries import ConfigEntry
 from homeassistant.const import CONF_SCAN_INTERVAL
@@ -17,7 +18,7 @@ from homeassistant.exceptions import (
 )
 from homeassistant.helpers.update_coordinator import DataUpdateCoordinator, UpdateFailed
 
-from .const import CONF_ADDRESS, CONF_DATA_TYPE, CONF_TLS, DOMAIN, LOGGER, SUBENTRY_POINT
+from .const import CONF_TLS, DOMAIN, LOGGER
 from .helpers import check_can_write, translated_errors
 from .plc import (
     DeviceInfo,
@@ -44,6 +45,9 @@ from .repairs import (
     async_raise_point_issue,
 )
 
+if TYPE_CHECKING:
+    from .points import PointConfig, PointEntities
+
 RENEWAL_WINDOW = 10
 """Polls over which session renewals are counted."""
 RENEWAL_LIMIT = 3
@@ -57,18 +61,12 @@ class PlcRuntimeData:
     client: PlcClient
     coordinator: PlcCoordinator
     device: DeviceInfo
+    points: PointEntities
+    settings: tuple[dict[str, Any], dict[str, Any]]
+    """The entry's data and options at setup: a change of these reloads the entry."""
 
 
 type PlcBridgeConfigEntry = ConfigEntry[PlcRuntimeData]
-
-
-def entry_points(entry: ConfigEntry[PlcRuntimeData]) -> dict[str, Point]:
-    """Return the point of every point subentry, by subentry id."""
-    return {
-        subentry_id: Point(subentry.data[CONF_ADDRESS], subentry.data[CONF_DATA_TYPE])
-        for subentry_id, subentry in entry.subentries.items()
-        if subentry.subentry_type == SUBENTRY_POINT
-    }
 
 
 def link_error(
@@ -105,29 +103,46 @@ class PlcCoordinator(DataUpdateCoordinator[ReadResult]):
 
     config_entry: PlcBridgeConfigEntry
 
-    def __init__(self, hass: HomeAssistant, entry: PlcBridgeConfigEntry, client: PlcClient) -> None:
+    def __init__(
+        self,
+        hass: HomeAssistant,
+        entry: PlcBridgeConfigEntry,
+        client: PlcClient,
+        points: Mapping[str, PointConfig],
+    ) -> None:
         """Collect the points and choose the poll interval the vendor's request rate allows."""
         self.client = client
-        self.points = entry_points(entry)
-        self._poll = list(dict.fromkeys(self.points.values()))
-        interval = max(
-            float(entry.options.get(CONF_SCAN_INTERVAL, client.default_scan_interval)),
-            client.min_scan_interval(self._poll),
-        )
-        super().__init__(
-            hass,
-            LOGGER,
-            config_entry=entry,
-            name=entry.title,
-            update_interval=timedelta(seconds=interval),
-        )
+        super().__init__(hass, LOGGER, config_entry=entry, name=entry.title)
+        self._set_points(points)
         self._failing: set[Point] = set()
-        # A removed point's issue goes with it (removing a subentry reloads the entry); the
-        # others stay open until their point reads, even those a previous setup raised.
-        async_clear_point_issues(hass, entry, keep=self.points)
+        # The others stay open until their point reads, even those a previous setup raised.
         self._unknown = async_point_issues(hass, entry)
         self._renewals: deque[int] = deque(maxlen=RENEWAL_WINDOW)
         self._renewals_seen = client.metrics.session_renewals
+
+    def _set_points(self, points: Mapping[str, PointConfig]) -> None:
+        """Poll these points (by point id) from now on, at an interval the vendor allows."""
+        self.points = {point_id: config.point for point_id, config in points.items()}
+        self.names = {point_id: config.name for point_id, config in points.items()}
+        self.read_only_points = frozenset(
+            config.point for config in points.values() if config.read_only
+        )
+        self._poll = list(dict.fromkeys(self.points.values()))
+        interval = max(
+            float(
+                self.config_entry.options.get(CONF_SCAN_INTERVAL, self.client.default_scan_interval)
+            ),
+            self.client.min_scan_interval(self._poll),
+        )
+        self.update_interval = timedelta(seconds=interval)
+        # A removed point's issue goes with it.
+        async_clear_point_issues(self.hass, self.config_entry, keep=self.points)
+
+    async def async_set_points(self, points: Mapping[str, PointConfig]) -> None:
+        """Follow edited points: poll the new set at once, so new entities show a value."""
+        self._set_points(points)
+        self._unknown &= set(self.points)
+        await self.async_refresh()
 
     async def _async_update_data(self) -> ReadResult:
         """Read every point at once; a point's own failure stays in its result."""
@@ -164,19 +179,24 @@ class PlcCoordinator(DataUpdateCoordinator[ReadResult]):
         Vendor-neutral: any PlcAddressError counts, whether the point read fine before (a
         renamed PLC variable) or fails at every poll; the other points are read regardless.
         """
-        for subentry_id, point in self.points.items():
+        for point_id, point in self.points.items():
             outcome = result.values.get(point)
             if outcome is None:
                 continue
             if isinstance(outcome.error, PlcAddressError):
-                if subentry_id not in self._unknown:
-                    self._unknown.add(subentry_id)
+                if point_id not in self._unknown:
+                    self._unknown.add(point_id)
                     async_raise_point_issue(
-                        self.hass, self.config_entry, subentry_id, point.address, str(outcome.error)
+                        self.hass,
+                        self.config_entry,
+                        point_id,
+                        name=self.names[point_id],
+                        address=point.address,
+                        error=str(outcome.error),
                     )
-            elif outcome.ok and subentry_id in self._unknown:
-                self._unknown.discard(subentry_id)
-                async_clear_point_issue(self.hass, self.config_entry, subentry_id)
+            elif outcome.ok and point_id in self._unknown:
+                self._unknown.discard(point_id)
+                async_clear_point_issue(self.hass, self.config_entry, point_id)
 
     def _watch_sessions(self) -> None:
         """Raise an issue while the PLC keeps dropping the session (its user logs in elsewhere)."""

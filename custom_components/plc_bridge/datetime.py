@@ -6,7 +6,6 @@ from dataclasses import dataclass
 from datetime import datetime
 
 from homeassistant.components.datetime import DateTimeEntity, DateTimeEntityDescription
-from homeassistant.config_entries import ConfigSubentry
 from homeassistant.const import EntityCategory
 from homeassistant.core import HomeAssistant
 from homeassistant.helpers.entity_platform import AddConfigEntryEntitiesCallback
@@ -16,9 +15,9 @@ from .entity import (
     PlcEntity,
     PlcPointDescription,
     PlcPointEntity,
-    add_point_entities,
     point_fields,
 )
+from .points import PointConfig
 
 PARALLEL_UPDATES = 1
 
@@ -28,9 +27,9 @@ class PlcDateTimeDescription(DateTimeEntityDescription, PlcPointDescription):
     """A point shown as a date and time."""
 
 
-def point_datetime(entry: PlcBridgeConfigEntry, subentry: ConfigSubentry) -> PlcDateTime:
+def point_datetime(entry: PlcBridgeConfigEntry, config: PointConfig) -> PlcDateTime:
     """Return the date and time entity of a point."""
-    return PlcDateTime(entry, PlcDateTimeDescription(**point_fields(entry, subentry)))
+    return PlcDateTime(entry, config, PlcDateTimeDescription(**point_fields(entry, config)))
 
 
 async def async_setup_entry(
@@ -42,7 +41,7 @@ async def async_setup_entry(
     runtime = entry.runtime_data
     if runtime.coordinator.data.status.clock is not None and runtime.client.can_set_clock:
         async_add_entities([PlcClock(entry)])
-    add_point_entities(entry, async_add_entities, "datetime", point_datetime)
+    entry.runtime_data.points.async_setup_platform("datetime", point_datetime, async_add_entities)
 
 
 class PlcDateTime(PlcPointEntity, DateTimeEntity):

@@ -42,8 +42,8 @@ async def async_get_config_entry_diagnostics(
             TO_REDACT,
         ),
         "points": {
-            subentry.subentry_id: {"title": subentry.title, **subentry.data}
-            for subentry in entry.subentries.values()
+            point_id: {"device": entry.subentries[config.subentry_id].title, **config.data}
+            for point_id, config in runtime.points.configs.items()
         },
         "device": async_redact_data(asdict(runtime.device), TO_REDACT),
         "status": status,

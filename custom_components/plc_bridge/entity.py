@@ -1,34 +1,23 @@
-"""The base entity of PLC Bridge and the point description built from a subentry."""
+"""The base entity of PLC Bridge and the point description built from a configured point."""
 
 from __future__ import annotations
 
-from collections.abc import Callable
 from dataclasses import dataclass
 from decimal import Decimal
 from enum import StrEnum
 from typing import Any
 
-from homeassistant.config_entries import ConfigSubentry
 from homeassistant.const import CONF_DEVICE_CLASS
 from homeassistant.core import callback
 from homeassistant.exceptions import ServiceValidationError
 from homeassistant.helpers.device_registry import CONNECTION_NETWORK_MAC, DeviceInfo, format_mac
-from homeassistant.helpers.entity import Entity, EntityDescription
-from homeassistant.helpers.entity_platform import AddConfigEntryEntitiesCallback
+from homeassistant.helpers.entity import EntityDescription
 from homeassistant.helpers.update_coordinator import CoordinatorEntity
 
-from .const import (
-    CONF_ADDRESS,
-    CONF_DATA_TYPE,
-    CONF_OFFSET,
-    CONF_PLATFORM,
-    CONF_READ_ONLY,
-    CONF_SCALE,
-    DOMAIN,
-    SUBENTRY_POINT,
-)
+from .const import CONF_OFFSET, CONF_SCALE, DOMAIN
 from .coordinator import PlcBridgeConfigEntry, PlcCoordinator
 from .plc import PlcError, Point, PointResult, Value, ValueKind
+from .points import PointConfig
 
 MANUFACTURERS = {
     "s7_smart": "Siemens",
@@ -77,43 +66,30 @@ def scaled(raw: int | float, scale: float, offset: float) -> int | float:
     )
 
 
-def point_fields(entry: PlcBridgeConfigEntry, subentry: ConfigSubentry) -> dict[str, Any]:
-    """Return the PlcPointDescription fields of a point subentry (name: the subentry's title)."""
-    data = subentry.data
-    point = Point(data[CONF_ADDRESS], data[CONF_DATA_TYPE])
+def point_fields(entry: PlcBridgeConfigEntry, config: PointConfig) -> dict[str, Any]:
+    """Return the PlcPointDescription fields of a configured point."""
+    point = config.point
     try:
         kind = entry.runtime_data.client.value_kind(point)
     except PlcError:
         kind = None  # the poll reports the address error on the entity
     return {
-        "key": subentry.subentry_id,
-        "name": subentry.title,
+        "key": config.point_id,
+        "name": config.name,
         "point": point,
         "kind": kind,
-        "scale": float(data.get(CONF_SCALE, 1.0)),
-        "offset": float(data.get(CONF_OFFSET, 0.0)),
-        "read_only": bool(data.get(CONF_READ_ONLY, False)),
+        "scale": float(config.data.get(CONF_SCALE, 1.0)),
+        "offset": float(config.data.get(CONF_OFFSET, 0.0)),
+        "read_only": config.read_only,
     }
 
 
-def device_class[E: StrEnum](subentry: ConfigSubentry, enum: type[E]) -> E | None:
-    """Return the subentry's device class if the platform knows it."""
+def device_class[E: StrEnum](config: PointConfig, enum: type[E]) -> E | None:
+    """Return the point's device class if the platform knows it."""
     try:
-        return enum(subentry.data[CONF_DEVICE_CLASS])
+        return enum(config.data[CONF_DEVICE_CLASS])
     except (KeyError, ValueError):
         return None
-
-
-def add_point_entities(
-    entry: PlcBridgeConfigEntry,
-    async_add_entities: AddConfigEntryEntitiesCallback,
-    platform: str,
-    entity: Callable[[PlcBridgeConfigEntry, ConfigSubentry], Entity],
-) -> None:
-    """Add the entity of every point subentry of a platform, each under its subentry."""
-    for subentry in entry.subentries.values():
-        if subentry.subentry_type == SUBENTRY_POINT and subentry.data[CONF_PLATFORM] == platform:
-            async_add_entities([entity(entry, subentry)], config_subentry_id=subentry.subentry_id)
 
 
 def device_key(entry: PlcBridgeConfigEntry) -> str:
@@ -149,10 +125,10 @@ class PlcEntity(CoordinatorEntity[PlcCoordinator]):
     _attr_has_entity_name = True
 
     def __init__(self, entry: PlcBridgeConfigEntry, key: str) -> None:
-        """Attach the entity to the entry's coordinator and device."""
+        """Attach the entity to the entry's coordinator and the PLC's device."""
         super().__init__(entry.runtime_data.coordinator)
         self._attr_unique_id = f"{device_key(entry)}_{key}"
-        self._attr_device_info = device_info(entry)
+        self._attr_device_info = DeviceInfo(identifiers={(DOMAIN, device_key(entry))})
         self._shown: tuple[bool, Any] | None = None
 
     def observed(self) -> Any:
@@ -178,9 +154,12 @@ class PlcPointEntity(PlcEntity):
 
     entity_description: PlcPointDescription
 
-    def __init__(self, entry: PlcBridgeConfigEntry, description: PlcPointDescription) -> None:
-        """Bind the entity to its point (the description's key is the subentry id)."""
+    def __init__(
+        self, entry: PlcBridgeConfigEntry, config: PointConfig, description: PlcPointDescription
+    ) -> None:
+        """Bind the entity to its point (the description's key is the point id) and device."""
         super().__init__(entry, description.key)
+        self._attr_device_info = DeviceInfo(identifiers={(DOMAIN, config.subentry_id)})
         self.entity_description = description
 
     @property

@@ -10,7 +10,6 @@ from homeassistant.components.number import (
     NumberEntityDescription,
     NumberMode,
 )
-from homeassistant.config_entries import ConfigSubentry
 from homeassistant.const import CONF_UNIT_OF_MEASUREMENT
 from homeassistant.core import HomeAssistant
 from homeassistant.helpers.entity_platform import AddConfigEntryEntitiesCallback
@@ -20,11 +19,11 @@ from .coordinator import PlcBridgeConfigEntry
 from .entity import (
     PlcPointDescription,
     PlcPointEntity,
-    add_point_entities,
     device_class,
     point_fields,
 )
 from .plc import ValueKind
+from .points import PointConfig
 
 PARALLEL_UPDATES = 1
 
@@ -39,16 +38,16 @@ class PlcNumberDescription(NumberEntityDescription, PlcPointDescription):
     """A point shown as a number."""
 
 
-def point_number(entry: PlcBridgeConfigEntry, subentry: ConfigSubentry) -> PlcNumber:
+def point_number(entry: PlcBridgeConfigEntry, config: PointConfig) -> PlcNumber:
     """Return the number of a point; the step defaults to one raw count for integers."""
-    fields = point_fields(entry, subentry)
-    data = subentry.data
+    fields = point_fields(entry, config)
+    data = config.data
     step = data.get(CONF_STEP) or (
         abs(fields["scale"]) if fields["kind"] is ValueKind.INTEGER else 0.001
     )
     description = PlcNumberDescription(
         **fields,
-        device_class=device_class(subentry, NumberDeviceClass),
+        device_class=device_class(config, NumberDeviceClass),
         native_unit_of_measurement=data.get(CONF_UNIT_OF_MEASUREMENT),
         native_min_value=float(data.get(CONF_MIN, DEFAULT_MIN)),
         native_max_value=float(data.get(CONF_MAX, DEFAULT_MAX)),
@@ -56,7 +55,7 @@ def point_number(entry: PlcBridgeConfigEntry, subentry: ConfigSubentry) -> PlcNu
         # A box, not a slider: dragging would write every value it passes to the machine.
         mode=NumberMode.BOX,
     )
-    return PlcNumber(entry, description)
+    return PlcNumber(entry, config, description)
 
 
 async def async_setup_entry(
@@ -65,7 +64,7 @@ async def async_setup_entry(
     async_add_entities: AddConfigEntryEntitiesCallback,
 ) -> None:
     """Add a number for each number point."""
-    add_point_entities(entry, async_add_entities, "number", point_number)
+    entry.runtime_data.points.async_setup_platform("number", point_number, async_add_entities)
 
 
 class PlcNumber(PlcPointEntity, NumberEntity):

@@ -14,8 +14,8 @@ from homeassistant.helpers.selector import (
 import voluptuous as vol
 
 from .const import CONF_VENDOR
-from .coordinator import entry_points
 from .plc.vendors import client_class
+from .points import entry_points
 
 SCHEMA = vol.Schema(
     {
@@ -38,7 +38,7 @@ class PlcBridgeOptionsFlow(OptionsFlow):
     async def async_step_init(self, user_input: dict[str, Any] | None = None) -> ConfigFlowResult:
         """Ask for the poll interval; refuse one shorter than the vendor's advised rate allows."""
         client = client_class(self.config_entry.data[CONF_VENDOR])
-        points = list(dict.fromkeys(entry_points(self.config_entry).values()))
+        points = list(dict.fromkeys(c.point for c in entry_points(self.config_entry).values()))
         minimum = client.min_scan_interval(points)
         errors: dict[str, str] = {}
         if user_input is not None:

@@ -3,19 +3,21 @@
 from __future__ import annotations
 
 from collections.abc import Collection
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from homeassistant.components.repairs import ConfirmRepairFlow, RepairsFlow
 from homeassistant.config_entries import ConfigEntry, ConfigEntryState
 from homeassistant.const import CONF_HOST, CONF_PORT
 from homeassistant.core import HomeAssistant, callback
-from homeassistant.data_entry_flow import FlowResult
 from homeassistant.helpers import issue_registry as ir
 import voluptuous as vol
 
 from .const import CONF_FINGERPRINT, DOMAIN
 from .plc import PlcError
 from .plc.http import fetch_fingerprint, format_fingerprint
+
+if TYPE_CHECKING:  # named since Home Assistant 2026.10; only annotations use it
+    from homeassistant.components.repairs import RepairsFlowResult
 
 TLS_OFF = "tls_off"
 CERTIFICATE_CHANGED = "certificate_changed"
@@ -51,43 +53,48 @@ def async_clear_issue(hass: HomeAssistant, entry: ConfigEntry[Any], key: str) ->
     ir.async_delete_issue(hass, DOMAIN, issue_id(entry, key))
 
 
-def point_issue_id(entry: ConfigEntry[Any], subentry_id: str) -> str:
+def point_issue_id(entry: ConfigEntry[Any], point_id: str) -> str:
     """Return the id of a point's unknown-address issue."""
-    return f"{UNKNOWN_ADDRESS}_{entry.entry_id}_{subentry_id}"
+    return f"{UNKNOWN_ADDRESS}_{entry.entry_id}_{point_id}"
 
 
 @callback
 def async_raise_point_issue(
-    hass: HomeAssistant, entry: ConfigEntry[Any], subentry_id: str, address: str, error: str
+    hass: HomeAssistant,
+    entry: ConfigEntry[Any],
+    point_id: str,
+    *,
+    name: str,
+    address: str,
+    error: str,
 ) -> None:
     """Create (or update) the issue of a point the PLC does not know."""
-    subentry = entry.subentries.get(subentry_id)
     ir.async_create_issue(
         hass,
         DOMAIN,
-        point_issue_id(entry, subentry_id),
+        point_issue_id(entry, point_id),
         is_fixable=False,
         severity=ir.IssueSeverity.WARNING,
         translation_key=UNKNOWN_ADDRESS,
         translation_placeholders={
             "title": entry.title,
-            "point": subentry.title if subentry else subentry_id,
+            "point": name,
             "address": address,
             "error": error,
         },
-        data={"entry_id": entry.entry_id, "subentry_id": subentry_id},
+        data={"entry_id": entry.entry_id, "point_id": point_id},
     )
 
 
 @callback
-def async_clear_point_issue(hass: HomeAssistant, entry: ConfigEntry[Any], subentry_id: str) -> None:
+def async_clear_point_issue(hass: HomeAssistant, entry: ConfigEntry[Any], point_id: str) -> None:
     """Delete a point's issue, if it is there."""
-    ir.async_delete_issue(hass, DOMAIN, point_issue_id(entry, subentry_id))
+    ir.async_delete_issue(hass, DOMAIN, point_issue_id(entry, point_id))
 
 
 @callback
 def async_point_issues(hass: HomeAssistant, entry: ConfigEntry[Any]) -> set[str]:
-    """Return the subentry ids of the entry's points that have an unknown-address issue."""
+    """Return the ids of the entry's points that have an unknown-address issue."""
     prefix = point_issue_id(entry, "")
     return {
         issue[len(prefix) :]
@@ -100,9 +107,9 @@ def async_point_issues(hass: HomeAssistant, entry: ConfigEntry[Any]) -> set[str]
 def async_clear_point_issues(
     hass: HomeAssistant, entry: ConfigEntry[Any], keep: Collection[str] = ()
 ) -> None:
-    """Delete the point issues of an entry, except those of the subentry ids in `keep`."""
-    for subentry_id in async_point_issues(hass, entry) - set(keep):
-        async_clear_point_issue(hass, entry, subentry_id)
+    """Delete the point issues of an entry, except those of the point ids in `keep`."""
+    for point_id in async_point_issues(hass, entry) - set(keep):
+        async_clear_point_issue(hass, entry, point_id)
 
 
 class CertificateRepairFlow(RepairsFlow):
@@ -113,11 +120,13 @@ class CertificateRepairFlow(RepairsFlow):
         self._entry_id = entry_id
         self._fingerprint = ""
 
-    async def async_step_init(self, user_input: dict[str, Any] | None = None) -> FlowResult:
+    async def async_step_init(self, user_input: dict[str, Any] | None = None) -> RepairsFlowResult:
         """Start with the certificate check."""
         return await self.async_step_confirm()
 
-    async def async_step_confirm(self, user_input: dict[str, Any] | None = None) -> FlowResult:
+    async def async_step_confirm(
+        self, user_input: dict[str, Any] | None = None
+    ) -> RepairsFlowResult:
         """Fetch and show the new fingerprint; pin exactly the one shown once confirmed."""
         entry = self.hass.config_entries.async_get_entry(self._entry_id)
         if entry is None:

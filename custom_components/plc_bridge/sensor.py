@@ -14,7 +14,6 @@ from homeassistant.components.sensor import (
     SensorEntityDescription,
     SensorStateClass,
 )
-from homeassistant.config_entries import ConfigSubentry
 from homeassistant.const import CONF_UNIT_OF_MEASUREMENT, EntityCategory
 from homeassistant.core import HomeAssistant
 from homeassistant.helpers.entity_platform import AddConfigEntryEntitiesCallback
@@ -24,11 +23,11 @@ from .entity import (
     PlcEntity,
     PlcPointDescription,
     PlcPointEntity,
-    add_point_entities,
     device_class,
     point_fields,
 )
 from .plc import PlcStatus, ValueKind
+from .points import PointConfig
 
 PARALLEL_UPDATES = 0
 
@@ -123,21 +122,21 @@ def extra_description(key: str) -> PlcStatusDescription:
     )
 
 
-def point_sensor(entry: PlcBridgeConfigEntry, subentry: ConfigSubentry) -> PlcPointSensor:
+def point_sensor(entry: PlcBridgeConfigEntry, config: PointConfig) -> PlcPointSensor:
     """Return the sensor of a point: numbers keep unit and classes, other values show as text."""
-    fields = point_fields(entry, subentry)
+    fields = point_fields(entry, config)
     extra: dict[str, Any] = {}
     if fields["kind"] in NUMERIC or fields["kind"] is None:
         extra = {
-            "native_unit_of_measurement": subentry.data.get(CONF_UNIT_OF_MEASUREMENT),
-            "device_class": device_class(subentry, SensorDeviceClass),
-            "state_class": subentry.data.get(CONF_STATE_CLASS),
+            "native_unit_of_measurement": config.data.get(CONF_UNIT_OF_MEASUREMENT),
+            "device_class": device_class(config, SensorDeviceClass),
+            "state_class": config.data.get(CONF_STATE_CLASS),
         }
         if extra["state_class"]:
             extra["state_class"] = SensorStateClass(extra["state_class"])
     elif fields["kind"] is ValueKind.DATETIME:
         extra = {"device_class": SensorDeviceClass.TIMESTAMP}
-    return PlcPointSensor(entry, PlcSensorDescription(**fields, **extra))
+    return PlcPointSensor(entry, config, PlcSensorDescription(**fields, **extra))
 
 
 async def async_setup_entry(
@@ -152,7 +151,7 @@ async def async_setup_entry(
         descriptions.append(CLOCK)
     descriptions += [extra_description(key) for key in sorted(status.extra)]
     async_add_entities(PlcStatusSensor(entry, description) for description in descriptions)
-    add_point_entities(entry, async_add_entities, "sensor", point_sensor)
+    entry.runtime_data.points.async_setup_platform("sensor", point_sensor, async_add_entities)
 
 
 class PlcPointSensor(PlcPointEntity, SensorEntity):

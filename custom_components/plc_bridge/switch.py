@@ -5,12 +5,11 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Any
 
-from homeassistant.components.switch import (
+from homeassistant.components.switch import (  # type: ignore[attr-defined]
     SwitchDeviceClass,
     SwitchEntity,
     SwitchEntityDescription,
 )
-from homeassistant.config_entries import ConfigSubentry
 from homeassistant.core import HomeAssistant
 from homeassistant.helpers.entity_platform import AddConfigEntryEntitiesCallback
 
@@ -18,11 +17,11 @@ from .coordinator import PlcBridgeConfigEntry
 from .entity import (
     PlcPointDescription,
     PlcPointEntity,
-    add_point_entities,
     device_class,
     point_fields,
 )
 from .plc import ValueKind
+from .points import PointConfig
 
 PARALLEL_UPDATES = 1
 
@@ -32,12 +31,12 @@ class PlcSwitchDescription(SwitchEntityDescription, PlcPointDescription):
     """A point shown as a switch."""
 
 
-def point_switch(entry: PlcBridgeConfigEntry, subentry: ConfigSubentry) -> PlcSwitch:
+def point_switch(entry: PlcBridgeConfigEntry, config: PointConfig) -> PlcSwitch:
     """Return the switch of a point."""
     description = PlcSwitchDescription(
-        **point_fields(entry, subentry), device_class=device_class(subentry, SwitchDeviceClass)
+        **point_fields(entry, config), device_class=device_class(config, SwitchDeviceClass)
     )
-    return PlcSwitch(entry, description)
+    return PlcSwitch(entry, config, description)
 
 
 async def async_setup_entry(
@@ -46,7 +45,7 @@ async def async_setup_entry(
     async_add_entities: AddConfigEntryEntitiesCallback,
 ) -> None:
     """Add a switch for each switch point."""
-    add_point_entities(entry, async_add_entities, "switch", point_switch)
+    entry.runtime_data.points.async_setup_platform("switch", point_switch, async_add_entities)
 
 
 class PlcSwitch(PlcPointEntity, SwitchEntity):

@@ -5,12 +5,12 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from homeassistant.components.text import TextEntity, TextEntityDescription
-from homeassistant.config_entries import ConfigSubentry
 from homeassistant.core import HomeAssistant
 from homeassistant.helpers.entity_platform import AddConfigEntryEntitiesCallback
 
 from .coordinator import PlcBridgeConfigEntry
-from .entity import PlcPointDescription, PlcPointEntity, add_point_entities, point_fields
+from .entity import PlcPointDescription, PlcPointEntity, point_fields
+from .points import PointConfig
 
 PARALLEL_UPDATES = 1
 
@@ -20,9 +20,9 @@ class PlcTextDescription(TextEntityDescription, PlcPointDescription):
     """A point shown as an editable text."""
 
 
-def point_text(entry: PlcBridgeConfigEntry, subentry: ConfigSubentry) -> PlcText:
+def point_text(entry: PlcBridgeConfigEntry, config: PointConfig) -> PlcText:
     """Return the text entity of a point; the vendor's check refuses what does not fit."""
-    return PlcText(entry, PlcTextDescription(**point_fields(entry, subentry), native_max=255))
+    return PlcText(entry, config, PlcTextDescription(**point_fields(entry, config), native_max=255))
 
 
 async def async_setup_entry(
@@ -31,7 +31,7 @@ async def async_setup_entry(
     async_add_entities: AddConfigEntryEntitiesCallback,
 ) -> None:
     """Add a text entity for each text point."""
-    add_point_entities(entry, async_add_entities, "text", point_text)
+    entry.runtime_data.points.async_setup_platform("text", point_text, async_add_entities)
 
 
 class PlcText(PlcPointEntity, TextEntity):

@@ -1,0 +1,165 @@
+"""The points of a PLC's device subentries, their devices, and entities that follow edits.
+
+A device subentry holds any number of points; each point is one entity of the subentry's own
+device, which hangs off the PLC's device. Adding, editing or removing points touches only the
+entities of those points: the others keep their state, and the entry is not reloaded.
+"""
+
+from __future__ import annotations
+
+import asyncio
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any
+
+from homeassistant.const import CONF_NAME
+from homeassistant.core import HomeAssistant, callback
+from homeassistant.helpers import device_registry as dr, entity_registry as er
+from homeassistant.helpers.entity import Entity
+from homeassistant.helpers.entity_platform import AddConfigEntryEntitiesCallback
+
+from .const import (
+    CONF_ADDRESS,
+    CONF_AREA,
+    CONF_DATA_TYPE,
+    CONF_PLATFORM,
+    CONF_POINTS,
+    CONF_READ_ONLY,
+    DOMAIN,
+    SUBENTRY_DEVICE,
+)
+from .plc import Point
+
+if TYPE_CHECKING:
+    from .coordinator import PlcBridgeConfigEntry
+
+
+@dataclass(frozen=True, slots=True)
+class PointConfig:
+    """One configured point: where it is stored and what the user set for it."""
+
+    point_id: str
+    subentry_id: str
+    data: Mapping[str, Any]
+
+    @property
+    def point(self) -> Point:
+        """The PLC address and data type the point reads."""
+        return Point(self.data[CONF_ADDRESS], self.data[CONF_DATA_TYPE])
+
+    @property
+    def platform(self) -> str:
+        """The entity platform that shows the point."""
+        return str(self.data[CONF_PLATFORM])
+
+    @property
+    def name(self) -> str:
+        """The point's (entity's) name."""
+        return str(self.data[CONF_NAME])
+
+    @property
+    def read_only(self) -> bool:
+        """True when Home Assistant must never write the point."""
+        return bool(self.data.get(CONF_READ_ONLY, False))
+
+
+def entry_points(entry: PlcBridgeConfigEntry) -> dict[str, PointConfig]:
+    """Return every point of the entry's device subentries, by point id."""
+    return {
+        point_id: PointConfig(point_id, subentry.subentry_id, data)
+        for subentry in entry.subentries.values()
+        if subentry.subentry_type == SUBENTRY_DEVICE
+        for point_id, data in subentry.data.get(CONF_POINTS, {}).items()
+    }
+
+
+type PointFactory = Callable[[PlcBridgeConfigEntry, PointConfig], Entity]
+
+
+@callback
+def async_register_devices(hass: HomeAssistant, entry: PlcBridgeConfigEntry, plc: str) -> None:
+    """Create or update the device of every device subentry, hanging off the PLC's device.
+
+    The link and the area are set through the registry itself, which both the oldest and the
+    current supported Home Assistant take the same way; entities then name only identifiers.
+    """
+    registry = dr.async_get(hass)
+    known = {
+        identifier
+        for device in dr.async_entries_for_config_entry(registry, entry.entry_id)
+        for identifier in device.identifiers
+    }
+    for subentry in entry.subentries.values():
+        if subentry.subentry_type != SUBENTRY_DEVICE:
+            continue
+        identifiers = {(DOMAIN, subentry.subentry_id)}
+        new = not identifiers & known
+        device = registry.async_get_or_create(
+            config_entry_id=entry.entry_id,
+            config_subentry_id=subentry.subentry_id,
+            identifiers=identifiers,
+            name=subentry.title,
+        )
+        changes: dict[str, Any] = {}
+        if device.via_device_id != plc:
+            changes["via_device_id"] = plc
+        if new and subentry.data.get(CONF_AREA):
+            changes["area_id"] = subentry.data[CONF_AREA]
+        if not new and device.name != subentry.title:
+            changes["name"] = subentry.title
+        if changes:
+            registry.async_update_device(device.id, **changes)
+
+
+class PointEntities:
+    """The point entities of one loaded entry, kept in step with its device subentries."""
+
+    def __init__(self, entry: PlcBridgeConfigEntry) -> None:
+        """Start from the points the entry holds now; platforms register as they set up."""
+        self._entry = entry
+        self.configs = entry_points(entry)
+        self._platforms: dict[str, tuple[PointFactory, AddConfigEntryEntitiesCallback]] = {}
+        self._entities: dict[str, Entity] = {}
+        self._lock = asyncio.Lock()
+
+    @callback
+    def async_setup_platform(
+        self, platform: str, factory: PointFactory, add: AddConfigEntryEntitiesCallback
+    ) -> None:
+        """Remember how a platform makes and adds entities, and add its points."""
+        self._platforms[platform] = (factory, add)
+        self._add([config for config in self.configs.values() if config.platform == platform])
+
+    def _add(self, configs: list[PointConfig]) -> None:
+        """Make the entities of these points and add each under its device subentry."""
+        groups: dict[tuple[str, str], list[Entity]] = {}
+        for config in configs:
+            if config.platform not in self._platforms:
+                continue
+            entity = self._platforms[config.platform][0](self._entry, config)
+            self._entities[config.point_id] = entity
+            groups.setdefault((config.platform, config.subentry_id), []).append(entity)
+        for (platform, subentry_id), entities in groups.items():
+            self._platforms[platform][1](entities, config_subentry_id=subentry_id)
+
+    async def async_sync(self, hass: HomeAssistant, plc_device: str) -> None:
+        """Follow edited device subentries: only the points that changed get new entities."""
+        async with self._lock:
+            entry = self._entry
+            new = entry_points(entry)
+            old = self.configs
+            gone = [pid for pid, config in old.items() if new.get(pid) != config]
+            registry = er.async_get(hass)
+            for point_id in gone:
+                entity = self._entities.pop(point_id, None)
+                if entity is None or entity.hass is None:
+                    continue
+                same_place = point_id in new and new[point_id].platform == old[point_id].platform
+                if not same_place and registry.async_get(entity.entity_id):
+                    registry.async_remove(entity.entity_id)
+                elif same_place:
+                    await entity.async_remove()  # keeps its registry entry: same id, history
+            self.configs = new
+            async_register_devices(hass, entry, plc_device)
+            await entry.runtime_data.coordinator.async_set_points(new)
+            self._add([config for pid, config in new.items() if old.get(pid) != config])
