@@ -42,7 +42,8 @@ async def test_one_read_per_32_points(
     await poll(hass, freezer)
     assert s7_smart_sim.calls["read"] - before == math.ceil(count / 32)
     assert entry.runtime_data.client.metrics.last_poll_requests == math.ceil(count / 32)
-    assert len(hass.states.async_entity_ids("sensor")) == count + 1  # and the operating mode
+    # and the operating mode and the clock drift
+    assert len(hass.states.async_entity_ids("sensor")) == count + 2
 
 
 async def test_points_read_once(

@@ -32,6 +32,7 @@ def platforms() -> list[Platform]:
 
 
 @current_release_only
+@pytest.mark.usefixtures("entity_registry_enabled_by_default")
 async def test_snapshot(
     hass: HomeAssistant,
     setup_integration: MockConfigEntry,
@@ -55,6 +56,7 @@ async def test_set_clock_point(
     assert hass.states.get(CLOCK).state == "2026-07-04T18:00:00+00:00"
 
 
+@pytest.mark.usefixtures("entity_registry_enabled_by_default")
 async def test_plc_clock_entity(
     hass: HomeAssistant,
     s7_smart_sim: S7SmartSimulator,

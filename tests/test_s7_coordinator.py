@@ -47,7 +47,7 @@ async def test_requests_per_poll_as_planned(
     assert sim.requests - before == planned
     assert sim.calls["szl"] >= 1
     assert client.metrics.last_poll_requests == planned
-    values = [s.state for s in hass.states.async_all("sensor") if s.entity_id != MODE]
+    values = [s.state for s in hass.states.async_all("sensor") if "point_" in s.entity_id]
     assert values == ["0.0"] * 30
 
 

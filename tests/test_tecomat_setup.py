@@ -7,6 +7,7 @@ from homeassistant.config_entries import ConfigEntryState
 from homeassistant.const import STATE_OFF, STATE_ON, STATE_UNAVAILABLE
 from homeassistant.core import HomeAssistant
 from homeassistant.helpers import entity_registry as er, issue_registry as ir
+import pytest
 from pytest_homeassistant_custom_component.common import MockConfigEntry
 from pytest_homeassistant_custom_component.components.diagnostics import (
     get_diagnostics_for_config_entry,
@@ -35,6 +36,8 @@ async def test_live_values(hass: HomeAssistant, tecomat_entry: MockConfigEntry) 
         for state in hass.states.async_all()
         if state.entity_id != "sensor.fx2_cp2080_operating_mode"
     }
+    # The clock entity is off by default (its state changes at every read); its drift is on.
+    assert int(states.pop("sensor.fx2_cp2080_clock_drift")) < -200_000_000  # a 2018 clock
     assert states == {
         INSIDE: "22.1",
         "number.fx2_cp2080_requested_temperature": "23.0",
@@ -46,8 +49,7 @@ async def test_live_values(hass: HomeAssistant, tecomat_entry: MockConfigEntry) 
         "sensor.fx2_cp2080_element": "1.3",
         "text.fx2_cp2080_greeting": "Hello everybody",
         "datetime.fx2_cp2080_stamp": "2014-05-11T18:22:33+00:00",
-        # GetInfo (3.2): the clock (settable: the entry names a clock variable), the program.
-        "datetime.fx2_cp2080_plc_clock": "2018-02-01T00:50:39+00:00",
+        # GetInfo (3.2): the program.
         "sensor.fx2_cp2080_program": "DOC_TECOAPI v1.0",
         "sensor.fx2_cp2080_program_compiled": "2018-01-19T00:39:38+00:00",
     }
@@ -159,10 +161,11 @@ async def test_unknown_variable_from_the_start(
     assert not issue_registry.issues
 
 
+@pytest.mark.usefixtures("entity_registry_enabled_by_default")
 async def test_clock_read_only_without_clock_variable(
     hass: HomeAssistant, tecomat_sim: TecomatSimulator, entity_registry: er.EntityRegistry
 ) -> None:
-    """No clock variable: TecoApi cannot set the clock, so it is a timestamp sensor."""
+    """No clock variable: a timestamp sensor; once one is named, a datetime replaces it."""
     entry = make_tecomat_entry(hass, tecomat_sim, vendor_options={"auth": "digest"})
     assert await hass.config_entries.async_setup(entry.entry_id)
     await hass.async_block_till_done()
@@ -172,6 +175,22 @@ async def test_clock_read_only_without_clock_variable(
     assert clock.attributes["device_class"] == "timestamp"
     registered = entity_registry.async_get("sensor.fx2_cp2080_plc_clock")
     assert registered.entity_category is er.EntityCategory.DIAGNOSTIC
+
+    options = {"auth": "digest", "clock_variable": "setTime"}
+    hass.config_entries.async_update_entry(entry, data={**entry.data, "vendor_options": options})
+    await hass.async_block_till_done()
+    assert entity_registry.async_get("sensor.fx2_cp2080_plc_clock") is None
+    assert hass.states.get("sensor.fx2_cp2080_plc_clock") is None
+    assert hass.states.get("datetime.fx2_cp2080_plc_clock").state == "2018-02-01T00:50:39+00:00"
+
+
+async def test_clock_entities_off_by_default(
+    hass: HomeAssistant, tecomat_entry: MockConfigEntry, entity_registry: er.EntityRegistry
+) -> None:
+    """The clock's state changes at every read: its entity is disabled until the user wants it."""
+    registered = entity_registry.async_get("datetime.fx2_cp2080_plc_clock")
+    assert registered is not None
+    assert registered.disabled_by is er.RegistryEntryDisabler.INTEGRATION
 
 
 async def test_operating_mode(

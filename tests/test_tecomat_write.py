@@ -131,6 +131,7 @@ async def test_datetime_writes_dt(
     assert hass.states.get(STAMP).state == "2026-03-01T12:30:15+00:00"
 
 
+@pytest.mark.usefixtures("entity_registry_enabled_by_default")
 async def test_sync_clock_writes_clock_variable(
     hass: HomeAssistant, tecomat_sim: TecomatSimulator, tecomat_entry: MockConfigEntry
 ) -> None:

@@ -8,8 +8,9 @@ from enum import StrEnum
 from typing import Any
 
 from homeassistant.const import CONF_DEVICE_CLASS
-from homeassistant.core import callback
+from homeassistant.core import HomeAssistant, callback
 from homeassistant.exceptions import ServiceValidationError
+from homeassistant.helpers import entity_registry as er
 from homeassistant.helpers.device_registry import CONNECTION_NETWORK_MAC, DeviceInfo, format_mac
 from homeassistant.helpers.entity import EntityDescription
 from homeassistant.helpers.update_coordinator import CoordinatorEntity
@@ -90,6 +91,17 @@ def device_class[E: StrEnum](config: PointConfig, enum: type[E]) -> E | None:
         return enum(config.data[CONF_DEVICE_CLASS])
     except (KeyError, ValueError):
         return None
+
+
+@callback
+def async_remove_entity(
+    hass: HomeAssistant, entry: PlcBridgeConfigEntry, platform: str, key: str
+) -> None:
+    """Remove a PLC entity this setup no longer makes, so it is not left behind unavailable."""
+    registry = er.async_get(hass)
+    entity_id = registry.async_get_entity_id(platform, DOMAIN, f"{device_key(entry)}_{key}")
+    if entity_id is not None:
+        registry.async_remove(entity_id)
 
 
 def device_key(entry: PlcBridgeConfigEntry) -> str:

@@ -14,15 +14,17 @@ from homeassistant.components.sensor import (
     SensorEntityDescription,
     SensorStateClass,
 )
-from homeassistant.const import CONF_UNIT_OF_MEASUREMENT, EntityCategory
+from homeassistant.const import CONF_UNIT_OF_MEASUREMENT, EntityCategory, UnitOfTime
 from homeassistant.core import HomeAssistant
 from homeassistant.helpers.entity_platform import AddConfigEntryEntitiesCallback
+from homeassistant.util import dt as dt_util
 
 from .coordinator import PlcBridgeConfigEntry
 from .entity import (
     PlcEntity,
     PlcPointDescription,
     PlcPointEntity,
+    async_remove_entity,
     device_class,
     point_fields,
 )
@@ -83,9 +85,21 @@ CLOCK = PlcStatusDescription(
     key="plc_clock",
     translation_key="plc_clock",
     device_class=SensorDeviceClass.TIMESTAMP,
+    # Its state changes at every clock read: off by default, the drift below says enough.
+    entity_registry_enabled_default=False,
     value_fn=lambda status: status.clock,
 )
 """The PLC clock, read only: for PLCs whose clock cannot be set (else it is a datetime)."""
+DRIFT = SensorEntityDescription(
+    key="clock_drift",
+    translation_key="clock_drift",
+    device_class=SensorDeviceClass.DURATION,
+    native_unit_of_measurement=UnitOfTime.SECONDS,
+    state_class=SensorStateClass.MEASUREMENT,
+    entity_category=EntityCategory.DIAGNOSTIC,
+)
+DRIFT_STEP = 2
+"""Seconds the drift must move before it is shown anew: PLC clocks tick in whole seconds."""
 COMPILED = PlcStatusDescription(
     key="extra_program_compiled",
     translation_key="program_compiled",
@@ -147,10 +161,16 @@ async def async_setup_entry(
     """Add the point sensors, and a diagnostic sensor for each status field the PLC reports."""
     status = entry.runtime_data.coordinator.data.status
     descriptions = [d for d in STATUS if REPORTED[d.key](status)]
-    if status.clock is not None and not entry.runtime_data.client.can_set_clock:
+    settable = entry.runtime_data.client.can_set_clock
+    if status.clock is not None and not settable:
         descriptions.append(CLOCK)
+    elif settable:  # a clock variable was named since: the read-only clock goes
+        async_remove_entity(hass, entry, "sensor", CLOCK.key)
     descriptions += [extra_description(key) for key in sorted(status.extra)]
-    async_add_entities(PlcStatusSensor(entry, description) for description in descriptions)
+    entities: list[SensorEntity] = [PlcStatusSensor(entry, d) for d in descriptions]
+    if status.clock is not None:
+        entities.append(PlcClockDrift(entry))
+    async_add_entities(entities)
     entry.runtime_data.points.async_setup_platform("sensor", point_sensor, async_add_entities)
 
 
@@ -185,3 +205,40 @@ class PlcStatusSensor(PlcEntity, SensorEntity):
     def observed(self) -> Any:
         """The status field of the last poll."""
         return self.native_value
+
+
+class PlcClockDrift(PlcEntity, SensorEntity):
+    """How far the PLC clock is ahead of Home Assistant's, in whole seconds.
+
+    Taken at each fresh clock read (vendors read the clock at their own pace) and shown anew
+    only when it moves by DRIFT_STEP or more: a PLC clock that keeps time writes no state.
+    """
+
+    entity_description = DRIFT
+
+    def __init__(self, entry: PlcBridgeConfigEntry) -> None:
+        """Bind the sensor to the PLC's clock."""
+        super().__init__(entry, DRIFT.key)
+        self._clock: datetime | None = None
+        self._drift: int | None = None
+        self._measure()
+
+    def _measure(self) -> None:
+        """Take the drift from a clock read newer than the last one."""
+        clock = self.coordinator.data.status.clock
+        if clock is None or clock == self._clock:
+            return
+        self._clock = clock
+        drift = round((clock - dt_util.now()).total_seconds())
+        if self._drift is None or abs(drift - self._drift) >= DRIFT_STEP:
+            self._drift = drift
+
+    @property
+    def native_value(self) -> int | None:
+        """Return the drift shown."""
+        return self._drift
+
+    def observed(self) -> Any:
+        """The drift shown, updated from the last poll."""
+        self._measure()
+        return self._drift
