@@ -21,8 +21,6 @@ def make_certificate(common_name: str) -> tuple[bytes, bytes]:
     Like an S7-200 SMART in "internal certificate" mode: the device's own CA, unknown to any
     trust store, so clients must pin or turn verification off.
     """
-    # Looked up at call time: under a test's frozen clock, cryptography checks for the frozen
-    # datetime class, which a `from datetime import datetime` taken at import is not.
     now = dt.datetime.now(dt.UTC)
     ca_key = ec.generate_private_key(ec.SECP256R1())
     ca_name = x509.Name([x509.NameAttribute(NameOID.COMMON_NAME, f"{common_name} CA")])
@@ -63,6 +61,12 @@ def make_certificate(common_name: str) -> tuple[bytes, bytes]:
         serialization.NoEncryption(),
     )
     return chain, key_pem
+
+
+# cryptography's Rust core remembers the datetime class it first sees; were that first
+# certificate made under a test's frozen clock, it would take the frozen class for the real one
+# and refuse real datetimes ever after. Make the first one now, at import, with the real class.
+make_certificate("localhost")
 
 
 class HttpSimulator:

@@ -5,9 +5,12 @@ And no test passes while Home Assistant reports a deprecated use by the integrat
 
 from __future__ import annotations
 
-from collections.abc import Generator
+import asyncio
+from collections.abc import AsyncGenerator, Generator
+from typing import Any
 
 from homeassistant.const import MAJOR_VERSION, MINOR_VERSION
+from homeassistant.core import HomeAssistant
 import pytest
 from pytest_homeassistant_custom_component.syrupy import HomeAssistantSnapshotExtension
 from syrupy.assertion import SnapshotAssertion
@@ -45,6 +48,29 @@ current_release_only = pytest.mark.skipif(
     reason="snapshots hold the current release's registry fields; older releases have fewer",
 )
 """Mark for snapshot tests: the snapshots are taken on the current Home Assistant."""
+
+HANDSHAKE_REFUSED = "Error on transport creation for incoming connection"
+
+
+@pytest.fixture(autouse=True)
+async def refused_handshakes_are_expected(hass: HomeAssistant) -> AsyncGenerator[None]:
+    """A TLS handshake a client refuses (a certificate not trusted) is no error of the test.
+
+    In debug mode, as Home Assistant's tests run the loop, asyncio reports it for a server's
+    incoming connection; the simulator is the server here, and the refusal is what the
+    verify and pin tests ask for. Everything else still fails the test.
+    """
+    loop = asyncio.get_running_loop()
+    handler = loop.get_exception_handler()
+
+    def filtered(loop: asyncio.AbstractEventLoop, context: dict[str, Any]) -> None:
+        if context.get("message") != HANDSHAKE_REFUSED and handler is not None:
+            handler(loop, context)
+
+    loop.set_exception_handler(filtered)
+    yield
+    loop.set_exception_handler(handler)
+
 
 DEPRECATED_USE = "Detected that custom integration 'plc_bridge'"
 

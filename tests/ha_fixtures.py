@@ -49,7 +49,6 @@ SCAN_INTERVAL = 10.0
 ENTRY_ID = "01JPLCBR1DGE0000000000TEST"
 UNIQUE_ID = "plc-bridge-test"
 CLOCK = datetime(2026, 3, 1, 12, 30, 0)  # the simulator's clock (naive PLC local time)
-NOW = "2026-03-01T20:29:40+00:00"  # Home Assistant's time: the PLC clock is 20 s ahead
 
 
 DEVICE_ID = "boiler"
@@ -231,7 +230,6 @@ async def s7_smart_sim(
     Time is frozen from before any entry is set up until every entry is unloaded: the clients
     pace their requests by the monotonic clock, which the freezer moves by years.
     """
-    freezer.move_to(NOW)  # the clock drift the PLC shows is then always the same
     sim = S7SmartSimulator()
     sim.clock = CLOCK
     sim.set("VD100", 21.5, "float")

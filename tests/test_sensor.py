@@ -4,12 +4,15 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from dataclasses import replace
+from datetime import datetime, timedelta
 from unittest.mock import patch
+from zoneinfo import ZoneInfo
 
 from freezegun.api import FrozenDateTimeFactory
 from homeassistant.const import STATE_UNAVAILABLE, STATE_UNKNOWN, Platform
 from homeassistant.core import HomeAssistant
 from homeassistant.helpers import device_registry as dr, entity_registry as er
+from homeassistant.util import dt as dt_util
 import pytest
 from pytest_homeassistant_custom_component.common import MockConfigEntry, snapshot_platform
 from syrupy.assertion import SnapshotAssertion
@@ -22,6 +25,8 @@ from simulators.s7_smart import S7SmartSimulator
 
 from .conftest import current_release_only
 from .ha_fixtures import DEVICE_ID, make_entry, point, poll
+
+DRIFT = "sensor.s7_200_smart_clock_drift"
 
 
 @pytest.fixture
@@ -38,7 +43,37 @@ async def test_snapshot(
     entity_registry: er.EntityRegistry,
     snapshot: SnapshotAssertion,
 ) -> None:
+    # The drift depends on when the test runs (test_clock_drift_is_quiet checks it).
+    entity_registry.async_remove(DRIFT)
     await snapshot_platform(hass, entity_registry, snapshot, setup_integration.entry_id)
+
+
+async def test_clock_drift_is_quiet(
+    hass: HomeAssistant,
+    s7_smart_sim: S7SmartSimulator,
+    setup_integration: MockConfigEntry,
+    freezer: FrozenDateTimeFactory,
+) -> None:
+    """The drift is whole seconds; a clock keeping time writes no state, a jump of 2 s does."""
+    zone = ZoneInfo(hass.config.time_zone)
+
+    def plc_time(ahead: float) -> datetime:
+        """The PLC's local clock, `ahead` seconds ahead of Home Assistant's, whole seconds."""
+        moment = dt_util.now().astimezone(zone) + timedelta(seconds=ahead)
+        return moment.replace(tzinfo=None, microsecond=0)
+
+    s7_smart_sim.clock = plc_time(10 + 20.4)  # the poll below moves time by 10 s
+    await poll(hass, freezer)
+    state = hass.states.get(DRIFT)
+    assert state.state == "20"
+    assert state.attributes["unit_of_measurement"] == "s"
+    for ahead in (20.9, 19.6, 21.0):  # a clock keeping time, read at whatever fraction
+        s7_smart_sim.clock = plc_time(10 + ahead)
+        await poll(hass, freezer)
+        assert hass.states.get(DRIFT).last_updated == state.last_updated
+    s7_smart_sim.clock = plc_time(10 + 25)
+    await poll(hass, freezer)
+    assert hass.states.get(DRIFT).state == "25"
 
 
 async def test_status_fields_disabled_by_default(

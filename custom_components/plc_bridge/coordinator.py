@@ -4,11 +4,10 @@ from __future__ import annotations
 
 from collections import deque
 from collections.abc import Mapping
-from dataclasses import dataclass, replace
+from dataclasses import replace
 from datetime import datetime, timedelta
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
 
-from homeassistant.config_entries import ConfigEntry
 from homeassistant.const import CONF_SCAN_INTERVAL
 from homeassistant.core import HomeAssistant
 from homeassistant.exceptions import (
@@ -20,8 +19,8 @@ from homeassistant.helpers.update_coordinator import DataUpdateCoordinator, Upda
 
 from .const import CONF_TLS, DOMAIN, LOGGER
 from .helpers import check_can_write, translated_errors
+from .models import PlcBridgeConfigEntry, PlcRuntimeData
 from .plc import (
-    DeviceInfo,
     PlcAddressError,
     PlcAuthenticationError,
     PlcClient,
@@ -46,27 +45,14 @@ from .repairs import (
 )
 
 if TYPE_CHECKING:
-    from .points import PointConfig, PointEntities
+    from .points import PointConfig
+
+__all__ = ["PlcBridgeConfigEntry", "PlcCoordinator", "PlcRuntimeData", "link_error"]
 
 RENEWAL_WINDOW = 10
 """Polls over which session renewals are counted."""
 RENEWAL_LIMIT = 3
 """Renewals within the window that mean another client logs in with the same PLC user."""
-
-
-@dataclass(slots=True, kw_only=True)
-class PlcRuntimeData:
-    """What a loaded entry keeps: the connected client, its coordinator, what the PLC said."""
-
-    client: PlcClient
-    coordinator: PlcCoordinator
-    device: DeviceInfo
-    points: PointEntities
-    settings: tuple[dict[str, Any], dict[str, Any]]
-    """The entry's data and options at setup: a change of these reloads the entry."""
-
-
-type PlcBridgeConfigEntry = ConfigEntry[PlcRuntimeData]
 
 
 def link_error(

@@ -7,11 +7,11 @@ from contextlib import contextmanager
 from datetime import datetime
 from typing import Any
 
-from homeassistant.config_entries import ConfigEntry
 from homeassistant.core import HomeAssistant
 from homeassistant.exceptions import HomeAssistantError, ServiceValidationError
 
 from .const import DOMAIN
+from .models import PlcBridgeConfigEntry
 from .plc import (
     PlcAddressError,
     PlcAuthenticationError,
@@ -41,7 +41,7 @@ def invalid(key: str, err: PlcError | str) -> ServiceValidationError:
 
 
 @contextmanager
-def translated_errors(hass: HomeAssistant, entry: ConfigEntry[Any]) -> Iterator[None]:
+def translated_errors(hass: HomeAssistant, entry: PlcBridgeConfigEntry) -> Iterator[None]:
     """Raise the translated Home Assistant error for a protocol error of an action or a write."""
     try:
         yield
@@ -58,7 +58,7 @@ def translated_errors(hass: HomeAssistant, entry: ConfigEntry[Any]) -> Iterator[
         raise plc_error("communication_error", err) from err
 
 
-def check_can_write(entry: ConfigEntry[Any]) -> None:
+def check_can_write(entry: PlcBridgeConfigEntry) -> None:
     """Refuse a write before sending when the PLC said at connect time that its user may not."""
     if not entry.runtime_data.device.can_write:
         raise ServiceValidationError(

@@ -6,13 +6,14 @@ from collections.abc import Collection
 from typing import TYPE_CHECKING, Any
 
 from homeassistant.components.repairs import ConfirmRepairFlow, RepairsFlow
-from homeassistant.config_entries import ConfigEntry, ConfigEntryState
+from homeassistant.config_entries import ConfigEntryState
 from homeassistant.const import CONF_HOST, CONF_PORT
 from homeassistant.core import HomeAssistant, callback
 from homeassistant.helpers import issue_registry as ir
 import voluptuous as vol
 
 from .const import CONF_FINGERPRINT, DOMAIN
+from .models import PlcBridgeConfigEntry
 from .plc import PlcError
 from .plc.http import fetch_fingerprint, format_fingerprint
 
@@ -27,13 +28,13 @@ UNKNOWN_ADDRESS = "unknown_address"
 """One issue per point whose address the PLC does not know (typically a renamed variable)."""
 
 
-def issue_id(entry: ConfigEntry[Any], key: str) -> str:
+def issue_id(entry: PlcBridgeConfigEntry, key: str) -> str:
     """Return the id of an entry's issue: one of each kind per PLC."""
     return f"{key}_{entry.entry_id}"
 
 
 @callback
-def async_raise_issue(hass: HomeAssistant, entry: ConfigEntry[Any], key: str) -> None:
+def async_raise_issue(hass: HomeAssistant, entry: PlcBridgeConfigEntry, key: str) -> None:
     """Create (or keep) an issue of the entry; a changed certificate is fixable here."""
     ir.async_create_issue(
         hass,
@@ -48,12 +49,12 @@ def async_raise_issue(hass: HomeAssistant, entry: ConfigEntry[Any], key: str) ->
 
 
 @callback
-def async_clear_issue(hass: HomeAssistant, entry: ConfigEntry[Any], key: str) -> None:
+def async_clear_issue(hass: HomeAssistant, entry: PlcBridgeConfigEntry, key: str) -> None:
     """Delete an issue of the entry, if it is there."""
     ir.async_delete_issue(hass, DOMAIN, issue_id(entry, key))
 
 
-def point_issue_id(entry: ConfigEntry[Any], point_id: str) -> str:
+def point_issue_id(entry: PlcBridgeConfigEntry, point_id: str) -> str:
     """Return the id of a point's unknown-address issue."""
     return f"{UNKNOWN_ADDRESS}_{entry.entry_id}_{point_id}"
 
@@ -61,7 +62,7 @@ def point_issue_id(entry: ConfigEntry[Any], point_id: str) -> str:
 @callback
 def async_raise_point_issue(
     hass: HomeAssistant,
-    entry: ConfigEntry[Any],
+    entry: PlcBridgeConfigEntry,
     point_id: str,
     *,
     name: str,
@@ -87,13 +88,15 @@ def async_raise_point_issue(
 
 
 @callback
-def async_clear_point_issue(hass: HomeAssistant, entry: ConfigEntry[Any], point_id: str) -> None:
+def async_clear_point_issue(
+    hass: HomeAssistant, entry: PlcBridgeConfigEntry, point_id: str
+) -> None:
     """Delete a point's issue, if it is there."""
     ir.async_delete_issue(hass, DOMAIN, point_issue_id(entry, point_id))
 
 
 @callback
-def async_point_issues(hass: HomeAssistant, entry: ConfigEntry[Any]) -> set[str]:
+def async_point_issues(hass: HomeAssistant, entry: PlcBridgeConfigEntry) -> set[str]:
     """Return the ids of the entry's points that have an unknown-address issue."""
     prefix = point_issue_id(entry, "")
     return {
@@ -105,7 +108,7 @@ def async_point_issues(hass: HomeAssistant, entry: ConfigEntry[Any]) -> set[str]
 
 @callback
 def async_clear_point_issues(
-    hass: HomeAssistant, entry: ConfigEntry[Any], keep: Collection[str] = ()
+    hass: HomeAssistant, entry: PlcBridgeConfigEntry, keep: Collection[str] = ()
 ) -> None:
     """Delete the point issues of an entry, except those of the point ids in `keep`."""
     for point_id in async_point_issues(hass, entry) - set(keep):
