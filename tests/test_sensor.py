@@ -56,6 +56,7 @@ async def test_clock_drift_is_quiet(
 ) -> None:
     """The drift is whole seconds; a clock keeping time writes no state, a jump of 2 s does."""
     zone = ZoneInfo(hass.config.time_zone)
+    freezer.move_to(dt_util.now().replace(microsecond=0))  # PLC clocks tick in whole seconds
 
     def plc_time(ahead: float) -> datetime:
         """The PLC's local clock, `ahead` seconds ahead of Home Assistant's, whole seconds."""
