@@ -255,11 +255,21 @@ async def test_added_plc_and_point_come_alive(
     await hass.async_block_till_done()
     assert entry.state is ConfigEntryState.LOADED
     result = await hass.config_entries.subentries.async_init(
-        (entry.entry_id, "point"), context={"source": SOURCE_USER}
+        (entry.entry_id, "device"), context={"source": SOURCE_USER}
+    )
+    result = await hass.config_entries.subentries.async_configure(
+        result["flow_id"], {"name": "Compressor"}
+    )
+    result = await hass.config_entries.subentries.async_configure(
+        result["flow_id"], {"next_step_id": "point"}
     )
     values = {"name": "Pressure", "platform": "sensor", "address": "VW10", "data_type": "signed"}
+    result = await hass.config_entries.subentries.async_configure(result["flow_id"], values)
     result = await hass.config_entries.subentries.async_configure(
-        result["flow_id"], values | {"scale": 0.1, "offset": 0, "read_only": True}
+        result["flow_id"], {"scale": 0.1, "offset": 0, "read_only": True}
+    )
+    result = await hass.config_entries.subentries.async_configure(
+        result["flow_id"], {"next_step_id": "save"}
     )
     await hass.async_block_till_done()
     assert entry.state is ConfigEntryState.LOADED

@@ -6,20 +6,20 @@ from collections.abc import AsyncGenerator
 from typing import Any
 from unittest.mock import AsyncMock
 
-from homeassistant.config_entries import SOURCE_USER
+from homeassistant.config_entries import SOURCE_USER, ConfigEntryState
 from homeassistant.const import CONF_HOST, CONF_PASSWORD, CONF_PORT, CONF_USERNAME
 from homeassistant.core import HomeAssistant
 from homeassistant.data_entry_flow import FlowResultType
 import pytest
 
-from custom_components.plc_bridge.const import CONF_TLS, CONF_VENDOR, DOMAIN, SUBENTRY_POINT
+from custom_components.plc_bridge.const import CONF_TLS, CONF_VENDOR, DOMAIN, SUBENTRY_DEVICE
 from simulators.tecomat import DEFAULT_PASSWORD, DEFAULT_USER, TecomatSimulator
-from tests.flow_fixtures import error_message, suggested, translated
+from tests.flow_fixtures import error_message, translated
 from tests.ha_fixtures import point
 from tests.tecomat_ha_fixtures import TECOMAT_SERIAL, make_tecomat_entry
 
 CONFIG = ("config",)
-POINTS = ("config_subentries", SUBENTRY_POINT)
+DEVICES = ("config_subentries", SUBENTRY_DEVICE)
 
 
 @pytest.fixture(params=["digest", "basic"])
@@ -153,7 +153,31 @@ async def test_clock_variable_checked(hass: HomeAssistant, tecomat_sim: TecomatS
     assert tecomat_sim.requests == 0
 
 
-async def test_browse_lists_leaves_and_fills_in(
+async def open_pick(hass: HomeAssistant, entry: Any, text: str = "") -> Any:
+    """Start a device, browse the PLC with a filter; return the pick form."""
+    result = await hass.config_entries.subentries.async_init(
+        (entry.entry_id, SUBENTRY_DEVICE), context={"source": SOURCE_USER}
+    )
+    result = await hass.config_entries.subentries.async_configure(
+        result["flow_id"], {"name": "Heating"}
+    )
+    result = await hass.config_entries.subentries.async_configure(
+        result["flow_id"], {"next_step_id": "browse"}
+    )
+    result = await hass.config_entries.subentries.async_configure(
+        result["flow_id"], {"filter": text}
+    )
+    assert translated(result, *DEVICES)["step_id"] == "pick"
+    return result
+
+
+def labels_of(result: Any) -> dict[str, str]:
+    """Return the pick list's labels and values."""
+    options = result["data_schema"].schema["variables"].config["options"]
+    return {option["label"]: option["value"] for option in options}
+
+
+async def test_browse_lists_leaves_and_picks(
     hass: HomeAssistant, tecomat_sim: TecomatSimulator
 ) -> None:
     """Browsing the real simulator: leaves of structs, arrays and Main; a 5.3 object fills in."""
@@ -162,12 +186,8 @@ async def test_browse_lists_leaves_and_fills_in(
     )
     assert await hass.config_entries.async_setup(entry.entry_id)
     await hass.async_block_till_done()
-    result = await hass.config_entries.subentries.async_init(
-        (entry.entry_id, SUBENTRY_POINT), context={"source": SOURCE_USER}
-    )
-    assert translated(result, *POINTS)["step_id"] == "browse"
-    options = result["data_schema"].schema["variable"].config["options"]
-    labels = {option["label"]: option["value"] for option in options}
+    result = await open_pick(hass, entry)
+    labels = labels_of(result)
     for label in (
         "myObject.favorites.color (STRING)",
         "myObject.interests[2] (STRING)",
@@ -182,60 +202,44 @@ async def test_browse_lists_leaves_and_fills_in(
         assert label in labels, label
     assert "plcData.varDint (DINT)" not in labels  # configured already
     assert "setTime (DT)" in labels
-    assert result["description_placeholders"] == {"count": str(len(options) - 1)}
 
-    chosen = labels["requested temperature – Main.myObject3.value (REAL)"]
+    result = await open_pick(hass, entry, "main.myobject")
+    labels = labels_of(result)
+    assert all("Main.myObject" in label for label in labels)
     result = await hass.config_entries.subentries.async_configure(
-        result["flow_id"], {"variable": chosen}
+        result["flow_id"],
+        {
+            "variables": [
+                labels["requested temperature – Main.myObject3.value (REAL)"],
+                labels["outside temperature – Main.myObject1.value (REAL)"],
+            ]
+        },
     )
-    assert translated(result, *POINTS)["step_id"] == "user"
-    expected = {
+    result = await hass.config_entries.subentries.async_configure(
+        result["flow_id"], {"next_step_id": "save"}
+    )
+    assert result["type"] is FlowResultType.CREATE_ENTRY
+    await hass.async_block_till_done()
+    (heating,) = [s for s in entry.subentries.values() if s.title == "Heating"]
+    points = {data["address"]: data for data in heating.data["points"].values()}
+    assert points["Main.myObject3.value"] == {
         "name": "requested temperature",
+        "platform": "number",
         "address": "Main.myObject3.value",
         "data_type": "REAL",
         "unit_of_measurement": "°C",
         "min": 10.0,
         "max": 30.0,
+        "scale": 1.0,
+        "offset": 0.0,
         "read_only": False,
-        "platform": "number",
     }
-    assert {key: suggested(result, key) for key in expected} == expected
-    result = await hass.config_entries.subentries.async_configure(
-        result["flow_id"], expected | {"scale": 1, "offset": 0}
-    )
-    assert result["type"] is FlowResultType.CREATE_ENTRY
-    await hass.async_block_till_done()
-    assert hass.states.get("number.fx2_cp2080_requested_temperature").state == "23.0"
-
-
-async def test_browse_prefills_read_only_object(
-    hass: HomeAssistant, tecomat_sim: TecomatSimulator
-) -> None:
-    """A read-only 5.3 object becomes a sensor without a range (min = max = 0 means none)."""
-    entry = make_tecomat_entry(hass, tecomat_sim, [])
-    assert await hass.config_entries.async_setup(entry.entry_id)
-    await hass.async_block_till_done()
-    result = await hass.config_entries.subentries.async_init(
-        (entry.entry_id, SUBENTRY_POINT), context={"source": SOURCE_USER}
-    )
-    options = result["data_schema"].schema["variable"].config["options"]
-    labels = {option["label"]: option["value"] for option in options}
-    result = await hass.config_entries.subentries.async_configure(
-        result["flow_id"], {"variable": labels["outside temperature – Main.myObject1.value (REAL)"]}
-    )
-    values = {
-        key: suggested(result, key)
-        for key in ("name", "address", "unit_of_measurement", "min", "max", "read_only", "platform")
-    }
-    assert values == {
-        "name": "outside temperature",
-        "address": "Main.myObject1.value",
-        "unit_of_measurement": "°C",
-        "min": None,
-        "max": None,
-        "read_only": True,
-        "platform": "sensor",
-    }
+    # A read-only 5.3 object becomes a sensor without a range (min = max = 0 means none).
+    outside = points["Main.myObject1.value"]
+    assert (outside["platform"], outside["read_only"]) == ("sensor", True)
+    assert "min" not in outside
+    assert hass.states.get("number.heating_requested_temperature").state == "23.0"
+    assert entry.state is ConfigEntryState.LOADED
 
 
 async def test_same_plc_aborts(hass: HomeAssistant, tecomat_sim: TecomatSimulator) -> None:

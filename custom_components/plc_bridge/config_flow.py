@@ -44,13 +44,13 @@ from .const import (
     CONF_VENDOR,
     DOMAIN,
     LOGGER,
-    SUBENTRY_POINT,
+    SUBENTRY_DEVICE,
 )
 from .options_flow import PlcBridgeOptionsFlow
 from .plc import DeviceInfo, PlcError, PlcValueError, TlsMode
 from .plc.http import fetch_fingerprint, format_fingerprint
 from .plc.vendors import VENDORS, client_class
-from .subentry_flow import PointSubentryFlowHandler
+from .subentry_flow import DeviceSubentryFlowHandler
 
 CERTIFICATE_TIMEOUT = 10.0
 """Seconds to wait for the PLC's TLS handshake when fetching its certificate."""
@@ -124,7 +124,7 @@ class PlcBridgeConfigFlow(ConfigFlow, domain=DOMAIN):
         cls, config_entry: ConfigEntry
     ) -> dict[str, type[ConfigSubentryFlow]]:
         """Return the subentry flows: one point (entity) per subentry."""
-        return {SUBENTRY_POINT: PointSubentryFlowHandler}
+        return {SUBENTRY_DEVICE: DeviceSubentryFlowHandler}
 
     async def async_step_user(self, user_input: dict[str, Any] | None = None) -> ConfigFlowResult:
         """Pick the vendor; refuse one whose client is not written yet."""
