@@ -117,7 +117,7 @@ class FakeClient(PlcClient):
             raise self.browse_error
         return list(self.items)
 
-    async def _read(self, points: Sequence[Point]) -> ReadResult:
+    async def _read(self, points: Sequence[Point], *, poll: bool) -> ReadResult:
         """Not used by the flow."""
         raise NotImplementedError
 

@@ -108,9 +108,11 @@ async def test_vendor_status_fields(hass: HomeAssistant, s7_smart_sim: S7SmartSi
     """Status fields beyond the usual three become sensors, translated where the name is known."""
     read = S7SmartClient._read
 
-    async def with_extra(client: S7SmartClient, points: Sequence[Point]) -> ReadResult:
+    async def with_extra(
+        client: S7SmartClient, points: Sequence[Point], *, poll: bool = True
+    ) -> ReadResult:
         # The S7-200 SMART reports no such fields: a vendor that does is imitated here.
-        result = await read(client, points)
+        result = await read(client, points, poll=poll)
         extra = {"cycle_time": "12 ms", "Backplane": "ok"}
         return replace(result, status=replace(result.status, extra=extra))
 

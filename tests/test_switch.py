@@ -97,5 +97,5 @@ async def test_integer_point_and_read_only(
             {ATTR_ENTITY_ID: "switch.s7_200_smart_lamp"},
             blocking=True,
         )
-    assert str(err.value) == "Q0.1 is set up as read-only; nothing was sent"
+    assert str(err.value) == "Q0.1 is a read-only point; nothing was sent"
     assert s7_smart_sim.calls["write"] == 1

@@ -14,6 +14,7 @@ from homeassistant.core import (
 )
 from homeassistant.exceptions import ServiceValidationError
 from homeassistant.helpers import config_validation as cv
+from homeassistant.helpers.service import async_register_admin_service
 from homeassistant.util import dt as dt_util
 import voluptuous as vol
 
@@ -28,10 +29,13 @@ from .const import (
 from .coordinator import PlcBridgeConfigEntry
 from .helpers import invalid, json_value, translated_errors
 from .plc import PlcClient, PlcError, Point, Value
+from .point_table import export_points
+from .points import entry_points
 
 SERVICE_WRITE = "write"
 SERVICE_READ = "read"
 SERVICE_SYNC_CLOCK = "sync_clock"
+SERVICE_EXPORT_POINTS = "export_points"
 
 POINT = {vol.Required(CONF_ADDRESS): cv.string, vol.Required(CONF_DATA_TYPE): cv.string}
 VALUE = vol.Any(bool, int, float, str, [vol.Coerce(int)])
@@ -87,11 +91,18 @@ async def async_write(call: ServiceCall) -> None:
     """Write every given point in one request, all checked before anything is sent."""
     entry = loaded_entry(call)
     client = entry.runtime_data.client
+    coordinator = entry.runtime_data.coordinator
     values: dict[Point, Value] = {}
     for item in call.data[ATTR_POINTS]:
         point = checked_point(client, item)
+        if point in coordinator.read_only_points:
+            raise ServiceValidationError(
+                translation_domain=DOMAIN,
+                translation_key="read_only",
+                translation_placeholders={"address": point.address},
+            )
         values[point] = checked_value(client, point, item[ATTR_VALUE])
-    await entry.runtime_data.coordinator.async_write(values)
+    await coordinator.async_write(values)
 
 
 async def async_read(call: ServiceCall) -> ServiceResponse:
@@ -100,7 +111,7 @@ async def async_read(call: ServiceCall) -> ServiceResponse:
     client = entry.runtime_data.client
     points = [checked_point(client, item) for item in call.data[ATTR_POINTS]]
     with translated_errors(call.hass, entry):
-        result = await client.read(points)
+        result = await client.read(points, poll=False)
     values: dict[str, Any] = {}
     errors: dict[str, Any] = {}
     for point in points:
@@ -111,6 +122,19 @@ async def async_read(call: ServiceCall) -> ServiceResponse:
     return {"values": values, "errors": errors}
 
 
+async def async_export_points(call: ServiceCall) -> ServiceResponse:
+    """Return the PLC's points as the table the device flow imports, and by device."""
+    entry = loaded_entry(call)
+    configs = entry_points(entry).values()
+    devices: dict[str, Any] = {
+        subentry.title: export_points(
+            config.data for config in configs if config.subentry_id == subentry_id
+        )
+        for subentry_id, subentry in entry.subentries.items()
+    }
+    return {"points": export_points(config.data for config in configs), "devices": devices}
+
+
 async def async_sync_clock(call: ServiceCall) -> None:
     """Set the PLC clock to Home Assistant's time."""
     await loaded_entry(call).runtime_data.coordinator.async_set_clock(dt_util.now())
@@ -118,8 +142,8 @@ async def async_sync_clock(call: ServiceCall) -> None:
 
 @callback
 def async_setup_services(hass: HomeAssistant) -> None:
-    """Register the actions (once, for every PLC)."""
-    hass.services.async_register(DOMAIN, SERVICE_WRITE, async_write, schema=WRITE_SCHEMA)
+    """Register the actions (once, for every PLC); writing and the clock for administrators."""
+    async_register_admin_service(hass, DOMAIN, SERVICE_WRITE, async_write, schema=WRITE_SCHEMA)
     hass.services.async_register(
         DOMAIN,
         SERVICE_READ,
@@ -127,4 +151,13 @@ def async_setup_services(hass: HomeAssistant) -> None:
         schema=READ_SCHEMA,
         supports_response=SupportsResponse.ONLY,
     )
-    hass.services.async_register(DOMAIN, SERVICE_SYNC_CLOCK, async_sync_clock, schema=ENTRY_SCHEMA)
+    async_register_admin_service(
+        hass, DOMAIN, SERVICE_SYNC_CLOCK, async_sync_clock, schema=ENTRY_SCHEMA
+    )
+    hass.services.async_register(
+        DOMAIN,
+        SERVICE_EXPORT_POINTS,
+        async_export_points,
+        schema=ENTRY_SCHEMA,
+        supports_response=SupportsResponse.ONLY,
+    )

@@ -43,7 +43,7 @@ class FakeClient(PlcClient):
     async def connect(self) -> DeviceInfo:
         return DeviceInfo(vendor="fake", model="Fake")
 
-    async def _read(self, points: Sequence[Point]) -> ReadResult:
+    async def _read(self, points: Sequence[Point], *, poll: bool) -> ReadResult:
         self.metrics.requests += self.requests_for(points)
         if self.fail:
             raise PlcConnectionError("down")

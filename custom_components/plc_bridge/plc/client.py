@@ -115,19 +115,25 @@ class PlcClient(ABC):
     async def connect(self) -> DeviceInfo:
         """Open the connection, log in and return what the PLC says about itself."""
 
-    async def read(self, points: Sequence[Point]) -> ReadResult:
-        """Read every point in the fewest requests the vendor allows (one poll)."""
+    async def read(self, points: Sequence[Point], *, poll: bool = True) -> ReadResult:
+        """Read every point in the fewest requests the vendor allows.
+
+        A poll (the coordinator's) is counted in the metrics and may keep state for the next
+        poll (plans, unknown names, the status); an on-demand read (`poll=False`, the read
+        action) touches none of that and reads no status.
+        """
         before = self.metrics.requests
         started = time.perf_counter()
         try:
-            return await self._read(points)
+            return await self._read(points, poll=poll)
         except PlcError:
             self.metrics.errors += 1
             raise
         finally:
-            self.metrics.polls += 1
-            self.metrics.last_poll_requests = self.metrics.requests - before
-            self.metrics.last_poll_ms = (time.perf_counter() - started) * 1000
+            if poll:
+                self.metrics.polls += 1
+                self.metrics.last_poll_requests = self.metrics.requests - before
+                self.metrics.last_poll_ms = (time.perf_counter() - started) * 1000
 
     async def write(self, values: Mapping[Point, Value]) -> dict[Point, PointResult]:
         """Write every value in as few requests as the vendor allows; a result per point."""
@@ -139,8 +145,8 @@ class PlcClient(ABC):
             raise
 
     @abstractmethod
-    async def _read(self, points: Sequence[Point]) -> ReadResult:
-        """Vendor part of `read`."""
+    async def _read(self, points: Sequence[Point], *, poll: bool) -> ReadResult:
+        """Vendor part of `read`; keep poll state only when `poll` is true."""
 
     @abstractmethod
     async def _write(self, values: Mapping[Point, Value]) -> dict[Point, PointResult]:

@@ -145,19 +145,21 @@ class S7Client(PlcClient):
             _LOGGER.debug("The PLC has no SZL 0x%04X: %s", szl_id, err)
             return None
 
-    async def _read(self, points: Sequence[Point]) -> ReadResult:
-        """Read every point in the fewest requests, then the CPU state (and clock when due)."""
-        layout = self._reader.layout(points)
+    async def _read(self, points: Sequence[Point], *, poll: bool) -> ReadResult:
+        """Read every point in the fewest requests, then (in a poll) the CPU state and clock."""
+        layout = self._reader.layout(points, keep=poll)
 
-        async def poll(link: S7Link) -> ReadResult:
+        async def read(link: S7Link) -> ReadResult:
             got = await self._reader.fetch(link, layout.needs)
             values = dict(layout.errors)
             for found, need, group in layout.groups:
                 values.update(dict.fromkeys(group, outcome(found, got[need], self._zone)))
+            if not poll:
+                return ReadResult(values=values)
             status = await self._status.read(link, self.status_interval)
             return ReadResult(values=values, status=status)
 
-        return await self._run(poll)
+        return await self._run(read)
 
     async def _write(self, values: Mapping[Point, Value]) -> dict[Point, PointResult]:
         """Write every value in as few multi-variable requests as the PDU allows."""

@@ -70,9 +70,12 @@ class Reader:
         """Forget what a previous link taught (a new one may be another CPU or program)."""
         self._alone.clear()
 
-    def layout(self, points: Sequence[Point]) -> Layout:
-        """Resolve the points of a poll, or return the last layout for the same points."""
-        if self._last_layout is None or self._last_layout.points != tuple(points):
+    def layout(self, points: Sequence[Point], *, keep: bool = True) -> Layout:
+        """Resolve the points of a poll, or return the last layout for the same points.
+
+        An on-demand read (`keep` false) is resolved on its own and leaves the poll's layout.
+        """
+        if not keep or self._last_layout is None or self._last_layout.points != tuple(points):
             errors: dict[Point, PointResult] = {}
             wanted: dict[Variable, list[Point]] = {}
             for point in points:
@@ -82,7 +85,10 @@ class Reader:
                     errors[point] = PointResult(error=err)
             groups = [(found, span_of(found), group) for found, group in wanted.items()]
             needs = frozenset(need for _, need, _ in groups)
-            self._last_layout = Layout(tuple(points), errors, groups, needs)
+            layout = Layout(tuple(points), errors, groups, needs)
+            if not keep:
+                return layout
+            self._last_layout = layout
         return self._last_layout
 
     async def fetch(self, link: S7Link, needs: frozenset[Span]) -> Fetched:

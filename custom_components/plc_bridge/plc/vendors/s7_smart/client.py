@@ -167,10 +167,13 @@ class S7SmartClient(PlcClient):
             can_write=can_write,
         )
 
-    def _poll_plan(self, points: Sequence[Point]) -> _PollPlan:
-        """Return the parsed and grouped poll, reused while the polled points stay the same."""
+    def _poll_plan(self, points: Sequence[Point], *, keep: bool = True) -> _PollPlan:
+        """Return the parsed and grouped poll, reused while the polled points stay the same.
+
+        An on-demand read (`keep` false) is planned on its own and leaves the poll's plan.
+        """
         key = tuple(points)
-        if self._plan is None or self._plan.key != key:
+        if not keep or self._plan is None or self._plan.key != key:
             invalid: dict[Point, PointResult] = {}
             wanted: dict[Node, list[Point]] = {}
             for point in points:
@@ -181,20 +184,23 @@ class S7SmartClient(PlcClient):
             groups = [
                 (group, [node.request() for node in group]) for group in read_plan(list(wanted))
             ]
-            self._plan = _PollPlan(key, invalid, wanted, groups)
+            planned = _PollPlan(key, invalid, wanted, groups)
+            if not keep:
+                return planned
+            self._plan = planned
         return self._plan
 
-    async def _read(self, points: Sequence[Point]) -> ReadResult:
+    async def _read(self, points: Sequence[Point], *, poll: bool) -> ReadResult:
         """Read every distinct point once, 32 nodes a request; status from the last reply."""
-        poll = self._poll_plan(points)
-        values = dict(poll.invalid)
+        planned = self._poll_plan(points, keep=poll)
+        values = dict(planned.invalid)
         status = PlcStatus()
-        for group, params in poll.groups:
+        for group, params in planned.groups:
             result = await self._call("read", params)
             status = decode_status(result.get("status"), self._zone)
             for node, item in zip(group, reply_nodes(result, group), strict=True):
                 outcome = self._outcome(node, item)
-                for point in poll.wanted[node]:
+                for point in planned.wanted[node]:
                     values[point] = outcome
         return ReadResult(values=values, status=status)
 
@@ -227,7 +233,7 @@ class S7SmartClient(PlcClient):
 
     async def read_clock(self) -> datetime:
         """Return the PLC clock (its DATE address) in the configured time zone."""
-        result = (await self._read([_DATE_POINT])).values[_DATE_POINT]
+        result = (await self._read([_DATE_POINT], poll=False)).values[_DATE_POINT]
         if result.error is not None:
             raise result.error
         assert isinstance(result.value, datetime)

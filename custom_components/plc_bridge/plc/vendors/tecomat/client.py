@@ -161,7 +161,7 @@ class TecomatClient(PlcClient):
             self._status, self._status_at = plc_status(info, self._zone), time.monotonic()
         return self._status
 
-    async def _read(self, points: Sequence[Point]) -> ReadResult:
+    async def _read(self, points: Sequence[Point], *, poll: bool) -> ReadResult:
         """Read every distinct path once, packed into the fewest GetObject requests."""
         values: dict[Point, PointResult] = {}
         wanted: list[tuple[Point, VariablePath, str]] = []
@@ -173,7 +173,7 @@ class TecomatClient(PlcClient):
                 values[point] = PointResult(error=err)
                 continue
             paths.setdefault(wanted[-1][1].key, wanted[-1][1])
-        reading = await self._get(paths)
+        reading = await (self._get(paths) if poll else self._teco().get(plan(paths.values())))
         for point, path, kind in wanted:
             if path.key in reading.failed:
                 values[point] = PointResult(error=reading.failed[path.key])
@@ -184,7 +184,7 @@ class TecomatClient(PlcClient):
                 )
             except PlcProtocolError as err:
                 values[point] = PointResult(error=err)
-        return ReadResult(values=values, status=await self._poll_status())
+        return ReadResult(values=values, status=await self._poll_status() if poll else PlcStatus())
 
     async def _get(self, paths: dict[str, VariablePath]) -> Reading:
         """Read the paths; those the PLC does not know are asked again once a status_interval.
