@@ -22,7 +22,7 @@ from custom_components.plc_bridge.connection_form import VendorField
 from custom_components.plc_bridge.const import CONF_TLS, CONF_VENDOR, DOMAIN
 from custom_components.plc_bridge.plc import DeviceInfo
 from custom_components.plc_bridge.plc.http import format_fingerprint
-from custom_components.plc_bridge.plc.vendors import VENDORS
+from custom_components.plc_bridge.plc.vendors import implemented
 from simulators.s7_smart import DEFAULT_PASSWORD, DEFAULT_USER, S7SmartSimulator
 from tests.flow_fixtures import (
     FAKE_VENDOR,
@@ -30,6 +30,8 @@ from tests.flow_fixtures import (
     error_message,
     smart_data,
     strings_at,
+    suggested,
+    through_name,
     translated,
 )
 
@@ -59,8 +61,11 @@ def connection(sim: S7SmartSimulator, **changes: Any) -> dict[str, Any]:
 
 async def submit(hass: HomeAssistant, result: dict[str, Any], values: dict[str, Any]) -> Any:
     """Submit a form and check the answer is translated."""
-    return translated(
-        await hass.config_entries.flow.async_configure(result["flow_id"], values), *CONFIG
+    return await through_name(
+        hass,
+        translated(
+            await hass.config_entries.flow.async_configure(result["flow_id"], values), *CONFIG
+        ),
     )
 
 
@@ -70,17 +75,30 @@ def test_strings_copied_to_english() -> None:
     assert (root / "strings.json").read_text() == (root / "translations/en.json").read_text()
 
 
-async def test_every_vendor_listed_and_unwritten_refused(hass: HomeAssistant) -> None:
-    """All five vendors are offered; one without a client is refused on the vendor field."""
+async def test_only_implemented_vendors_listed(hass: HomeAssistant) -> None:
+    """The vendor list offers what PLC Bridge implements, nothing to be refused afterwards."""
     result = await hass.config_entries.flow.async_init(DOMAIN, context={"source": SOURCE_USER})
     selector = result["data_schema"].schema[CONF_VENDOR].config
-    assert selector["options"] == list(VENDORS)
+    assert selector["options"] == implemented()
+    assert "softplc" not in selector["options"]
     assert selector["translation_key"] == CONF_VENDOR
-    assert set(strings_at("selector", CONF_VENDOR, "options")) == set(VENDORS)
-    result = await submit(hass, result, {CONF_VENDOR: "softplc"})
-    assert result["type"] is FlowResultType.FORM
-    assert result["step_id"] == "user"
-    assert result["errors"] == {CONF_VENDOR: "not_supported"}
+    assert set(selector["options"]) <= set(strings_at("selector", CONF_VENDOR, "options"))
+
+
+async def test_name_asked_and_kept_out_of_entity_ids(
+    hass: HomeAssistant, flow_sim: S7SmartSimulator, mock_setup_entry: AsyncMock
+) -> None:
+    """The PLC is named by the user (prefilled with what it reports); the host is no part."""
+    result = await start(hass)
+    result = await hass.config_entries.flow.async_configure(
+        result["flow_id"], connection(flow_sim, tls="off")
+    )
+    assert translated(result, *CONFIG)["step_id"] == "name"
+    assert suggested(result, "name") == "S7-200 SMART"
+    result = await hass.config_entries.flow.async_configure(
+        result["flow_id"], {"name": "Boiler room"}
+    )
+    assert result["title"] == "Boiler room"
 
 
 async def test_pin_mode_shows_and_stores_fingerprint(
@@ -99,7 +117,7 @@ async def test_pin_mode_shows_and_stores_fingerprint(
     assert placeholders[CONF_HOST] == "127.0.0.1"
     result = await submit(hass, result, {})
     assert result["type"] is FlowResultType.CREATE_ENTRY
-    assert result["title"] == "S7-200 SMART (127.0.0.1)"
+    assert result["title"] == "S7-200 SMART"
     assert result["data"] == smart_data(flow_sim)
     assert result["result"].unique_id == f"127.0.0.1:{flow_sim.port}"
     assert flow_sim.calls["login"] == 1
@@ -224,8 +242,9 @@ async def test_vendor_without_tls_choice_or_credentials(
     result = await hass.config_entries.flow.async_configure(
         result["flow_id"], {CONF_HOST: " plc.local ", CONF_PORT: 8080.0, "rack": 2.0}
     )
+    result = await through_name(hass, result)
     assert result["type"] is FlowResultType.CREATE_ENTRY
-    assert result["title"] == "Fake PLC (plc.local)"
+    assert result["title"] == "Fake PLC"
     assert result["result"].unique_id == "FAKE-1"
     assert result["data"] == {
         CONF_VENDOR: FAKE_VENDOR,

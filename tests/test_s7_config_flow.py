@@ -14,13 +14,13 @@ from pytest_homeassistant_custom_component.common import MockConfigEntry
 
 from custom_components.plc_bridge.const import CONF_VENDOR, DOMAIN
 from simulators.s7 import S7Simulator
-from tests.flow_fixtures import error_message, translated
+from tests.flow_fixtures import error_message, through_name, translated
 
 from .s7_ha_fixtures import SimFactory, s7_data
 
 CONFIG = ("config",)
 SERIAL = S7Simulator.serial
-TITLE = "CPU 315-2 PN/DP (127.0.0.1)"
+TITLE = "PLC Bridge"  # the station name the CPU reports (SZL 0x001C)
 
 pytestmark = pytest.mark.usefixtures("mock_setup_entry")
 
@@ -35,8 +35,11 @@ async def connection_form(hass: HomeAssistant) -> dict[str, Any]:
 
 async def submit(hass: HomeAssistant, result: dict[str, Any], values: dict[str, Any]) -> Any:
     """Submit a form; check the answer is translated."""
-    return translated(
-        await hass.config_entries.flow.async_configure(result["flow_id"], values), *CONFIG
+    return await through_name(
+        hass,
+        translated(
+            await hass.config_entries.flow.async_configure(result["flow_id"], values), *CONFIG
+        ),
     )
 
 

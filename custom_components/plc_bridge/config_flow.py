@@ -13,7 +13,7 @@ from homeassistant.config_entries import (
     ConfigFlowResult,
     ConfigSubentryFlow,
 )
-from homeassistant.const import CONF_HOST, CONF_PASSWORD, CONF_PORT, CONF_USERNAME
+from homeassistant.const import CONF_HOST, CONF_NAME, CONF_PASSWORD, CONF_PORT, CONF_USERNAME
 from homeassistant.core import callback
 from homeassistant.helpers.device_registry import format_mac
 from homeassistant.helpers.selector import (
@@ -49,7 +49,7 @@ from .const import (
 from .options_flow import PlcBridgeOptionsFlow
 from .plc import DeviceInfo, PlcError, PlcValueError, TlsMode
 from .plc.http import fetch_fingerprint, format_fingerprint
-from .plc.vendors import VENDORS, client_class
+from .plc.vendors import client_class, implemented
 from .subentry_flow import DeviceSubentryFlowHandler
 
 CERTIFICATE_TIMEOUT = 10.0
@@ -111,6 +111,7 @@ class PlcBridgeConfigFlow(ConfigFlow, domain=DOMAIN):
         self._data: dict[str, Any] = {}
         self._trusted: set[str] = set()
         self._problem = ""  # the protocol layer's words for the last failure, shown in errors
+        self._name = ""  # what the PLC calls itself, offered as the entry's name
 
     @staticmethod
     @callback
@@ -123,36 +124,38 @@ class PlcBridgeConfigFlow(ConfigFlow, domain=DOMAIN):
     def async_get_supported_subentry_types(
         cls, config_entry: ConfigEntry
     ) -> dict[str, type[ConfigSubentryFlow]]:
-        """Return the subentry flows: one point (entity) per subentry."""
+        """Return the subentry flows: a device of the plant, holding its points."""
         return {SUBENTRY_DEVICE: DeviceSubentryFlowHandler}
 
     async def async_step_user(self, user_input: dict[str, Any] | None = None) -> ConfigFlowResult:
-        """Pick the vendor; refuse one whose client is not written yet."""
-        errors: dict[str, str] = {}
+        """Pick the vendor among those PLC Bridge implements."""
         if user_input is not None:
-            try:
-                client_class(user_input[CONF_VENDOR])
-            except KeyError:
-                errors[CONF_VENDOR] = "not_supported"
-            else:
-                self._vendor = user_input[CONF_VENDOR]
-                self._data = {CONF_VENDOR: self._vendor, CONF_USERNAME: "", CONF_PASSWORD: ""}
-                return await self.async_step_connection()
+            self._vendor = user_input[CONF_VENDOR]
+            self._data = {CONF_VENDOR: self._vendor, CONF_USERNAME: "", CONF_PASSWORD: ""}
+            return await self.async_step_connection()
         schema = vol.Schema(
             {
                 vol.Required(CONF_VENDOR): SelectSelector(
                     SelectSelectorConfig(
-                        options=list(VENDORS),
+                        options=implemented(),
                         translation_key=CONF_VENDOR,
                         mode=SelectSelectorMode.LIST,
                     )
                 )
             }
         )
+        return self.async_show_form(step_id="user", data_schema=schema)
+
+    async def async_step_name(self, user_input: dict[str, Any] | None = None) -> ConfigFlowResult:
+        """Name the PLC (prefilled from what it reports): its device and entity ids take it."""
+        if user_input is not None and str(user_input.get(CONF_NAME, "")).strip():
+            return self.async_create_entry(
+                title=str(user_input[CONF_NAME]).strip(), data=self._data
+            )
+        schema = vol.Schema({vol.Required(CONF_NAME): TextSelector()})
         return self.async_show_form(
-            step_id="user",
-            data_schema=self.add_suggested_values_to_schema(schema, user_input),
-            errors=errors,
+            step_id="name",
+            data_schema=self.add_suggested_values_to_schema(schema, {CONF_NAME: self._name}),
         )
 
     async def async_step_connection(
@@ -253,9 +256,8 @@ class PlcBridgeConfigFlow(ConfigFlow, domain=DOMAIN):
         )
         if self.source != SOURCE_RECONFIGURE:
             self._abort_if_unique_id_configured()
-            return self.async_create_entry(
-                title=f"{device.model} ({self._data[CONF_HOST]})", data=self._data
-            )
+            self._name = device.name or device.model
+            return await self.async_step_name()
         entry = self._get_reconfigure_entry()
         if device.serial or device.mac:
             self._abort_if_unique_id_mismatch()
