@@ -68,7 +68,7 @@ class Hass:
 
 
 def onboard(hass: Hass) -> None:
-    """Create the owner, get a token, and finish the core config, analytics and integration steps."""
+    """Create the owner, get a token, finish the core config, analytics and integration steps."""
     user = hass.call(
         "POST",
         "/api/onboarding/users",
@@ -180,7 +180,7 @@ def main() -> int:
             print(f"demo: Home Assistant up in {time.monotonic() - started:.0f} s", flush=True)
             onboard(hass)
             problems = check(hass)
-    except Exception as err:  # noqa: BLE001 - any failure of the check is reported as one
+    except Exception as err:  # any failure of the check is reported as one
         problems.append(f"{type(err).__name__}: {err}")
     finally:
         os.killpg(develop.pid, signal.SIGINT)
