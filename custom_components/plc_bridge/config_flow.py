@@ -274,8 +274,11 @@ class PlcBridgeConfigFlow(ConfigFlow, domain=DOMAIN):
         An entry whose setup failed (wrong password, PLC away) has no listener yet: it is
         reloaded here, so new credentials or a new address take effect at once.
         """
+        # Asked before the update: the update listener starts the reload of a loaded entry at
+        # once, so afterwards it no longer looks loaded, and a second reload would follow.
+        loaded = entry.state is ConfigEntryState.LOADED
         self.hass.config_entries.async_update_entry(entry, **changes)
-        if entry.state is not ConfigEntryState.LOADED:
+        if not loaded:
             self.hass.config_entries.async_schedule_reload(entry.entry_id)
         return self.async_abort(reason=reason)
 

@@ -135,10 +135,11 @@ class CertificateRepairFlow(RepairsFlow):
         if entry is None:
             return self.async_abort(reason="entry_removed")
         if user_input is not None:
+            loaded = entry.state is ConfigEntryState.LOADED  # before the listener reloads it
             self.hass.config_entries.async_update_entry(
                 entry, data={**entry.data, CONF_FINGERPRINT: self._fingerprint}
             )
-            if entry.state is not ConfigEntryState.LOADED:
+            if not loaded:
                 # A loaded entry reloads through its update listener; one waiting to retry not.
                 self.hass.config_entries.async_schedule_reload(entry.entry_id)
             return self.async_create_entry(data={})

@@ -5,6 +5,8 @@ from __future__ import annotations
 import asyncio
 from collections.abc import Mapping
 import hashlib
+import logging
+import re
 import ssl
 import time
 from typing import Any
@@ -68,6 +70,22 @@ def format_fingerprint(fingerprint: str) -> str:
     return ":".join(fingerprint[i : i + 2] for i in range(0, len(fingerprint), 2)).upper()
 
 
+_LOGGER = logging.getLogger(__name__)
+SECRET = re.compile(r'("(?:password|passwd|token|cookie|username|user)"\s*:\s*)"[^"]*"', re.I)
+"""JSON fields a request or reply may carry credentials or a session in: never logged."""
+SHOWN = 500
+"""Characters of a body a debug line shows."""
+
+
+def shown(body: str | bytes | None) -> str:
+    """Return a body as the debug log shows it: credentials and tokens masked, cut short."""
+    if body is None:
+        return ""
+    text = body.decode("utf-8", "replace") if isinstance(body, bytes) else body
+    text = SECRET.sub(r'\1"***"', text)
+    return text if len(text) <= SHOWN else f"{text[:SHOWN]}… ({len(text)} characters)"
+
+
 class HttpTransport:
     """Sends every request of one client: one lock, one timeout, pacing and error mapping."""
 
@@ -110,6 +128,7 @@ class HttpTransport:
             if wait > 0:
                 await asyncio.sleep(wait)
             self._metrics.requests += 1
+            started = time.monotonic()
             try:
                 async with self._session.request(
                     method,
@@ -121,6 +140,17 @@ class HttpTransport:
                     **kwargs,
                 ) as response:
                     body = await response.read()
+                    # Headers are never logged: they carry the Authorization and the Cookie.
+                    _LOGGER.debug(
+                        "%s %s %s %s -> %s in %.0f ms: %s",
+                        self._config.host,
+                        method,
+                        path,
+                        shown(data),
+                        response.status,
+                        (time.monotonic() - started) * 1000,
+                        shown(body),
+                    )
                     return response.status, response.headers, body
             except aiohttp.ServerFingerprintMismatch as err:
                 raise PlcTlsError(
@@ -136,6 +166,11 @@ class HttpTransport:
                 raise PlcTimeoutError(f"no answer from {self._config.host} in time") from err
             except aiohttp.ClientResponseError as err:
                 raise PlcProtocolError(f"malformed HTTP reply: {err.message}") from err
+            except aiohttp.ClientConnectorError as err:
+                # Its text names the ssl argument, a pin's `Fingerprint object at 0x…`: say why.
+                raise PlcConnectionError(
+                    f"cannot reach {self._config.host}:{self._config.port}: {err.os_error}"
+                ) from err
             except (aiohttp.ClientError, OSError) as err:
                 raise PlcConnectionError(f"cannot reach {self._config.host}: {err}") from err
             finally:

@@ -12,6 +12,7 @@ from collections.abc import Mapping
 import contextlib
 from dataclasses import dataclass
 from datetime import datetime
+import logging
 import re
 from typing import Any
 
@@ -29,6 +30,10 @@ from ...errors import (
 from ...types import ClientMetrics
 from .planner import DEFAULT_PDU, Span, WriteItem
 from .protocol import read_items, read_request, write_codes, write_request
+
+_LOGGER = logging.getLogger(__name__)
+SHOWN = 120
+"""Bytes of a PDU a debug line shows (S7 carries no credentials)."""
 
 PG = 0x01  # connection type in a rack/slot TSAP, as Snap7 connects by default
 LOCAL_TSAP = 0x0100
@@ -176,6 +181,7 @@ class S7Link:
             async with asyncio.timeout(self._timeout):
                 await self._connection.send_data(request)
                 reply = await self._connection.receive_data()
+            _LOGGER.debug("S7 request %s -> reply %s", request[:SHOWN].hex(), reply[:SHOWN].hex())
         except asyncio.CancelledError:
             self._broken = True  # an answer may still be on its way: never reuse the stream
             raise
