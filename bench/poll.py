@@ -297,23 +297,39 @@ async def run(sizes: list[int], polls: int) -> list[dict[str, Any]]:
     return rows
 
 
-def quiet_poll() -> dict[str, Any] | str:
-    """Run the Home Assistant check (bench/test_quiet_poll.py); its figures, or why it failed."""
-    command = [sys.executable, "-m", "pytest", "bench/test_quiet_poll.py", "-q", "-s"]
-    command += ["-p", "no:cacheprovider"]
+def ha_checks() -> list[dict[str, Any]] | str:
+    """Run the Home Assistant checks (bench/test_*.py); their figures, or why they failed."""
+    command = [
+        sys.executable,
+        "-m",
+        "pytest",
+        "bench/test_quiet_poll.py",
+        "bench/test_setup_time.py",
+    ]
+    command += ["-q", "-s", "-p", "no:cacheprovider"]
     done = subprocess.run(command, cwd=ROOT, capture_output=True, text=True, check=False)
-    for line in done.stdout.splitlines():
-        if line.startswith("BENCH "):
-            result: dict[str, Any] = json.loads(line.removeprefix("BENCH "))
-            result["passed"] = done.returncode == 0
-            return result
-    return done.stdout[-2000:] + done.stderr[-2000:]
+    results = [
+        json.loads(line.removeprefix("BENCH "))
+        for line in done.stdout.splitlines()
+        if line.startswith("BENCH ")
+    ]
+    if not results:
+        return done.stdout[-2000:] + done.stderr[-2000:]
+    for result in results:
+        result["passed"] = done.returncode == 0
+    return results
 
 
-def quiet_text(result: dict[str, Any] | str) -> str:
-    """Return the Home Assistant check as text."""
-    if isinstance(result, str):
-        return f"quiet poll check could not run:\n{result}"
+def check_text(result: dict[str, Any]) -> str:
+    """Return one Home Assistant check as text."""
+    if result["check"] == "setup_time":
+        return (
+            f"setup ({result['vendor']}, {result['points']} points in {result['devices'] - 1}"
+            f" devices, in Home Assistant): {result['setup_to_states_ms']} ms from"
+            f" async_setup to {result['available']} of {result['states_written']} states"
+            f" written and available; {result['devices']} devices;"
+            f" {result['requests_first_poll']} requests in the first poll"
+        )
     return (
         f"quiet poll ({result['vendor']}, {result['points']} sensor points, {result['polls']} polls"
         f" with nothing changed, in Home Assistant): {result['state_changed']} state_changed"
@@ -330,25 +346,27 @@ def main() -> int:
     parser.add_argument(
         "--ha",
         action=argparse.BooleanOptionalAction,
-        help="also run the Home Assistant quiet-poll check (default: on for the table only)",
+        help="also run the Home Assistant checks: quiet poll, setup time (default: on)",
     )
     args = parser.parse_args()
     time_transports()
     rows = asyncio.run(run(args.points, args.polls))
-    quiet = quiet_poll() if (args.ha if args.ha is not None else not args.json) else None
+    checks = ha_checks() if args.ha is not False else None
+    if isinstance(checks, str):
+        print(f"Home Assistant checks could not run:\n{checks}")
     if args.json:
         keys = ("vendor", "points", "requests_per_poll", "naive_requests", "poll_ms")
         for row in rows:
             extra = ("cpu_ms_per_poll", "protocol_cpu_ms_per_poll")
             print(json.dumps({key: row[key] for key in (*keys, *extra)}))
-        if quiet is not None:
-            print(json.dumps(quiet if isinstance(quiet, dict) else {"check": "quiet_poll"}))
+        for result in checks if isinstance(checks, list) else []:
+            print(json.dumps(result))
     else:
         print(table(rows, shlex.join(["scripts/bench", *sys.argv[1:]])))
-        if quiet is not None:
-            print(quiet_text(quiet))
-    quiet_ok = quiet is None or (isinstance(quiet, dict) and quiet["passed"])
-    return 0 if rows and quiet_ok else 1
+        for result in checks if isinstance(checks, list) else []:
+            print(check_text(result))
+    checks_ok = checks is None or (isinstance(checks, list) and all(c["passed"] for c in checks))
+    return 0 if rows and checks_ok else 1
 
 
 if __name__ == "__main__":

@@ -33,14 +33,21 @@ async def connection_form(hass: HomeAssistant) -> dict[str, Any]:
     return translated(result, *CONFIG)
 
 
+ADDRESSING = ("rack", "slot", "local_tsap", "remote_tsap")
+
+
 async def submit(hass: HomeAssistant, result: dict[str, Any], values: dict[str, Any]) -> Any:
-    """Submit a form; check the answer is translated."""
-    return await through_name(
-        hass,
-        translated(
-            await hass.config_entries.flow.async_configure(result["flow_id"], values), *CONFIG
-        ),
+    """Submit the connection form, then the addressing form it leads to; check the texts."""
+    first = {key: value for key, value in values.items() if key not in ADDRESSING}
+    result = translated(
+        await hass.config_entries.flow.async_configure(result["flow_id"], first), *CONFIG
     )
+    if result.get("step_id") == "addressing":
+        second = {key: value for key, value in values.items() if key in ADDRESSING}
+        result = translated(
+            await hass.config_entries.flow.async_configure(result["flow_id"], second), *CONFIG
+        )
+    return await through_name(hass, result)
 
 
 def where(sim: S7Simulator, **fields: Any) -> dict[str, Any]:
@@ -52,24 +59,30 @@ async def test_form_defaults(hass: HomeAssistant) -> None:
     """Port 102, an S7-300..1500, rack 0, slot 1 by rack/slot; no TLS choice, no credentials."""
     form = await connection_form(hass)
     fields = {str(marker) for marker in form["data_schema"].schema}
-    assert fields == {
-        "host",
-        "port",
-        "family",
-        "connection",
-        "rack",
-        "slot",
-        "local_tsap",
-        "remote_tsap",
-    }
+    assert fields == {"host", "port", "family", "connection"}
     values = form["data_schema"]({CONF_HOST: "plc"})
     assert values == {
         CONF_HOST: "plc",
         CONF_PORT: 102,
         "family": "s7_300_1500",
         "connection": "rack_slot",
-        "rack": 0,
-        "slot": 1,
+    }
+    result = await hass.config_entries.flow.async_configure(form["flow_id"], values)
+    assert translated(result, *CONFIG)["step_id"] == "addressing"
+    assert {str(marker) for marker in result["data_schema"].schema} == {"rack", "slot"}
+    assert result["data_schema"]({}) == {"rack": 0, "slot": 1}
+
+
+async def test_tsap_fields_only_for_tsap(hass: HomeAssistant) -> None:
+    """Connecting by TSAP asks the TSAPs, not rack and slot."""
+    form = await connection_form(hass)
+    result = await hass.config_entries.flow.async_configure(
+        form["flow_id"], {CONF_HOST: "plc", CONF_PORT: 102, "connection": "tsap"}
+    )
+    assert translated(result, *CONFIG)["step_id"] == "addressing"
+    assert {str(marker) for marker in result["data_schema"].schema} == {
+        "local_tsap",
+        "remote_tsap",
     }
 
 

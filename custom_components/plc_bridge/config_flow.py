@@ -36,6 +36,7 @@ from .connection_form import (
     error_for,
     form_values,
     on_form,
+    vendor_options,
 )
 from .const import (
     CONF_FINGERPRINT,
@@ -78,10 +79,6 @@ VENDOR_FIELDS: dict[str, tuple[VendorField, ...]] = {
     "s7": (
         VendorField("family", _choice("family", ["s7_300_1500", "s7_200"]), "s7_300_1500"),
         VendorField("connection", _choice("connection", ["rack_slot", "tsap"]), "rack_slot"),
-        VendorField("rack", _whole(0, 7), 0),
-        VendorField("slot", _whole(0, 31), 1),
-        VendorField("local_tsap", TextSelector()),
-        VendorField("remote_tsap", TextSelector()),
     ),
 }
 """Extra connection fields per vendor key, shown after the TLS mode; labels in strings.json.
@@ -89,6 +86,23 @@ VENDOR_FIELDS: dict[str, tuple[VendorField, ...]] = {
 Whole numbers come back as int; the client checks them (`validate_options`) and reads them
 from ConnectionConfig.options.
 """
+ADDRESSING: dict[str, tuple[str, dict[str, tuple[VendorField, ...]]]] = {
+    "s7": (
+        "connection",
+        {
+            "rack_slot": (
+                VendorField("rack", _whole(0, 7), 0),
+                VendorField("slot", _whole(0, 31), 1),
+            ),
+            "tsap": (
+                VendorField("local_tsap", TextSelector()),
+                VendorField("remote_tsap", TextSelector()),
+            ),
+        },
+    ),
+}
+"""Fields of a second form, by the vendor option that chooses them (S7: rack and slot, or TSAPs):
+only the fields of the way chosen are asked."""
 
 
 def device_unique_id(device: DeviceInfo, data: Mapping[str, Any]) -> str:
@@ -112,6 +126,8 @@ class PlcBridgeConfigFlow(ConfigFlow, domain=DOMAIN):
         self._trusted: set[str] = set()
         self._problem = ""  # the protocol layer's words for the last failure, shown in errors
         self._name = ""  # what the PLC calls itself, offered as the entry's name
+        self._previous: dict[str, Any] = {}  # the vendor options before this form, suggested
+        self._step_id = "connection"  # the form that asked the connection: shown on errors
 
     @staticmethod
     @callback
@@ -226,11 +242,52 @@ class PlcBridgeConfigFlow(ConfigFlow, domain=DOMAIN):
         """Take a submitted connection form: fetch the certificate in pin mode, then connect."""
         client = client_class(self._vendor)
         extras = VENDOR_FIELDS.get(self._vendor, ())
+        self._previous = dict(self._data.get(CONF_OPTIONS, {}))
         self._data.update(connection_data(client, extras, user_input))
+        self._step_id = step_id
+        if self._vendor in ADDRESSING:
+            return await self.async_step_addressing()
+        return await self._check_and_connect(step_id)
+
+    def _addressing_fields(self) -> tuple[VendorField, ...]:
+        """The second form's fields for the way the first form chose."""
+        choice, ways = ADDRESSING[self._vendor]
+        return ways[str(self._data[CONF_OPTIONS].get(choice, next(iter(ways))))]
+
+    async def async_step_addressing(
+        self, user_input: dict[str, Any] | None = None, errors: dict[str, str] | None = None
+    ) -> ConfigFlowResult:
+        """Ask only the fields of the chosen way to address the PLC (S7: rack/slot or TSAPs)."""
+        fields = self._addressing_fields()
+        if user_input is not None:
+            self._data[CONF_OPTIONS] |= vendor_options(fields, user_input)
+            return await self._check_and_connect(self._step_id)
+        schema = vol.Schema(
+            {
+                (
+                    vol.Optional(field.key)
+                    if field.default is None
+                    else vol.Required(field.key, default=field.default)
+                ): field.selector
+                for field in fields
+            }
+        )
+        return self.async_show_form(
+            step_id="addressing",
+            data_schema=self.add_suggested_values_to_schema(schema, self._previous),
+            errors=errors or {},
+            description_placeholders={"problem": self._problem},
+        )
+
+    async def _check_and_connect(self, step_id: str) -> ConfigFlowResult:
+        """Check the vendor options, fetch the certificate in pin mode, then connect."""
+        client = client_class(self._vendor)
         try:
             self._data[CONF_OPTIONS] = client.validate_options(self._data[CONF_OPTIONS])
         except PlcValueError as err:
             self._problem = str(err)
+            if self._vendor in ADDRESSING:
+                return await self.async_step_addressing(errors={"base": "invalid_options"})
             return self._connection_form(step_id, {"base": "invalid_options"})
         self._data[CONF_FINGERPRINT] = ""
         if self._data[CONF_TLS] == TlsMode.PIN:

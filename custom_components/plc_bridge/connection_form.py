@@ -90,14 +90,17 @@ def connection_data(
         CONF_HOST: str(user_input[CONF_HOST]).strip(),
         CONF_PORT: int(user_input[CONF_PORT]),
         CONF_TLS: TlsMode(user_input.get(CONF_TLS, client.default_tls)).value,
-        CONF_OPTIONS: {
-            field.key: _plain(user_input[field.key]) for field in extras if field.key in user_input
-        },
+        CONF_OPTIONS: vendor_options(extras, user_input),
     }
     if CONF_USERNAME in user_input:
         data[CONF_USERNAME] = user_input[CONF_USERNAME]
         data[CONF_PASSWORD] = user_input[CONF_PASSWORD]
     return data
+
+
+def vendor_options(extras: Sequence[VendorField], user_input: Mapping[str, Any]) -> dict[str, Any]:
+    """Return the vendor fields a form submitted, whole numbers as int."""
+    return {field.key: _plain(user_input[field.key]) for field in extras if field.key in user_input}
 
 
 def _plain(value: Any) -> Any:
