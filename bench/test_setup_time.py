@@ -12,11 +12,9 @@ import time
 from homeassistant.const import STATE_UNAVAILABLE
 from homeassistant.core import HomeAssistant
 from homeassistant.helpers import device_registry as dr
-from pytest_homeassistant_custom_component.common import MockConfigEntry
 
-from custom_components.plc_bridge.const import DOMAIN
 from simulators.s7_smart import S7SmartSimulator
-from tests.ha_fixtures import ENTRY_ID, UNIQUE_ID, device, point, sim_data
+from tests.ha_fixtures import plant_entry
 
 DEVICES = 10
 PER_DEVICE = 100
@@ -24,27 +22,7 @@ PER_DEVICE = 100
 
 async def test_setup_time(hass: HomeAssistant, s7_smart_sim: S7SmartSimulator) -> None:
     """Set the PLC up; every point's state written and available; print the figures."""
-    subentries = [
-        device(
-            [
-                point(f"d{d}p{i}", f"Word {i}", "sensor", f"VW{2 * (PER_DEVICE * d + i)}", "signed")
-                for i in range(PER_DEVICE)
-            ],
-            subentry_id=f"device{d}",
-            title=f"Machine {d}",
-        )
-        for d in range(DEVICES)
-    ]
-    entry = MockConfigEntry(
-        domain=DOMAIN,
-        title="PLC",
-        entry_id=ENTRY_ID,
-        unique_id=UNIQUE_ID,
-        data=sim_data(s7_smart_sim),
-        subentries_data=subentries,
-        version=2,
-    )
-    entry.add_to_hass(hass)
+    entry = plant_entry(hass, s7_smart_sim, DEVICES, PER_DEVICE)
     started = time.perf_counter()
     assert await hass.config_entries.async_setup(entry.entry_id)
     await hass.async_block_till_done()

@@ -310,3 +310,38 @@ def remove_point(hass: HomeAssistant, entry: MockConfigEntry, point_id: str) -> 
     points = dict(entry.subentries[DEVICE_ID].data[CONF_POINTS])
     del points[point_id]
     set_points(hass, entry, points)
+
+
+def word(index: int) -> str:
+    """Return the address of the index-th word of the V area."""
+    return f"VW{2 * index}"
+
+
+def plant_entry(
+    hass: HomeAssistant, sim: S7SmartSimulator, machines: int, per_machine: int
+) -> MockConfigEntry:
+    """Add a PLC whose word sensors are spread over machines (device subentries), not set up."""
+    subentries = [
+        device(
+            [
+                point(
+                    f"d{d}p{i}", f"Word {i}", "sensor", f"VW{2 * (per_machine * d + i)}", "signed"
+                )
+                for i in range(per_machine)
+            ],
+            subentry_id=f"device{d}",
+            title=f"Machine {d}",
+        )
+        for d in range(machines)
+    ]
+    entry = MockConfigEntry(
+        domain=DOMAIN,
+        title="S7-200 SMART",
+        entry_id=ENTRY_ID,
+        unique_id=UNIQUE_ID,
+        data=sim_data(sim),
+        subentries_data=subentries,
+        version=2,
+    )
+    entry.add_to_hass(hass)
+    return entry

@@ -29,6 +29,7 @@ from .ha_fixtures import (
     edit_point,
     legacy_point,
     make_entry,
+    plant_entry,
     point,
     remove_point,
     set_points,
@@ -179,31 +180,7 @@ async def test_thousand_points_in_ten_devices(
     hass: HomeAssistant, s7_smart_sim: S7SmartSimulator, device_registry: dr.DeviceRegistry
 ) -> None:
     """1,000 points in 10 devices: every entity available, 10 + 1 devices, 32 requests a poll."""
-    devices = [
-        {
-            "data": {
-                CONF_POINTS: dict(
-                    point(f"d{d}p{i}", f"Word {i}", "sensor", f"VW{2 * (100 * d + i)}", "signed")
-                    for i in range(100)
-                )
-            },
-            "subentry_id": f"device{d}",
-            "subentry_type": SUBENTRY_DEVICE,
-            "title": f"Machine {d}",
-            "unique_id": None,
-        }
-        for d in range(10)
-    ]
-    entry = MockConfigEntry(
-        domain=DOMAIN,
-        title="S7-200 SMART",
-        entry_id=ENTRY_ID,
-        unique_id=UNIQUE_ID,
-        data=sim_data(s7_smart_sim),
-        subentries_data=devices,  # type: ignore[arg-type]
-        version=2,
-    )
-    entry.add_to_hass(hass)
+    entry = plant_entry(hass, s7_smart_sim, 10, 100)
     assert await hass.config_entries.async_setup(entry.entry_id)
     await hass.async_block_till_done()
     states = [s for s in hass.states.async_all("sensor") if s.entity_id.startswith("sensor.mach")]
