@@ -1,4 +1,8 @@
-"""The connection form of the config flow: its fields, and the errors a connection attempt gives."""
+"""The connection forms of the config flow, one set per vendor, and the errors a connection gives.
+
+Each vendor's forms have step ids of their own (`connection_s7`, `reconfigure_s7`, `s7_tsap`),
+so that strings.json words each form for its PLC family alone.
+"""
 
 from __future__ import annotations
 
@@ -42,6 +46,61 @@ class VendorField:
     default: str | int | bool | None = None  # None: an optional field
 
 
+@dataclass(frozen=True, slots=True)
+class SecondPage:
+    """Fields asked on a page of their own, by the way a field of the first page chose."""
+
+    choice: str  # the first page's field that chooses
+    ways: Mapping[str, tuple[VendorField, ...]]  # its values: the first one is the default
+
+
+def _choice(key: str, options: list[str]) -> SelectSelector:
+    """Return a translated select of fixed options."""
+    return SelectSelector(
+        SelectSelectorConfig(options=options, translation_key=key, mode=SelectSelectorMode.LIST)
+    )
+
+
+def _whole(low: int, high: int) -> NumberSelector:
+    """Return a whole-number box."""
+    return NumberSelector(
+        NumberSelectorConfig(min=low, max=high, step=1, mode=NumberSelectorMode.BOX)
+    )
+
+
+VENDOR_FIELDS: dict[str, tuple[VendorField, ...]] = {
+    "tecomat": (
+        VendorField("auth", _choice("auth", ["digest", "basic"]), "digest"),
+        VendorField("clock_variable", TextSelector()),
+    ),
+    "s7": (
+        VendorField("family", _choice("family", ["s7_300_1500", "s7_200"]), "s7_300_1500"),
+        VendorField("connection", _choice("connection", ["rack_slot", "tsap"]), "rack_slot"),
+    ),
+}
+"""Extra fields of a vendor's connection page, shown after the credentials.
+
+Whole numbers come back as int; the client checks them (`validate_options`) and reads them
+from ConnectionConfig.options.
+"""
+
+SECOND_PAGES: dict[str, SecondPage] = {
+    "s7": SecondPage(
+        "connection",
+        {
+            "rack_slot": (
+                VendorField("rack", _whole(0, 7), 0),
+                VendorField("slot", _whole(0, 31), 1),
+            ),
+            "tsap": (
+                VendorField("local_tsap", TextSelector()),
+                VendorField("remote_tsap", TextSelector()),
+            ),
+        },
+    ),
+}
+"""Vendors whose connection takes a second page: only the fields of the way chosen are asked."""
+
 CREDENTIALS_SCHEMA = vol.Schema(
     {
         vol.Required(CONF_USERNAME): TextSelector(TextSelectorConfig(autocomplete="username")),
@@ -52,10 +111,36 @@ CREDENTIALS_SCHEMA = vol.Schema(
 )
 
 
-def connection_schema(
-    client: type[PlcClient], extras: Sequence[VendorField], *, credentials: bool
-) -> vol.Schema:
-    """Return the connection form of a vendor: address, TLS mode, credentials, vendor fields."""
+def connection_step(vendor: str, *, reconfigure: bool) -> str:
+    """Return the step id of a vendor's connection page (adding the PLC, or reconfiguring it)."""
+    return f"{'reconfigure' if reconfigure else 'connection'}_{vendor}"
+
+
+def second_page(vendor: str, options: Mapping[str, Any]) -> tuple[str, tuple[VendorField, ...]]:
+    """Return the step id and fields of the second page the options chose; () without one."""
+    page = SECOND_PAGES.get(vendor)
+    if page is None:
+        return "", ()
+    way = str(options.get(page.choice, ""))
+    if way not in page.ways:
+        way = next(iter(page.ways))
+    return f"{vendor}_{way}", page.ways[way]
+
+
+def fields_schema(fields: Sequence[VendorField]) -> dict[vol.Marker, Any]:
+    """Return the markers and selectors of vendor fields; those without a default are optional."""
+    return {
+        (
+            vol.Optional(field.key)
+            if field.default is None
+            else vol.Required(field.key, default=field.default)
+        ): field.selector
+        for field in fields
+    }
+
+
+def connection_schema(client: type[PlcClient], vendor: str, *, credentials: bool) -> vol.Schema:
+    """Return a vendor's connection page: address, TLS mode, credentials, vendor fields."""
     fields: dict[vol.Marker, Any] = {
         vol.Required(CONF_HOST): TextSelector(),
         vol.Required(CONF_PORT, default=client.default_port): NumberSelector(
@@ -72,25 +157,19 @@ def connection_schema(
         )
     if credentials and client.needs_credentials:
         fields.update(CREDENTIALS_SCHEMA.schema)
-    for field in extras:
-        marker = (
-            vol.Optional(field.key)
-            if field.default is None
-            else vol.Required(field.key, default=field.default)
-        )
-        fields[marker] = field.selector
+    fields.update(fields_schema(VENDOR_FIELDS.get(vendor, ())))
     return vol.Schema(fields)
 
 
 def connection_data(
-    client: type[PlcClient], extras: Sequence[VendorField], user_input: Mapping[str, Any]
+    client: type[PlcClient], vendor: str, user_input: Mapping[str, Any]
 ) -> dict[str, Any]:
-    """Return the entry data a submitted connection form sets (not the fingerprint)."""
+    """Return the entry data a submitted connection page sets (not the fingerprint)."""
     data: dict[str, Any] = {
         CONF_HOST: str(user_input[CONF_HOST]).strip(),
         CONF_PORT: int(user_input[CONF_PORT]),
         CONF_TLS: TlsMode(user_input.get(CONF_TLS, client.default_tls)).value,
-        CONF_OPTIONS: vendor_options(extras, user_input),
+        CONF_OPTIONS: vendor_options(VENDOR_FIELDS.get(vendor, ()), user_input),
     }
     if CONF_USERNAME in user_input:
         data[CONF_USERNAME] = user_input[CONF_USERNAME]
@@ -98,9 +177,9 @@ def connection_data(
     return data
 
 
-def vendor_options(extras: Sequence[VendorField], user_input: Mapping[str, Any]) -> dict[str, Any]:
+def vendor_options(fields: Sequence[VendorField], user_input: Mapping[str, Any]) -> dict[str, Any]:
     """Return the vendor fields a form submitted, whole numbers as int."""
-    return {field.key: _plain(user_input[field.key]) for field in extras if field.key in user_input}
+    return {field.key: _plain(user_input[field.key]) for field in fields if field.key in user_input}
 
 
 def _plain(value: Any) -> Any:
@@ -109,7 +188,7 @@ def _plain(value: Any) -> Any:
 
 
 def form_values(data: Mapping[str, Any]) -> dict[str, Any]:
-    """Return entry data flattened into the connection form's suggested values."""
+    """Return entry data flattened into the connection forms' suggested values."""
     return {**data, **data.get(CONF_OPTIONS, {})}
 
 
