@@ -62,6 +62,7 @@ class S7Simulator:
         self.connections = 0
         self.cpu_state: str | int = "RUN"  # RUN, STOP, STARTUP, HOLD, DEFECT, or a raw bzu-id
         self.write_protected = False
+        self.put_get_refused = False  # an S7-1200/1500 without "Permit PUT/GET": jobs get 0x8104
         self.on_request: Callable[[bytes], None] | None = None  # runs in the server's thread
         # SZL 0x001C records by index, in a CPU's order: 1 name, 2 module, 5 serial, 7 type
         self.identity = dict(enumerate(_IDENTITY, 1)) | {5: self.serial, 7: _IDENTITY[1]}

@@ -96,6 +96,8 @@ class CpuServer(Server):
         too_many = function in (0x04, 0x05) and request_data[11] > self.sim.max_items
         if len(request_data) > limit or too_many:
             return self._build_error_response(refused, _WRONG_FRAMES)
+        if function in (0x04, 0x05) and self.sim.put_get_refused:
+            return self._build_error_response(refused, _NOT_AVAILABLE)
         if function == 0x05:
             answer: bytes | None = self._write_items(request_data)
         else:

@@ -1,4 +1,4 @@
-"""Config flow of PLC Bridge: vendor, connection and certificate, reauth and reconfigure."""
+"""Config flow of PLC Bridge: vendor, connection and certificate, name; reauth and reconfigure."""
 
 from __future__ import annotations
 
@@ -17,9 +17,6 @@ from homeassistant.const import CONF_HOST, CONF_NAME, CONF_PASSWORD, CONF_PORT, 
 from homeassistant.core import callback
 from homeassistant.helpers.device_registry import format_mac
 from homeassistant.helpers.selector import (
-    NumberSelector,
-    NumberSelectorConfig,
-    NumberSelectorMode,
     SelectSelector,
     SelectSelectorConfig,
     SelectSelectorMode,
@@ -30,12 +27,15 @@ import voluptuous as vol
 from .connection import create_client
 from .connection_form import (
     CREDENTIALS_SCHEMA,
-    VendorField,
+    SECOND_PAGES,
     connection_data,
     connection_schema,
+    connection_step,
     error_for,
+    fields_schema,
     form_values,
     on_form,
+    second_page,
     vendor_options,
 )
 from .const import (
@@ -53,56 +53,11 @@ from .plc.http import fetch_fingerprint, format_fingerprint
 from .plc.vendors import client_class, implemented
 from .subentry_flow import DeviceSubentryFlowHandler
 
+type UserInput = dict[str, Any] | None
+"""What a form step receives: the submitted values, or None to show the form."""
+
 CERTIFICATE_TIMEOUT = 10.0
 """Seconds to wait for the PLC's TLS handshake when fetching its certificate."""
-
-
-def _choice(key: str, options: list[str]) -> SelectSelector:
-    """Return a translated select of fixed options."""
-    return SelectSelector(
-        SelectSelectorConfig(options=options, translation_key=key, mode=SelectSelectorMode.LIST)
-    )
-
-
-def _whole(low: int, high: int) -> NumberSelector:
-    """Return a whole-number box."""
-    return NumberSelector(
-        NumberSelectorConfig(min=low, max=high, step=1, mode=NumberSelectorMode.BOX)
-    )
-
-
-VENDOR_FIELDS: dict[str, tuple[VendorField, ...]] = {
-    "tecomat": (
-        VendorField("auth", _choice("auth", ["digest", "basic"]), "digest"),
-        VendorField("clock_variable", TextSelector()),
-    ),
-    "s7": (
-        VendorField("family", _choice("family", ["s7_300_1500", "s7_200"]), "s7_300_1500"),
-        VendorField("connection", _choice("connection", ["rack_slot", "tsap"]), "rack_slot"),
-    ),
-}
-"""Extra connection fields per vendor key, shown after the TLS mode; labels in strings.json.
-
-Whole numbers come back as int; the client checks them (`validate_options`) and reads them
-from ConnectionConfig.options.
-"""
-ADDRESSING: dict[str, tuple[str, dict[str, tuple[VendorField, ...]]]] = {
-    "s7": (
-        "connection",
-        {
-            "rack_slot": (
-                VendorField("rack", _whole(0, 7), 0),
-                VendorField("slot", _whole(0, 31), 1),
-            ),
-            "tsap": (
-                VendorField("local_tsap", TextSelector()),
-                VendorField("remote_tsap", TextSelector()),
-            ),
-        },
-    ),
-}
-"""Fields of a second form, by the vendor option that chooses them (S7: rack and slot, or TSAPs):
-only the fields of the way chosen are asked."""
 
 
 def device_unique_id(device: DeviceInfo, data: Mapping[str, Any]) -> str:
@@ -115,7 +70,11 @@ def device_unique_id(device: DeviceInfo, data: Mapping[str, Any]) -> str:
 
 
 class PlcBridgeConfigFlow(ConfigFlow, domain=DOMAIN):
-    """Add a PLC: vendor, connection, certificate; reauth and reconfigure reuse the checks."""
+    """Add a PLC: vendor, connection, certificate, name; reauth and reconfigure reuse the checks.
+
+    Each vendor's connection pages have step ids of their own (see `connection_form`), so each
+    is worded for its PLC family; the steps below only route them to the same checks.
+    """
 
     VERSION = 2
 
@@ -123,11 +82,10 @@ class PlcBridgeConfigFlow(ConfigFlow, domain=DOMAIN):
         """Start with nothing chosen and no certificate trusted."""
         self._vendor = ""
         self._data: dict[str, Any] = {}
+        self._entered: dict[str, Any] = {}  # every value the pages took, suggested again
         self._trusted: set[str] = set()
         self._problem = ""  # the protocol layer's words for the last failure, shown in errors
         self._name = ""  # what the PLC calls itself, offered as the entry's name
-        self._previous: dict[str, Any] = {}  # the vendor options before this form, suggested
-        self._step_id = "connection"  # the form that asked the connection: shown on errors
 
     @staticmethod
     @callback
@@ -148,7 +106,7 @@ class PlcBridgeConfigFlow(ConfigFlow, domain=DOMAIN):
         if user_input is not None:
             self._vendor = user_input[CONF_VENDOR]
             self._data = {CONF_VENDOR: self._vendor, CONF_USERNAME: "", CONF_PASSWORD: ""}
-            return await self.async_step_connection()
+            return self._connection_form({})
         schema = vol.Schema(
             {
                 vol.Required(CONF_VENDOR): SelectSelector(
@@ -162,6 +120,44 @@ class PlcBridgeConfigFlow(ConfigFlow, domain=DOMAIN):
         )
         return self.async_show_form(step_id="user", data_schema=schema)
 
+    async def async_step_connection_s7_smart(
+        self, user_input: UserInput = None
+    ) -> ConfigFlowResult:
+        """Take the S7-200 SMART's address, certificate check and Web server user."""
+        return await self._connection_step(user_input)
+
+    async def async_step_connection_tecomat(self, user_input: UserInput = None) -> ConfigFlowResult:
+        """Take the Tecomat's address, certificate check, TecoApi user and clock variable."""
+        return await self._connection_step(user_input)
+
+    async def async_step_connection_s7(self, user_input: UserInput = None) -> ConfigFlowResult:
+        """Take the S7 CPU's address, family and way to connect (rack/slot or TSAPs)."""
+        return await self._connection_step(user_input)
+
+    async def async_step_reconfigure_s7_smart(
+        self, user_input: UserInput = None
+    ) -> ConfigFlowResult:
+        """Take a configured S7-200 SMART's new address or certificate check."""
+        return await self._connection_step(user_input)
+
+    async def async_step_reconfigure_tecomat(
+        self, user_input: UserInput = None
+    ) -> ConfigFlowResult:
+        """Take a configured Tecomat's new address, certificate check or TecoApi settings."""
+        return await self._connection_step(user_input)
+
+    async def async_step_reconfigure_s7(self, user_input: UserInput = None) -> ConfigFlowResult:
+        """Take a configured S7 CPU's new address, family or way to connect."""
+        return await self._connection_step(user_input)
+
+    async def async_step_s7_rack_slot(self, user_input: UserInput = None) -> ConfigFlowResult:
+        """Take the S7 CPU's rack and slot."""
+        return await self._second_page_step(user_input)
+
+    async def async_step_s7_tsap(self, user_input: UserInput = None) -> ConfigFlowResult:
+        """Take the TSAPs of the S7 connection (S7-200 with a CP 243-1, LOGO!)."""
+        return await self._second_page_step(user_input)
+
     async def async_step_name(self, user_input: dict[str, Any] | None = None) -> ConfigFlowResult:
         """Name the PLC (prefilled from what it reports): its device and entity ids take it."""
         if user_input is not None and str(user_input.get(CONF_NAME, "")).strip():
@@ -174,26 +170,16 @@ class PlcBridgeConfigFlow(ConfigFlow, domain=DOMAIN):
             data_schema=self.add_suggested_values_to_schema(schema, {CONF_NAME: self._name}),
         )
 
-    async def async_step_connection(
-        self, user_input: dict[str, Any] | None = None
-    ) -> ConfigFlowResult:
-        """Ask where the PLC is and how to log in, then check the certificate and connect."""
-        if user_input is None:
-            return self._connection_form("connection", {})
-        return await self._submit_connection("connection", user_input)
-
     async def async_step_reconfigure(
         self, user_input: dict[str, Any] | None = None
     ) -> ConfigFlowResult:
-        """Change the address, TLS mode or vendor fields of a configured PLC."""
-        if not self._data:
-            entry = self._get_reconfigure_entry()
-            self._vendor = entry.data[CONF_VENDOR]
-            self._data = dict(entry.data)
-            self._trusted.add(entry.data.get(CONF_FINGERPRINT, ""))
-        if user_input is None:
-            return self._connection_form("reconfigure", {})
-        return await self._submit_connection("reconfigure", user_input)
+        """Show a configured PLC's connection page, filled in; its name stays as it is."""
+        entry = self._get_reconfigure_entry()
+        self._vendor = entry.data[CONF_VENDOR]
+        self._data = dict(entry.data)
+        self._entered = form_values(entry.data)
+        self._trusted.add(entry.data.get(CONF_FINGERPRINT, ""))
+        return self._connection_form({})
 
     async def async_step_certificate(
         self, user_input: dict[str, Any] | None = None
@@ -226,7 +212,7 @@ class PlcBridgeConfigFlow(ConfigFlow, domain=DOMAIN):
             data = {**entry.data, **user_input}
             device, errors = await self._connect(data)
             if device is not None:
-                return self._store(entry, "reauth_successful", data=data)
+                return self._store(entry, "reauth_successful", data)
         return self.async_show_form(
             step_id="reauth_confirm",
             data_schema=self.add_suggested_values_to_schema(
@@ -236,59 +222,42 @@ class PlcBridgeConfigFlow(ConfigFlow, domain=DOMAIN):
             description_placeholders={"name": entry.title, "problem": self._problem},
         )
 
-    async def _submit_connection(
-        self, step_id: str, user_input: dict[str, Any]
-    ) -> ConfigFlowResult:
-        """Take a submitted connection form: fetch the certificate in pin mode, then connect."""
+    async def _connection_step(self, user_input: dict[str, Any] | None) -> ConfigFlowResult:
+        """Take a vendor's connection page; go on to its second page, if it has one."""
+        if user_input is None:
+            return self._connection_form({})
+        self._enter(self._connection_schema(), user_input)
         client = client_class(self._vendor)
-        extras = VENDOR_FIELDS.get(self._vendor, ())
-        self._previous = dict(self._data.get(CONF_OPTIONS, {}))
-        self._data.update(connection_data(client, extras, user_input))
-        self._step_id = step_id
-        if self._vendor in ADDRESSING:
-            return await self.async_step_addressing()
-        return await self._check_and_connect(step_id)
+        self._data.update(connection_data(client, self._vendor, user_input))
+        if self._vendor in SECOND_PAGES:
+            return self._second_form({})
+        return await self._check_and_connect()
 
-    def _addressing_fields(self) -> tuple[VendorField, ...]:
-        """The second form's fields for the way the first form chose."""
-        choice, ways = ADDRESSING[self._vendor]
-        return ways[str(self._data[CONF_OPTIONS].get(choice, next(iter(ways))))]
+    async def _second_page_step(self, user_input: dict[str, Any] | None) -> ConfigFlowResult:
+        """Take the fields of the way chosen on the connection page, then connect."""
+        if user_input is None:
+            return self._second_form({})
+        fields = second_page(self._vendor, self._data[CONF_OPTIONS])[1]
+        self._enter(vol.Schema(fields_schema(fields)), user_input)
+        self._data[CONF_OPTIONS] |= vendor_options(fields, user_input)
+        return await self._check_and_connect()
 
-    async def async_step_addressing(
-        self, user_input: dict[str, Any] | None = None, errors: dict[str, str] | None = None
-    ) -> ConfigFlowResult:
-        """Ask only the fields of the chosen way to address the PLC (S7: rack/slot or TSAPs)."""
-        fields = self._addressing_fields()
-        if user_input is not None:
-            self._data[CONF_OPTIONS] |= vendor_options(fields, user_input)
-            return await self._check_and_connect(self._step_id)
-        schema = vol.Schema(
-            {
-                (
-                    vol.Optional(field.key)
-                    if field.default is None
-                    else vol.Required(field.key, default=field.default)
-                ): field.selector
-                for field in fields
-            }
-        )
-        return self.async_show_form(
-            step_id="addressing",
-            data_schema=self.add_suggested_values_to_schema(schema, self._previous),
-            errors=errors or {},
-            description_placeholders={"problem": self._problem},
-        )
+    def _enter(self, schema: vol.Schema, user_input: Mapping[str, Any]) -> None:
+        """Remember a page's values; a field left empty (so not sent) forgets the older one."""
+        for marker in schema.schema:
+            self._entered.pop(str(marker), None)
+        self._entered.update(user_input)
 
-    async def _check_and_connect(self, step_id: str) -> ConfigFlowResult:
+    async def _check_and_connect(self) -> ConfigFlowResult:
         """Check the vendor options, fetch the certificate in pin mode, then connect."""
         client = client_class(self._vendor)
         try:
             self._data[CONF_OPTIONS] = client.validate_options(self._data[CONF_OPTIONS])
         except PlcValueError as err:
             self._problem = str(err)
-            if self._vendor in ADDRESSING:
-                return await self.async_step_addressing(errors={"base": "invalid_options"})
-            return self._connection_form(step_id, {"base": "invalid_options"})
+            if self._vendor in SECOND_PAGES:
+                return self._second_form({"base": "invalid_options"})
+            return self._connection_form({"base": "invalid_options"})
         self._data[CONF_FINGERPRINT] = ""
         if self._data[CONF_TLS] == TlsMode.PIN:
             try:
@@ -297,17 +266,16 @@ class PlcBridgeConfigFlow(ConfigFlow, domain=DOMAIN):
                 )
             except PlcError as err:
                 self._problem = str(err)
-                return self._connection_form(step_id, error_for(err))
+                return self._connection_form(error_for(err))
             if self._data[CONF_FINGERPRINT] not in self._trusted:
                 return await self.async_step_certificate()
         return await self._finish()
 
     async def _finish(self) -> ConfigFlowResult:
-        """Connect with the gathered settings, then create or update the entry."""
+        """Connect with the gathered settings, then ask the name or update the entry."""
         device, errors = await self._connect(self._data)
         if device is None:
-            step_id = "reconfigure" if self.source == SOURCE_RECONFIGURE else "connection"
-            return self._connection_form(step_id, errors)
+            return self._connection_form(errors)
         await self.async_set_unique_id(
             device_unique_id(device, self._data), raise_on_progress=False
         )
@@ -321,21 +289,22 @@ class PlcBridgeConfigFlow(ConfigFlow, domain=DOMAIN):
         elif self.unique_id != entry.unique_id:
             # Without a serial or MAC the address is the identity: it may move, not collide.
             self._abort_if_unique_id_configured()
-        return self._store(
-            entry, "reconfigure_successful", data=self._data, unique_id=self.unique_id
-        )
+        return self._store(entry, "reconfigure_successful", self._data, unique_id=self.unique_id)
 
-    def _store(self, entry: ConfigEntry, reason: str, **changes: Any) -> ConfigFlowResult:
-        """Update the entry and end the flow; the update listener reloads a loaded entry.
+    def _store(
+        self, entry: ConfigEntry, reason: str, data: dict[str, Any], **changes: Any
+    ) -> ConfigFlowResult:
+        """Update the entry, have it set up again exactly once, and end the flow.
 
-        An entry whose setup failed (wrong password, PLC away) has no listener yet: it is
-        reloaded here, so new credentials or a new address take effect at once.
+        The update listener of a loaded entry reloads it when its data changed. Any other entry
+        is reloaded here: one whose setup failed has no listener yet, and one whose data stayed
+        the same must still log in anew, as this flow's own login (S7-200 SMART: one session
+        per user) may have ended Home Assistant's session.
         """
-        # Asked before the update: the update listener starts the reload of a loaded entry at
-        # once, so afterwards it no longer looks loaded, and a second reload would follow.
-        loaded = entry.state is ConfigEntryState.LOADED
-        self.hass.config_entries.async_update_entry(entry, **changes)
-        if not loaded:
+        # Asked before the update: the listener starts the reload at once (not loaded after).
+        listener_reloads = entry.state is ConfigEntryState.LOADED and entry.data != data
+        self.hass.config_entries.async_update_entry(entry, data=data, **changes)
+        if not listener_reloads:
             self.hass.config_entries.async_schedule_reload(entry.entry_id)
         return self.async_abort(reason=reason)
 
@@ -355,16 +324,35 @@ class PlcBridgeConfigFlow(ConfigFlow, domain=DOMAIN):
         finally:
             await client.close()
 
-    def _connection_form(self, step_id: str, errors: dict[str, str]) -> ConfigFlowResult:
-        """Show the connection (or reconfigure) form with the values entered so far."""
-        schema = connection_schema(
+    def _connection_schema(self) -> vol.Schema:
+        """Return the vendor's connection page; a reconfigure keeps the credentials as they are."""
+        return connection_schema(
             client_class(self._vendor),
-            VENDOR_FIELDS.get(self._vendor, ()),
-            credentials=step_id == "connection",
+            self._vendor,
+            credentials=self.source != SOURCE_RECONFIGURE,
         )
+
+    def _connection_form(self, errors: dict[str, str]) -> ConfigFlowResult:
+        """Show the vendor's connection page with the values entered so far."""
+        schema = self._connection_schema()
+        return self._form(
+            connection_step(self._vendor, reconfigure=self.source == SOURCE_RECONFIGURE),
+            schema,
+            errors,
+        )
+
+    def _second_form(self, errors: dict[str, str]) -> ConfigFlowResult:
+        """Show the second page: the fields of the way chosen on the connection page."""
+        step_id, fields = second_page(self._vendor, self._data[CONF_OPTIONS])
+        return self._form(step_id, vol.Schema(fields_schema(fields)), errors)
+
+    def _form(self, step_id: str, schema: vol.Schema, errors: dict[str, str]) -> ConfigFlowResult:
+        """Show a connection page, suggesting what was entered or stored before."""
         return self.async_show_form(
             step_id=step_id,
-            data_schema=self.add_suggested_values_to_schema(schema, form_values(self._data)),
+            data_schema=self.add_suggested_values_to_schema(
+                schema, self._entered | form_values(self._data)
+            ),
             errors=on_form(errors, schema),
             description_placeholders={"problem": self._problem},
         )

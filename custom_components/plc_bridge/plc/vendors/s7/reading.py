@@ -34,9 +34,7 @@ async def read_plan(link: S7Link, plan: list[list[Span]]) -> list[tuple[Span, by
         try:
             items = await link.read(request)
         except S7RequestError as err:
-            raise PlcProtocolError(
-                f"the PLC refused the read: {err} (an S7-1200/1500 must permit PUT/GET access)"
-            ) from err
+            raise PlcProtocolError(f"the PLC refused the read: {err}{refusal_hint(err)}") from err
         for span, item in zip(request, items, strict=True):
             if isinstance(item, bytes) and len(item) != span.size:
                 raise PlcProtocolError(
@@ -44,6 +42,19 @@ async def read_plan(link: S7Link, plan: list[list[Span]]) -> list[tuple[Span, by
                 )
             got.append((span, item))
     return got
+
+
+FUNCTION_NOT_AVAILABLE = 0x8104
+"""The header error an S7-1200/1500 answers every read and write job with while PUT/GET access is
+not permitted. The protocol document names no error classes; this is the CPU's behaviour as
+public S7 clients report it (python-snap7 and Snap7: "CPU : Function not available")."""
+
+
+def refusal_hint(err: S7RequestError) -> str:
+    """Return the advice for the refusal that means PUT/GET is off, and for no other."""
+    if err.code == FUNCTION_NOT_AVAILABLE:
+        return " (an S7-1200/1500 must permit PUT/GET access)"
+    return ""
 
 
 def outcome(found: Variable, item: bytes | int, zone: tzinfo) -> PointResult:
