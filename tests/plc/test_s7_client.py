@@ -159,9 +159,10 @@ async def test_item_limit(s7_sim: S7Simulator, s7_client: S7Client) -> None:
     assert all(outcome.ok for outcome in (await s7_client.read(points)).values.values())
     assert s7_sim.calls["read"] - reads == 2  # 30 items, 20 a request (the CPU allows 20)
     assert S7Client.requests_for(points) == 3
-    s7_sim.max_items = 5  # a CPU that takes fewer refuses the whole request
-    with pytest.raises(PlcProtocolError, match="Wrong frames"):
-        await s7_client.read(points)
+    s7_sim.max_items = 5  # a CPU that takes fewer refuses the whole request: stepped down
+    before = s7_sim.calls["read"]
+    assert all(outcome.ok for outcome in (await s7_client.read(points)).values.values())
+    assert s7_sim.calls["read"] - before == 1 + 1 + 6  # 20 refused, 10 refused, then 6 of 5
 
 
 async def test_errors_per_item(s7_sim: S7Simulator, s7_client: S7Client) -> None:
@@ -282,12 +283,26 @@ async def test_cpu_state(s7_sim: S7Simulator, s7_client: S7Client) -> None:
     assert (await s7_client.read([])).status.mode is None
 
 
+async def test_fewer_items_learned(s7_sim: S7Simulator, s7_client: S7Client) -> None:
+    """A CPU that takes 3 items a job: the poll steps down (8, 4, 2), later polls keep 2."""
+    s7_sim.max_items = 3
+    for number in range(10, 18):
+        s7_sim.add_db(number, 4)
+    points = [Point(f"DB{number}.DBW2", "INT") for number in range(10, 18)]  # 8 items
+    result = await s7_client.read(points)
+    assert all(outcome.ok for outcome in result.values.values())
+    before = s7_sim.calls["read"]
+    await s7_client.read(points)
+    assert s7_sim.calls["read"] - before == 4  # 8 items, 2 a request: none refused
+
+
 async def test_header_error_fails_the_poll(s7_sim: S7Simulator, s7_client: S7Client) -> None:
-    """A refusal for too many items says so, without the PUT/GET advice that is no cause here."""
-    s7_sim.max_items = 1
+    """A refusal that no smaller job avoids says so, without PUT/GET advice: no cause here."""
+    s7_sim.max_items = 0
     with pytest.raises(PlcProtocolError, match=r"refused the read: ") as caught:
         await s7_client.read([Point("MW0", "INT"), Point("DB1.DBW0", "INT")])
     assert "PUT/GET" not in str(caught.value)
+    s7_sim.max_items = 1
     with pytest.raises(PlcWriteRefusedError):
         await s7_client.write({Point("MW0", "INT"): 1, Point("DB1.DBW0", "INT"): 1})
     s7_sim.max_items = 20

@@ -5,13 +5,14 @@ from __future__ import annotations
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from datetime import tzinfo
+import logging
 
 from ...errors import PlcAddressError, PlcProtocolError
 from ...types import Point, PointResult
 from .address import Variable
 from .codec import decode, span_of
 from .link import S7Link, S7RequestError
-from .planner import Span, assemble, extract, failed_needs, locate, plan_reads
+from .planner import MAX_ITEMS, Span, assemble, extract, failed_needs, locate, plan_reads
 from .protocol import item_error
 
 type Fetched = dict[Span, bytes | int]
@@ -44,6 +45,9 @@ async def read_plan(link: S7Link, plan: list[list[Span]]) -> list[tuple[Span, by
     return got
 
 
+_LOGGER = logging.getLogger(__name__)
+WRONG_FRAMES = 0x8500
+"""The header error a CPU answers a job it cannot take in one PDU with (too many items)."""
 FUNCTION_NOT_AVAILABLE = 0x8104
 """The header error an S7-1200/1500 answers every read and write job with while PUT/GET access is
 not permitted. The protocol document names no error classes; this is the CPU's behaviour as
@@ -55,6 +59,12 @@ def refusal_hint(err: S7RequestError) -> str:
     if err.code == FUNCTION_NOT_AVAILABLE:
         return " (an S7-1200/1500 must permit PUT/GET access)"
     return ""
+
+
+def too_many_items(err: PlcProtocolError) -> bool:
+    """True when the PLC refused a read job as too big for it (not for what it asked)."""
+    cause = err.__cause__
+    return isinstance(cause, S7RequestError) and cause.code == WRONG_FRAMES
 
 
 def outcome(found: Variable, item: bytes | int, zone: tzinfo) -> PointResult:
@@ -76,6 +86,7 @@ class Reader:
         self._alone: set[Span] = set()  # ranges that failed inside a merged item: read alone
         self._last_layout: Layout | None = None
         self._last_plan: tuple[object, list[list[Span]], dict[Span, list[int]]] | None = None
+        self._max_items = MAX_ITEMS  # lowered, and kept, when the CPU refuses as many
 
     def forget(self) -> None:
         """Forget what a previous link taught (a new one may be another CPU or program)."""
@@ -107,12 +118,28 @@ class Reader:
 
         The ones that fail alone stay alone in later polls; the others merge again.
         """
-        plan, where = self._plan(needs, link.pdu_size)
-        got = await read_plan(link, plan)
+        while True:
+            plan, where = self._plan(needs, link.pdu_size)
+            try:
+                got = await read_plan(link, plan)
+                break
+            except PlcProtocolError as err:
+                largest = max(len(request) for request in plan)
+                if not too_many_items(err) or largest <= 1:
+                    raise
+                # A CPU that takes fewer items than the usual cap: halve and keep the limit.
+                self._max_items = largest // 2
+                _LOGGER.info(
+                    "The PLC refused %d items in one request; reading at most %d from now on",
+                    largest,
+                    self._max_items,
+                )
         fetched = {need: assemble(need, [got[p] for p in where[need]]) for need in needs}
         retry = failed_needs(needs, got) - self._alone
         if retry:
-            again = await read_plan(link, plan_reads(retry, link.pdu_size, alone=retry))
+            again = await read_plan(
+                link, plan_reads(retry, link.pdu_size, alone=retry, max_items=self._max_items)
+            )
             fetched |= extract(retry, again)
             self._alone |= {need for need in retry if isinstance(fetched[need], int)}
         return fetched
@@ -121,9 +148,9 @@ class Reader:
         self, needs: frozenset[Span], pdu_size: int
     ) -> tuple[list[list[Span]], dict[Span, list[int]]]:
         """Plan the reads and where each need lies in them; kept while nothing changes."""
-        key = (needs, pdu_size, frozenset(self._alone))
+        key = (needs, pdu_size, frozenset(self._alone), self._max_items)
         if self._last_plan is None or self._last_plan[0] != key:
-            plan = plan_reads(needs, pdu_size, alone=self._alone)
+            plan = plan_reads(needs, pdu_size, alone=self._alone, max_items=self._max_items)
             where = locate(needs, [span for request in plan for span in request])
             self._last_plan = (key, plan, where)
         return self._last_plan[1], self._last_plan[2]
