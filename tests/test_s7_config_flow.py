@@ -14,7 +14,7 @@ from pytest_homeassistant_custom_component.common import MockConfigEntry
 
 from custom_components.plc_bridge.const import CONF_VENDOR, DOMAIN
 from simulators.s7 import S7Simulator
-from tests.flow_fixtures import error_message, through_name, translated
+from tests.flow_fixtures import error_message, suggested, through_name, translated
 
 from .s7_ha_fixtures import SimFactory, s7_data
 
@@ -29,7 +29,7 @@ async def connection_form(hass: HomeAssistant) -> dict[str, Any]:
     """Start a user flow, pick S7; return the connection form."""
     result = await hass.config_entries.flow.async_init(DOMAIN, context={"source": SOURCE_USER})
     result = await hass.config_entries.flow.async_configure(result["flow_id"], {CONF_VENDOR: "s7"})
-    assert result["step_id"] == "connection"
+    assert result["step_id"] == "connection_s7"
     return translated(result, *CONFIG)
 
 
@@ -37,12 +37,12 @@ ADDRESSING = ("rack", "slot", "local_tsap", "remote_tsap")
 
 
 async def submit(hass: HomeAssistant, result: dict[str, Any], values: dict[str, Any]) -> Any:
-    """Submit the connection form, then the addressing form it leads to; check the texts."""
+    """Submit the connection page, then the rack/slot or TSAP page it leads to; check texts."""
     first = {key: value for key, value in values.items() if key not in ADDRESSING}
     result = translated(
         await hass.config_entries.flow.async_configure(result["flow_id"], first), *CONFIG
     )
-    if result.get("step_id") == "addressing":
+    if result.get("step_id") in ("s7_rack_slot", "s7_tsap"):
         second = {key: value for key, value in values.items() if key in ADDRESSING}
         result = translated(
             await hass.config_entries.flow.async_configure(result["flow_id"], second), *CONFIG
@@ -68,7 +68,7 @@ async def test_form_defaults(hass: HomeAssistant) -> None:
         "connection": "rack_slot",
     }
     result = await hass.config_entries.flow.async_configure(form["flow_id"], values)
-    assert translated(result, *CONFIG)["step_id"] == "addressing"
+    assert translated(result, *CONFIG)["step_id"] == "s7_rack_slot"
     assert {str(marker) for marker in result["data_schema"].schema} == {"rack", "slot"}
     assert result["data_schema"]({}) == {"rack": 0, "slot": 1}
 
@@ -79,7 +79,7 @@ async def test_tsap_fields_only_for_tsap(hass: HomeAssistant) -> None:
     result = await hass.config_entries.flow.async_configure(
         form["flow_id"], {CONF_HOST: "plc", CONF_PORT: 102, "connection": "tsap"}
     )
-    assert translated(result, *CONFIG)["step_id"] == "addressing"
+    assert translated(result, *CONFIG)["step_id"] == "s7_tsap"
     assert {str(marker) for marker in result["data_schema"].schema} == {
         "local_tsap",
         "remote_tsap",
@@ -195,7 +195,7 @@ async def test_reconfigure_to_tsap(hass: HomeAssistant, s7_ha_sims: SimFactory) 
     entry = MockConfigEntry(domain=DOMAIN, unique_id=SERIAL, data=s7_data(sim))
     entry.add_to_hass(hass)
     result = translated(await entry.start_reconfigure_flow(hass), *CONFIG)
-    assert result["step_id"] == "reconfigure"
+    assert result["step_id"] == "reconfigure_s7"
     result = await submit(hass, result, where(sim))
     assert result["errors"] == {CONF_HOST: "cannot_connect"}
     result = await submit(
@@ -209,3 +209,30 @@ async def test_reconfigure_to_tsap(hass: HomeAssistant, s7_ha_sims: SimFactory) 
         "remote_tsap": "03.02",
         "family": "s7_300_1500",
     }
+
+
+async def test_reconfigure_suggests_the_stored_way(
+    hass: HomeAssistant, s7_ha_sims: SimFactory
+) -> None:
+    """Reconfiguring shows the stored rack and slot on the second page, and no login fields."""
+    sim = await s7_ha_sims(slot=2)
+    entry = MockConfigEntry(
+        domain=DOMAIN, unique_id=SERIAL, title="Press", data=s7_data(sim, slot=2)
+    )
+    entry.add_to_hass(hass)
+    result = translated(await entry.start_reconfigure_flow(hass), *CONFIG)
+    assert [str(marker) for marker in result["data_schema"].schema] == [
+        CONF_HOST,
+        CONF_PORT,
+        "family",
+        "connection",
+    ]
+    assert suggested(result, CONF_HOST) == sim.host
+    result = await hass.config_entries.flow.async_configure(result["flow_id"], where(sim))
+    assert translated(result, *CONFIG)["step_id"] == "s7_rack_slot"
+    assert (suggested(result, "rack"), suggested(result, "slot")) == (0, 2)
+    result = await hass.config_entries.flow.async_configure(
+        result["flow_id"], {"rack": 0, "slot": 2}
+    )
+    assert result["reason"] == "reconfigure_successful"
+    assert entry.title == "Press"

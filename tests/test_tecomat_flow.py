@@ -37,7 +37,7 @@ async def connection_form(hass: HomeAssistant) -> dict[str, Any]:
     result = await hass.config_entries.flow.async_configure(
         result["flow_id"], {CONF_VENDOR: "tecomat"}
     )
-    assert result["step_id"] == "connection"
+    assert result["step_id"] == "connection_tecomat"
     return translated(result, *CONFIG)
 
 

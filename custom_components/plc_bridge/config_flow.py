@@ -16,12 +16,7 @@ from homeassistant.config_entries import (
 from homeassistant.const import CONF_HOST, CONF_NAME, CONF_PASSWORD, CONF_PORT, CONF_USERNAME
 from homeassistant.core import callback
 from homeassistant.helpers.device_registry import format_mac
-from homeassistant.helpers.selector import (
-    SelectSelector,
-    SelectSelectorConfig,
-    SelectSelectorMode,
-    TextSelector,
-)
+from homeassistant.helpers.selector import TextSelector
 import voluptuous as vol
 
 from .connection import create_client
@@ -37,6 +32,7 @@ from .connection_form import (
     on_form,
     second_page,
     vendor_options,
+    vendor_schema,
 )
 from .const import (
     CONF_FINGERPRINT,
@@ -50,10 +46,10 @@ from .const import (
 from .options_flow import PlcBridgeOptionsFlow
 from .plc import DeviceInfo, PlcError, PlcValueError, TlsMode
 from .plc.http import fetch_fingerprint, format_fingerprint
-from .plc.vendors import client_class, implemented
+from .plc.vendors import client_class
 from .subentry_flow import DeviceSubentryFlowHandler
 
-type UserInput = dict[str, Any] | None
+type Input = dict[str, Any] | None
 """What a form step receives: the submitted values, or None to show the form."""
 
 CERTIFICATE_TIMEOUT = 10.0
@@ -72,8 +68,8 @@ def device_unique_id(device: DeviceInfo, data: Mapping[str, Any]) -> str:
 class PlcBridgeConfigFlow(ConfigFlow, domain=DOMAIN):
     """Add a PLC: vendor, connection, certificate, name; reauth and reconfigure reuse the checks.
 
-    Each vendor's connection pages have step ids of their own (see `connection_form`), so each
-    is worded for its PLC family; the steps below only route them to the same checks.
+    Each vendor's connection pages have step ids of their own, worded for its PLC family in
+    strings.json; their steps below all lead to the same checks.
     """
 
     VERSION = 2
@@ -101,64 +97,47 @@ class PlcBridgeConfigFlow(ConfigFlow, domain=DOMAIN):
         """Return the subentry flows: a device of the plant, holding its points."""
         return {SUBENTRY_DEVICE: DeviceSubentryFlowHandler}
 
-    async def async_step_user(self, user_input: dict[str, Any] | None = None) -> ConfigFlowResult:
+    async def async_step_user(self, user_input: Input = None) -> ConfigFlowResult:
         """Pick the vendor among those PLC Bridge implements."""
         if user_input is not None:
             self._vendor = user_input[CONF_VENDOR]
             self._data = {CONF_VENDOR: self._vendor, CONF_USERNAME: "", CONF_PASSWORD: ""}
             return self._connection_form({})
-        schema = vol.Schema(
-            {
-                vol.Required(CONF_VENDOR): SelectSelector(
-                    SelectSelectorConfig(
-                        options=implemented(),
-                        translation_key=CONF_VENDOR,
-                        mode=SelectSelectorMode.LIST,
-                    )
-                )
-            }
-        )
-        return self.async_show_form(step_id="user", data_schema=schema)
+        return self.async_show_form(step_id="user", data_schema=vendor_schema())
 
-    async def async_step_connection_s7_smart(
-        self, user_input: UserInput = None
-    ) -> ConfigFlowResult:
+    async def async_step_connection_s7_smart(self, user_input: Input = None) -> ConfigFlowResult:
         """Take the S7-200 SMART's address, certificate check and Web server user."""
         return await self._connection_step(user_input)
 
-    async def async_step_connection_tecomat(self, user_input: UserInput = None) -> ConfigFlowResult:
+    async def async_step_connection_tecomat(self, user_input: Input = None) -> ConfigFlowResult:
         """Take the Tecomat's address, certificate check, TecoApi user and clock variable."""
         return await self._connection_step(user_input)
 
-    async def async_step_connection_s7(self, user_input: UserInput = None) -> ConfigFlowResult:
+    async def async_step_connection_s7(self, user_input: Input = None) -> ConfigFlowResult:
         """Take the S7 CPU's address, family and way to connect (rack/slot or TSAPs)."""
         return await self._connection_step(user_input)
 
-    async def async_step_reconfigure_s7_smart(
-        self, user_input: UserInput = None
-    ) -> ConfigFlowResult:
+    async def async_step_reconfigure_s7_smart(self, user_input: Input = None) -> ConfigFlowResult:
         """Take a configured S7-200 SMART's new address or certificate check."""
         return await self._connection_step(user_input)
 
-    async def async_step_reconfigure_tecomat(
-        self, user_input: UserInput = None
-    ) -> ConfigFlowResult:
+    async def async_step_reconfigure_tecomat(self, user_input: Input = None) -> ConfigFlowResult:
         """Take a configured Tecomat's new address, certificate check or TecoApi settings."""
         return await self._connection_step(user_input)
 
-    async def async_step_reconfigure_s7(self, user_input: UserInput = None) -> ConfigFlowResult:
+    async def async_step_reconfigure_s7(self, user_input: Input = None) -> ConfigFlowResult:
         """Take a configured S7 CPU's new address, family or way to connect."""
         return await self._connection_step(user_input)
 
-    async def async_step_s7_rack_slot(self, user_input: UserInput = None) -> ConfigFlowResult:
+    async def async_step_s7_rack_slot(self, user_input: Input = None) -> ConfigFlowResult:
         """Take the S7 CPU's rack and slot."""
         return await self._second_page_step(user_input)
 
-    async def async_step_s7_tsap(self, user_input: UserInput = None) -> ConfigFlowResult:
+    async def async_step_s7_tsap(self, user_input: Input = None) -> ConfigFlowResult:
         """Take the TSAPs of the S7 connection (S7-200 with a CP 243-1, LOGO!)."""
         return await self._second_page_step(user_input)
 
-    async def async_step_name(self, user_input: dict[str, Any] | None = None) -> ConfigFlowResult:
+    async def async_step_name(self, user_input: Input = None) -> ConfigFlowResult:
         """Name the PLC (prefilled from what it reports): its device and entity ids take it."""
         if user_input is not None and str(user_input.get(CONF_NAME, "")).strip():
             return self.async_create_entry(
@@ -170,9 +149,7 @@ class PlcBridgeConfigFlow(ConfigFlow, domain=DOMAIN):
             data_schema=self.add_suggested_values_to_schema(schema, {CONF_NAME: self._name}),
         )
 
-    async def async_step_reconfigure(
-        self, user_input: dict[str, Any] | None = None
-    ) -> ConfigFlowResult:
+    async def async_step_reconfigure(self, user_input: Input = None) -> ConfigFlowResult:
         """Show a configured PLC's connection page, filled in; its name stays as it is."""
         entry = self._get_reconfigure_entry()
         self._vendor = entry.data[CONF_VENDOR]
@@ -181,9 +158,7 @@ class PlcBridgeConfigFlow(ConfigFlow, domain=DOMAIN):
         self._trusted.add(entry.data.get(CONF_FINGERPRINT, ""))
         return self._connection_form({})
 
-    async def async_step_certificate(
-        self, user_input: dict[str, Any] | None = None
-    ) -> ConfigFlowResult:
+    async def async_step_certificate(self, user_input: Input = None) -> ConfigFlowResult:
         """Show the certificate the PLC presents now; trusting it pins it."""
         fingerprint: str = self._data[CONF_FINGERPRINT]
         if user_input is not None:
@@ -202,9 +177,7 @@ class PlcBridgeConfigFlow(ConfigFlow, domain=DOMAIN):
         """Start re-authentication after the PLC refused the stored credentials."""
         return await self.async_step_reauth_confirm()
 
-    async def async_step_reauth_confirm(
-        self, user_input: dict[str, Any] | None = None
-    ) -> ConfigFlowResult:
+    async def async_step_reauth_confirm(self, user_input: Input = None) -> ConfigFlowResult:
         """Ask for the credentials again and check them before storing."""
         entry = self._get_reauth_entry()
         errors: dict[str, str] = {}
@@ -222,7 +195,7 @@ class PlcBridgeConfigFlow(ConfigFlow, domain=DOMAIN):
             description_placeholders={"name": entry.title, "problem": self._problem},
         )
 
-    async def _connection_step(self, user_input: dict[str, Any] | None) -> ConfigFlowResult:
+    async def _connection_step(self, user_input: Input) -> ConfigFlowResult:
         """Take a vendor's connection page; go on to its second page, if it has one."""
         if user_input is None:
             return self._connection_form({})
@@ -233,7 +206,7 @@ class PlcBridgeConfigFlow(ConfigFlow, domain=DOMAIN):
             return self._second_form({})
         return await self._check_and_connect()
 
-    async def _second_page_step(self, user_input: dict[str, Any] | None) -> ConfigFlowResult:
+    async def _second_page_step(self, user_input: Input) -> ConfigFlowResult:
         """Take the fields of the way chosen on the connection page, then connect."""
         if user_input is None:
             return self._second_form({})

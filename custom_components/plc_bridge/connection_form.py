@@ -25,7 +25,7 @@ from homeassistant.helpers.selector import (
 )
 import voluptuous as vol
 
-from .const import CONF_OPTIONS, CONF_TLS
+from .const import CONF_OPTIONS, CONF_TLS, CONF_VENDOR
 from .plc import (
     PlcAuthenticationError,
     PlcClient,
@@ -35,6 +35,7 @@ from .plc import (
     PlcTlsError,
     TlsMode,
 )
+from .plc.vendors import implemented
 
 
 @dataclass(frozen=True, slots=True)
@@ -109,6 +110,11 @@ CREDENTIALS_SCHEMA = vol.Schema(
         ),
     }
 )
+
+
+def vendor_schema() -> vol.Schema:
+    """Return the first page: the PLC family, among those PLC Bridge implements."""
+    return vol.Schema({vol.Required(CONF_VENDOR): _choice(CONF_VENDOR, implemented())})
 
 
 def connection_step(vendor: str, *, reconfigure: bool) -> str:
