@@ -105,8 +105,9 @@ def add_s7_plc(hass: Hass) -> dict[str, Any]:
     flow = hass.call("POST", "/api/config/config_entries/flow", {"handler": "plc_bridge"})
     step = f"/api/config/config_entries/flow/{flow['flow_id']}"
     flow = hass.call("POST", step, {"vendor": "s7"})
-    values = {"host": s7["host"], "port": s7["port"], **s7.get("options", {})}
-    flow = hass.call("POST", step, values)
+    flow = hass.call("POST", step, {"host": s7["host"], "port": s7["port"]})
+    if flow.get("step_id") == "s7_rack_slot":  # the second page: how the CPU is addressed
+        flow = hass.call("POST", step, s7.get("options", {}))
     if flow.get("step_id") == "name":
         flow = hass.call("POST", step, {"name": "Demo S7"})
     assert flow.get("type") == "create_entry", flow
