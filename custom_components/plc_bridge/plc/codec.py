@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from datetime import datetime, tzinfo
 from decimal import Decimal
 import math
 import re
@@ -63,7 +64,8 @@ def check_integer(value: Value, low: int, high: int, what: str = "value") -> int
     return number
 
 
-_WHOLE = re.compile(r"[+-]?[0-9]+")  # str.isdigit() also takes "²" and other digits int() refuses
+_WHOLE = re.compile(r"[+-]?[0-9]{1,40}")
+"""ASCII digits only (str.isdigit() also takes "²"), and few enough that int() never refuses."""
 
 
 def check_float(value: Value, *, single: bool = True, what: str = "value") -> float:
@@ -74,6 +76,8 @@ def check_float(value: Value, *, single: bool = True, what: str = "value") -> fl
         number = float(value)
     except ValueError as err:
         raise PlcValueError(f"{what} must be a number, not {value!r}") from err
+    except OverflowError as err:  # an int beyond any float, e.g. 10**400
+        raise PlcValueError(f"{what} is too large for a {'REAL' if single else 'LREAL'}") from err
     if not math.isfinite(number) or (single and abs(number) > REAL_MAX):
         raise PlcValueError(f"{what} {value!r} does not fit a {'REAL' if single else 'LREAL'}")
     return number
@@ -126,3 +130,16 @@ def plain_decimal(value: float) -> str:
         return str(int(value)) if value else "0"
     text = format(Decimal(repr(value)), "f")
     return text.rstrip("0").rstrip(".") if "." in text else text
+
+
+def local_time(value: datetime, zone: tzinfo) -> datetime:
+    """Return an aware time in the PLC's zone (a naive one as is); refuse one beyond years 1-9999.
+
+    astimezone raises OverflowError for, say, 0001-01-01 at +05:00: a value error here.
+    """
+    if value.tzinfo is None:
+        return value
+    try:
+        return value.astimezone(zone)
+    except OverflowError as err:
+        raise PlcValueError(f"{value.isoformat()} has no time in the PLC's time zone") from err

@@ -98,12 +98,13 @@ _ALIASES = {"E": "I", "A": "Q", "PE": "PI", "PA": "PQ", "Z": "C", "DT": "DATE_AN
 # A CPU cannot read PQ (STEP 7 only transfers to it); a PQ write also updates the process
 # image, so PQ is read there.
 _AREAS = {"I": AREA_I, "Q": AREA_Q, "M": AREA_M, "V": AREA_DB, "PI": AREA_P, "PQ": AREA_Q}
+_N = "[0-9]{1,9}"  # ASCII digits (\d takes any script's), few enough for int() (4,300 at most)
 _PATTERN = re.compile(
-    r"%?(?:DB(?P<db>\d+)\.DB(?P<dbwidth>[XBWD])(?P<dboffset>\d+)(?:\.(?P<dbbit>\d+))?"
-    r"|(?P<area>PI|PE|PQ|PA|I|E|Q|A|M|V)(?P<width>[BWD]?)(?P<offset>\d+)(?:\.(?P<bit>\d+))?"
-    r"|(?P<counter>T|C|Z)(?P<number>\d+))"
+    rf"%?(?:DB(?P<db>{_N})\.DB(?P<dbwidth>[XBWD])(?P<dboffset>{_N})(?:\.(?P<dbbit>{_N}))?"
+    rf"|(?P<area>PI|PE|PQ|PA|I|E|Q|A|M|V)(?P<width>[BWD]?)(?P<offset>{_N})(?:\.(?P<bit>{_N}))?"
+    rf"|(?P<counter>T|C|Z)(?P<number>{_N}))"
 )
-_STRING = re.compile(r"STRING\[(\d+)\]")
+_STRING = re.compile(rf"STRING\[({_N})\]")
 EXAMPLES = "DB1.DBX0.0, DB1.DBW4, M10.1, MW20, IW64, Q0.1, PIW256, VW100, T5 or C3"
 MAX_OFFSET = 0xFFFF
 
@@ -247,7 +248,7 @@ def _check_fit(place: str, width: str, data_type: str) -> None:
 
 def _with_width(place: str, width: str) -> str:
     """Return the same byte offset spelled with another width letter (DB1.DBW4 -> DB1.DBD4)."""
-    match = re.fullmatch(r"(DB\d+\.DB|[A-Z]+?)([XBWD]?)(\d+)(?:\.\d)?", place)
+    match = re.fullmatch(rf"(DB{_N}\.DB|[A-Z]+?)([XBWD]?)({_N})(?:\.[0-9])?", place)
     assert match is not None
     prefix, offset = match[1], match[3]
     if width == "X":

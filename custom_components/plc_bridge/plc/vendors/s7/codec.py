@@ -8,7 +8,14 @@ import struct
 
 from snap7.util import get_date_time_object, get_dtl, set_dt, set_dtl
 
-from ...codec import INTEGER_RANGES, check_bool, check_float, check_integer, shortest_real
+from ...codec import (
+    INTEGER_RANGES,
+    check_bool,
+    check_float,
+    check_integer,
+    local_time,
+    shortest_real,
+)
 from ...errors import PlcProtocolError, PlcValueError
 from ...types import Value
 from .address import AREA_P, Variable
@@ -114,7 +121,7 @@ def _decode_datetime(variable: Variable, data: bytes, zone: tzinfo) -> datetime:
 
 def plc_time(value: datetime, zone: tzinfo, low: int, high: int, what: str) -> datetime:
     """Return an aware time as naive PLC local time (a naive one is taken as is)."""
-    local = value.astimezone(zone).replace(tzinfo=None) if value.tzinfo else value
+    local = local_time(value, zone).replace(tzinfo=None)
     if not low <= local.year <= high:
         raise PlcValueError(f"{what} holds years {low}..{high}, not {local.year}")
     return local

@@ -30,9 +30,10 @@ NAMES: dict[str, str] = {
 }
 _WIDTHS = {"B": 8, "W": 16, "D": 32}
 _PREFIX = {8: "B", 16: "W", 32: "D"}
+_N = "[0-9]{1,9}"  # ASCII digits (\d takes any script's), few enough for int() (4,300 at most)
 _PATTERN = re.compile(
-    r"(?P<area>SM|V|I|Q|M)(?:(?P<size>[BWD])(?P<index>\d+)|(?P<byte>\d+)\.(?P<bit>\d+))"
-    r"|(?P<analog>AIW|AQW)(?P<word>\d+)|(?P<counter>HC|T|C)(?P<number>\d+)|(?P<date>DATE)"
+    rf"(?P<area>SM|V|I|Q|M)(?:(?P<size>[BWD])(?P<index>{_N})|(?P<byte>{_N})\.(?P<bit>{_N}))"
+    rf"|(?P<analog>AIW|AQW)(?P<word>{_N})|(?P<counter>HC|T|C)(?P<number>{_N})|(?P<date>DATE)"
 )
 EXAMPLES = "V10.3, VB100, VW100, VD100, I0.0, QB0, MW4, SMB28, AIW16, T37, C10, HC0 or DATE"
 

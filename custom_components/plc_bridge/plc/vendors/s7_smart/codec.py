@@ -9,7 +9,14 @@ from functools import lru_cache
 import json
 from typing import Any
 
-from ...codec import check_ascii, check_bool, check_float, check_integer, integer_range
+from ...codec import (
+    check_ascii,
+    check_bool,
+    check_float,
+    check_integer,
+    integer_range,
+    local_time,
+)
 from ...errors import (
     PlcAddressError,
     PlcAuthenticationError,
@@ -137,9 +144,7 @@ def encode(kind: str, value: Value, zone: tzinfo) -> Any:
     if kind == BOOL:
         return int(bool(value))
     if isinstance(value, datetime):
-        if value.tzinfo is not None:
-            value = value.astimezone(zone)
-        return value.strftime(DATE_FORMAT)
+        return local_time(value, zone).strftime(DATE_FORMAT)
     return value
 
 

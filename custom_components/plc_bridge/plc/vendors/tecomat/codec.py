@@ -13,6 +13,7 @@ from ...codec import (
     check_bool,
     check_float,
     check_integer,
+    local_time,
     plain_decimal,
     shortest_real,
 )
@@ -140,8 +141,7 @@ def encode(kind: str, value: Value, zone: tzinfo) -> Any:
     """Return the JSON value of a checked value; dates and times in the PLC's zone."""
     if not isinstance(value, datetime):
         return value
-    if value.tzinfo is not None:
-        value = value.astimezone(zone)
+    value = local_time(value, zone)
     if kind == "DATE":
         return f"{value:%Y-%m-%d}"
     # The spec's DT form ends in "Z", but the PLC prints its own clock digits (chapter 4

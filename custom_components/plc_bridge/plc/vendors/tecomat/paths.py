@@ -76,7 +76,8 @@ def parse_path(address: str) -> VariablePath:
             segments.append(name)
             continue
         indices = [item.strip() for item in match[2].split(",")]
-        if not all(item.isdigit() for item in indices):
+        # ASCII, and at most 9 digits: int() refuses over 4,300, and no PLC array is that long.
+        if not all(item.isascii() and item.isdigit() and len(item) <= 9 for item in indices):
             raise PlcAddressError(f"{text}: an array index is a whole number, as in arr2[1][3]")
         segments.extend(int(item) for item in indices)  # arr2[1, 3] is arr2[1][3]
     path = VariablePath(tuple(segments))
