@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from typing import Any
+
 from freezegun.api import FrozenDateTimeFactory
 from homeassistant.components.repairs import repairs_flow_manager
 from homeassistant.config_entries import SOURCE_REAUTH, ConfigEntryState
@@ -10,8 +12,10 @@ from homeassistant.core import HomeAssistant
 from homeassistant.data_entry_flow import FlowResultType
 from homeassistant.helpers import device_registry as dr, issue_registry as ir
 from homeassistant.setup import async_setup_component
+import pytest
 from pytest_homeassistant_custom_component.common import MockConfigEntry
 
+from custom_components import plc_bridge
 from custom_components.plc_bridge.const import CONF_FINGERPRINT, CONF_TLS, DOMAIN
 from custom_components.plc_bridge.plc.http import format_fingerprint
 from simulators.s7_smart import S7SmartSimulator
@@ -116,14 +120,24 @@ async def test_changed_certificate_at_setup(
     assert issue_registry.async_get_issue(DOMAIN, issue_id) is None
 
 
-async def test_changed_certificate_while_loaded(
+async def test_changed_certificate_while_loaded(  # noqa: PLR0917
     hass: HomeAssistant,
     s7_smart_sim: S7SmartSimulator,
     setup_integration: MockConfigEntry,
     issue_registry: ir.IssueRegistry,
     freezer: FrozenDateTimeFactory,
+    monkeypatch: pytest.MonkeyPatch,
 ) -> None:
+    """A replaced certificate stops the requests; trusting it in the repair reloads once."""
     entry = setup_integration
+    setups: list[str] = []
+    original = plc_bridge.async_setup_entry
+
+    async def counted(hass: HomeAssistant, entry: Any) -> bool:
+        setups.append(entry.entry_id)
+        return await original(hass, entry)
+
+    monkeypatch.setattr(plc_bridge, "async_setup_entry", counted)
     s7_smart_sim.new_certificate()
     await s7_smart_sim.restart()
     requests = s7_smart_sim.requests
@@ -142,6 +156,7 @@ async def test_changed_certificate_while_loaded(
     await hass.async_block_till_done()
     assert entry.state is ConfigEntryState.LOADED
     assert hass.states.get("sensor.s7_200_smart_temperature").state == "21.5"
+    assert setups == [entry.entry_id]
 
 
 async def test_certificate_fix_flow_aborts(
