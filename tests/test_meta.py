@@ -219,7 +219,7 @@ def test_hacs_json(manifest: dict[str, Any]) -> None:
     hacs = load_json(ROOT / "hacs.json")
     assert set(hacs) <= set(HACS_KEYS), set(hacs) - set(HACS_KEYS)
     assert hacs["name"] == manifest["name"]
-    assert hacs["homeassistant"] == "2026.2.0"
+    assert hacs["homeassistant"] == "2026.2.3"  # what requirements_oldest.txt tests
     assert AwesomeVersion(HA_VERSION) >= AwesomeVersion(hacs["homeassistant"])
     assert hacs.get("content_in_root", False) is False
     assert not hacs.get("zip_release", False), "zip_release needs a release asset workflow"
