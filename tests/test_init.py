@@ -63,7 +63,10 @@ async def test_auth_failed_starts_reauth(
     entry = make_entry(hass, s7_smart_sim, password="wrong")
     await hass.config_entries.async_setup(entry.entry_id)
     assert entry.state is ConfigEntryState.SETUP_ERROR
-    assert entry.reason == "The PLC refused the login: the PLC refused the user name or password"
+    assert entry.reason == (
+        "The PLC refused the login: the PLC refused the user name or password"
+        " (Login failed., code 1001)"  # the PLC's own words come along
+    )
     assert [
         flow["context"]["source"] for flow in entry.async_get_active_flows(hass, {SOURCE_REAUTH})
     ]

@@ -176,6 +176,7 @@ async def test_sync_clock_in_stop(
         await call(hass, "sync_clock", setup_integration)
     assert str(err.value) == (
         "The PLC refused the write: the PLC is in STOP; S7-200 SMART accepts writes only in RUN"
+        " (CPU not in RUN., code 2001)"
     )
 
 

@@ -67,6 +67,7 @@ async def test_plc_in_stop(
         )
     assert str(err.value) == (
         "The PLC refused the write: the PLC is in STOP; S7-200 SMART accepts writes only in RUN"
+        " (CPU not in RUN., code 2001)"
     )
     assert err.value.translation_key == "write_refused"
     assert s7_smart_sim.get("Q0.0") is False

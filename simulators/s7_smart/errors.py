@@ -37,6 +37,22 @@ ERRORS: dict[int, str] = {
 }
 
 
+FOREIGN: dict[int, int] = {
+    code: 7100 + index
+    for index, code in enumerate(sorted(ERRORS))
+    if code not in (INVALID_ADDRESS, PARSE_ERROR, INVALID_REQUEST, METHOD_NOT_FOUND, INVALID_PARAMS)
+}
+"""Other codes for every error the manual does not define (3004 is its own; the negative ones
+are JSON-RPC 2.0's): a firmware whose table the client cannot know, for `foreign_codes`."""
+
+
+def shown(code: int, *, foreign: bool) -> tuple[int, str]:
+    """Return the code and message a reply carries, in the manual's table or a foreign one."""
+    if foreign and code in FOREIGN:
+        return FOREIGN[code], f"Request refused (E{FOREIGN[code]})"
+    return code, ERRORS[code]
+
+
 class Fault(Exception):
     """A JSON-RPC error for the whole request, or a result code for one node."""
 

@@ -23,7 +23,6 @@ from aiohttp import web
 
 from ..base import HttpSimulator
 from .errors import (
-    ERRORS,
     INVALID_ADDRESS,
     INVALID_PARAMS,
     INVALID_REQUEST,
@@ -38,6 +37,7 @@ from .errors import (
     READ_ONLY,
     TOO_MANY_NODES,
     Fault,
+    shown,
 )
 from .memory import DATE_FORMAT, READ_ONLY_SM, Memory, Value
 
@@ -81,6 +81,9 @@ class S7SmartSimulator(HttpSimulator):
         self.mode = "RUN"
         self.malformed = False
         self.system_status = "OK"
+        # Codes and messages other than the ones our client knows: the manual defines 3004
+        # only, so a real firmware may answer with any (tests run both ways).
+        self.foreign_codes = False
         self.forced = False
         self.cookie_name_in_token = True
         self.rewrite: Callable[[dict[str, Any]], dict[str, Any]] | None = None
@@ -175,8 +178,9 @@ class S7SmartSimulator(HttpSimulator):
         return web.json_response(reply, dumps=_compact)
 
     def _error(self, call_id: Any, code: int) -> web.Response:
-        """Return a JSON-RPC error reply."""
-        error = {"code": code, "message": ERRORS[code]}
+        """Return a JSON-RPC error reply (in a foreign code table when `foreign_codes` is set)."""
+        code, message = shown(code, foreign=self.foreign_codes)
+        error = {"code": code, "message": message}
         return web.json_response({"jsonrpc": "2.0", "id": call_id, "error": error}, dumps=_compact)
 
     def _methods(self) -> dict[str, Callable[[web.Request, Any], dict[str, Any]]]:
@@ -288,7 +292,8 @@ class S7SmartSimulator(HttpSimulator):
             else:
                 value = self.memory.load(where)
         except Fault as fault:
-            return {"code": fault.code, "message": ERRORS[fault.code], "var": var}
+            code, message = shown(fault.code, foreign=self.foreign_codes)
+            return {"code": code, "message": message, "var": var}
         done = {"code": 0, "message": "Success.", "var": var}
         return done if write else done | {"value": value}
 

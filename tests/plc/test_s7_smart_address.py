@@ -10,7 +10,6 @@ import pytest
 
 from custom_components.plc_bridge.plc import (
     PlcAddressError,
-    PlcAuthenticationError,
     PlcProtocolError,
     PlcStatus,
     PlcValueError,
@@ -246,13 +245,15 @@ def test_decode_status() -> None:
 @pytest.mark.parametrize(
     ("code", "kind", "message"),
     [
-        (1001, PlcAuthenticationError, "the PLC refused the user name or password"),
-        (1002, PlcAuthenticationError, "the PLC no longer accepts the session token"),
-        (1003, PlcWriteRefusedError, "the PLC user has no write permission"),
+        # Never an authentication error here: a fresh login has just worked (the login's own
+        # refusal is told apart by its method, not its code).
+        (1001, PlcProtocolError, "the PLC refused the request: Login failed. (code 1001)"),
+        (1002, PlcProtocolError, "the PLC refused the request: Invalid token. (code 1002)"),
+        (1003, PlcWriteRefusedError, "the PLC user has no write permission (Permission denied.)"),
         (2001, PlcWriteRefusedError, STOP_MESSAGE),
         (2002, PlcProtocolError, "the PLC refused the request: Too many nodes. (code 2002)"),
         (-32700, PlcProtocolError, "the PLC refused the request: boom (code -32700)"),
-        (77, PlcProtocolError, "the PLC refused the request: unknown error (code 77)"),
+        (77, PlcProtocolError, "the PLC refused the request: no message (code 77)"),
     ],
 )
 def test_request_errors(code: int, kind: type[Exception], message: str) -> None:

@@ -26,6 +26,14 @@ from .conftest import ConfigFactory
 POINT = Point("VW0", "signed")
 
 
+@pytest.fixture(autouse=True, params=[False, True], ids=["manual-codes", "foreign-codes"])
+def codes(request: pytest.FixtureRequest, s7_smart_sim: S7SmartSimulator) -> bool:
+    """Run every session, STOP and permission test twice: with the codes our client knows, and
+    with a firmware's it cannot (the manual defines 3004 only): the paths rest on structure."""
+    s7_smart_sim.foreign_codes = request.param
+    return bool(request.param)
+
+
 async def test_token_renewed_once(
     s7_smart_sim: S7SmartSimulator, s7_smart_client: S7SmartClient
 ) -> None:
@@ -39,10 +47,13 @@ async def test_token_renewed_once(
 
 
 async def test_token_lost_twice_fails(
-    s7_smart_sim: S7SmartSimulator, s7_smart_client: S7SmartClient
+    s7_smart_sim: S7SmartSimulator, s7_smart_client: S7SmartClient, codes: bool
 ) -> None:
+    """A refusal that a fresh login does not cure is no reason for reauth (the login worked)."""
     s7_smart_sim.idle_timeout = 0.0  # every token is stale by its next request
-    with pytest.raises(PlcConnectionError, match="dropped the session again") as err:
+    # With the known code the client can say what happened; with another, the PLC's words.
+    expected = "Request refused" if codes else "dropped the session again"
+    with pytest.raises((PlcConnectionError, PlcProtocolError), match=expected) as err:
         await s7_smart_client.read([POINT])
     assert not isinstance(err.value, PlcAuthenticationError)  # the password is right: no reauth
     assert s7_smart_client.metrics.session_renewals == 1
@@ -111,12 +122,17 @@ async def test_stop_refuses_writes(
     s7_smart_sim.mode = "STOP"
     with pytest.raises(PlcWriteRefusedError) as caught:
         await s7_smart_client.write({POINT: 1})
-    assert str(caught.value) == "the PLC is in STOP; S7-200 SMART accepts writes only in RUN"
+    assert str(caught.value).startswith(
+        "the PLC is in STOP; S7-200 SMART accepts writes only in RUN ("  # then the PLC's words
+    )
+    assert s7_smart_client.metrics.session_renewals == 0  # the status told: no new login
     assert (await s7_smart_client.read([POINT])).status.mode == "STOP"
 
 
-async def test_no_write_permission(s7_smart_config: ConfigFactory) -> None:
+async def test_no_write_permission(s7_smart_config: ConfigFactory, codes: bool) -> None:
+    """A read-only user's write is refused as such, whatever code the firmware uses."""
     sim = S7SmartSimulator(write_permission=False)
+    sim.foreign_codes = codes
     await sim.start()
     try:
         client = S7SmartClient(s7_smart_config(port=sim.port, fingerprint=sim.fingerprint))
@@ -155,14 +171,17 @@ async def test_malformed_reply(
         ),
         (
             lambda r: {"jsonrpc": "2.0", "id": r["id"], "error": {"code": "x"}},
-            "unknown error \\(code 0\\)",
+            "the PLC refused the request: no message \\(code 0\\)",
         ),
     ],
 )
 async def test_protocol_errors(
     s7_smart_sim: S7SmartSimulator, s7_smart_client: S7SmartClient, rewrite: Any, message: str
 ) -> None:
-    s7_smart_sim.rewrite = rewrite
+    """Garbled or refused read replies; a refusal survives the one fresh login it earns."""
+    s7_smart_sim.rewrite = lambda reply: (
+        rewrite(reply) if "cookie" not in reply.get("result", {}) else reply
+    )
     with pytest.raises(PlcProtocolError, match=message):
         await s7_smart_client.read([POINT, Point("VW2", "signed")])
 
@@ -232,3 +251,24 @@ async def test_close_does_not_wait_for_a_silent_plc(
     assert time.monotonic() - started < 1
     server.close()
     await server.wait_closed()
+
+
+async def test_concurrent_calls_share_one_login(
+    s7_smart_sim: S7SmartSimulator, s7_smart_client: S7SmartClient
+) -> None:
+    """Calls at once after the session was lost log in once: a second login would end the first."""
+    s7_smart_sim.invalidate_tokens()
+    logins = s7_smart_sim.calls["login"]
+    results = await asyncio.gather(*(s7_smart_client.read([POINT]) for _ in range(3)))
+    assert all(result.values[POINT].ok for result in results)
+    assert s7_smart_sim.calls["login"] == logins + 1
+
+
+async def test_calls_without_a_session_share_one_login(s7_smart_config: ConfigFactory) -> None:
+    """A client that never logged in: calls at once make one login between them."""
+    client = S7SmartClient(s7_smart_config())
+    try:
+        await asyncio.gather(*(client.read([POINT]) for _ in range(3)))
+        assert client._logins == 1
+    finally:
+        await client.close()

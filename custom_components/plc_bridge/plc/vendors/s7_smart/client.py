@@ -16,7 +16,13 @@ from zoneinfo import ZoneInfo
 import aiohttp
 
 from ...client import PlcClient
-from ...errors import PlcConnectionError, PlcError, PlcProtocolError
+from ...errors import (
+    PlcAuthenticationError,
+    PlcConnectionError,
+    PlcError,
+    PlcProtocolError,
+    PlcWriteRefusedError,
+)
 from ...http import HttpTransport
 from ...types import (
     ConnectionConfig,
@@ -33,6 +39,7 @@ from .address import BOOL, DATE, MODES
 from .codec import (
     INVALID_TOKEN,
     MAX_NODES,
+    STOP_MESSAGE,
     Node,
     check_value,
     decode,
@@ -92,6 +99,11 @@ class _RpcError(Exception):
         self.message = message
 
 
+def plc_words(err: _RpcError) -> str:
+    """Return what the PLC said about a refusal: its message and its code."""
+    return f"{err.message or 'no message'}, code {err.code}"
+
+
 class S7SmartClient(PlcClient):
     """A Siemens S7-200 SMART CPU (firmware 2.7 or later) through its Web API."""
 
@@ -115,6 +127,10 @@ class S7SmartClient(PlcClient):
         self._ids = itertools.count(1)
         self._zone = ZoneInfo(self.config.time_zone)
         self._plan: _PollPlan | None = None
+        self._login_lock = asyncio.Lock()
+        self._logins = 0  # successful logins so far: concurrent callers share one
+        self._mode: str | None = None  # the operating mode the last status block reported
+        self._can_write = True  # what get_permission said at connect (manual 6)
 
     @classmethod
     def validate_point(cls, point: Point) -> Point:
@@ -159,6 +175,7 @@ class S7SmartClient(PlcClient):
         await self._login()
         permission = (await self._call("get_permission", None)).get("permission")
         can_write = isinstance(permission, dict) and permission.get("write") is True
+        self._can_write = can_write
         return DeviceInfo(
             vendor=self.vendor,
             model="S7-200 SMART",
@@ -258,34 +275,62 @@ class S7SmartClient(PlcClient):
         self._transport = None
         await self._close_own_session()
 
-    async def _login(self) -> None:
-        """Log in with the password's sha512 hex digest and keep the token."""
-        self._token = None
-        password = hashlib.sha512(self.config.password.encode()).hexdigest()
-        params = {"username": self.config.username, "password": password}
-        try:
-            result = await self._rpc("login", params)
-        except _RpcError as err:
-            raise request_error(err.code, err.message) from None
-        cookie = result.get("cookie")
-        if not isinstance(cookie, str) or not cookie:
-            raise PlcProtocolError("the PLC accepted the login but sent no token")
-        self._token = cookie
+    async def _login(self, seen: int | None = None) -> None:
+        """Log in with the password's sha512 hex digest and keep the token.
+
+        Single-flight: a caller that saw `seen` logins before its call failed logs in only if
+        nobody has since; concurrent callers share the one new login (a second login would end
+        the first's token, manual 5.1 b).
+        """
+        async with self._login_lock:
+            if seen is not None and self._logins != seen and self._token is not None:
+                return
+            self._token = None
+            password = hashlib.sha512(self.config.password.encode()).hexdigest()
+            params = {"username": self.config.username, "password": password}
+            try:
+                result = await self._rpc("login", params)
+            except _RpcError as err:
+                # Manual 5.3.2: a login fails with an error object, whatever its code says.
+                raise PlcAuthenticationError(
+                    f"the PLC refused the user name or password ({plc_words(err)})"
+                ) from None
+            cookie = result.get("cookie")
+            if not isinstance(cookie, str) or not cookie:
+                raise PlcProtocolError("the PLC accepted the login but sent no token")
+            self._token = cookie
+            self._logins += 1
 
     async def _call(self, method: str, params: Any) -> dict[str, Any]:
-        """Call a method that needs a login; renew a dropped token once, then fail."""
+        """Call a method that needs a login; after any refusal log in once and retry once.
+
+        The manual defines no session error code (its error page is missing), only that a
+        request needs a valid token (6.1 a, 7.1 a, 8.1 a) and that a token ends with another
+        login or 30 minutes idle (5.1 b, 5.3.1): so a refusal is first taken as a lost session.
+        A refused write is first checked against the status an empty read returns (8.1 d): out
+        of RUN, it is the STOP refusal (writes only in RUN), with the PLC's own words; a write
+        refused again after a fresh login, by a user get_permission (6) said may not write, is
+        that. Known codes refine the message; they never decide the path.
+        """
         if self._token is None:
-            await self._login()
+            await self._login(self._logins)  # callers at once share the one login
+        seen = self._logins
         try:
-            return await self._rpc(method, params)
+            return self._noted(await self._rpc(method, params))
         except _RpcError as err:
-            if err.code != INVALID_TOKEN:
-                raise request_error(err.code, err.message) from None
+            if method == "write" and await self._stopped():
+                raise PlcWriteRefusedError(f"{STOP_MESSAGE} ({plc_words(err)})") from None
         self.metrics.session_renewals += 1
-        await self._login()
+        await self._login(seen)
         try:
-            return await self._rpc(method, params)
+            return self._noted(await self._rpc(method, params))
         except _RpcError as err:
+            if method == "write" and await self._stopped():
+                raise PlcWriteRefusedError(f"{STOP_MESSAGE} ({plc_words(err)})") from None
+            if method == "write" and not self._can_write:
+                raise PlcWriteRefusedError(
+                    f"the PLC user has no write permission ({plc_words(err)})"
+                ) from None
             if err.code == INVALID_TOKEN:
                 # The login just worked: the password is right, another client took the
                 # session (the same PLC user logged in elsewhere). Not a case for reauth.
@@ -294,6 +339,21 @@ class S7SmartClient(PlcClient):
                     "(another client logs in as the same PLC user)"
                 ) from None
             raise request_error(err.code, err.message) from None
+
+    async def _stopped(self) -> bool:
+        """Ask the status (an empty read, manual 8.1 d) and say whether the CPU is out of RUN."""
+        try:
+            self._noted(await self._rpc("read", []))
+        except (_RpcError, PlcError):
+            return False
+        return self._mode not in (None, "RUN")
+
+    def _noted(self, result: dict[str, Any]) -> dict[str, Any]:
+        """Remember the operating mode a reply's status block reports (read and write replies)."""
+        status = result.get("status")
+        if isinstance(status, dict) and isinstance(status.get("Operating Mode"), str):
+            self._mode = status["Operating Mode"].strip().upper()
+        return result
 
     async def _rpc(self, method: str, params: Any) -> dict[str, Any]:
         """Send one JSON-RPC call (never a batch) and return its result object."""

@@ -19,7 +19,6 @@ from ...codec import (
 )
 from ...errors import (
     PlcAddressError,
-    PlcAuthenticationError,
     PlcError,
     PlcProtocolError,
     PlcValueError,
@@ -30,8 +29,9 @@ from ...types import PlcStatus, Point, Value
 from .address import BOOL, DATE, MODES, Address, parse_address, point_kind
 
 # The manual's error page is missing: only 3004 "Invalid address." is the vendor's own (it appears
-# in the read and write examples). Every other code here is ours; simulators/s7_smart.py keeps
-# the same table.
+# in the read and write examples). Every other code here is a guess that only refines a message:
+# what happened is decided from the structure the manual defines (client.S7SmartClient._call).
+# The simulator answers with these or, with foreign_codes, with others; tests run both.
 PARSE_ERROR = -32700
 INVALID_REQUEST = -32600
 METHOD_NOT_FOUND = -32601
@@ -77,16 +77,16 @@ _NODE_ERRORS: dict[int, tuple[type[PlcError], str]] = {
 
 
 def request_error(code: int, message: str) -> PlcError:
-    """Return the exception for an error answer to a whole request."""
-    if code == LOGIN_FAILED:
-        return PlcAuthenticationError("the PLC refused the user name or password")
-    if code == INVALID_TOKEN:
-        return PlcAuthenticationError("the PLC no longer accepts the session token")
+    """Return the exception for a refused request that a fresh login did not cure.
+
+    Never an authentication error: the login just worked. A code this table knows refines the
+    kind; any other keeps the PLC's own words.
+    """
+    text = message or ERRORS.get(code, "no message")
     if code == PERMISSION_DENIED:
-        return PlcWriteRefusedError("the PLC user has no write permission")
+        return PlcWriteRefusedError(f"the PLC user has no write permission ({text})")
     if code == NOT_IN_RUN:
         return PlcWriteRefusedError(STOP_MESSAGE)
-    text = message or ERRORS.get(code, "unknown error")
     return PlcProtocolError(f"the PLC refused the request: {text} (code {code})")
 
 
