@@ -5,6 +5,7 @@ from __future__ import annotations
 from collections.abc import Sequence
 from dataclasses import dataclass, field
 import json
+import re
 from typing import Any
 
 import aiohttp
@@ -47,6 +48,27 @@ class Reading:
         self.found.update(other.found)
         self.failed.update(other.failed)
         self.unknown |= other.unknown
+
+
+_STRINGS_OR_NON_FINITE = re.compile(
+    r'"(?:[^"\\]|\\.)*"|(?<![\w.])-?(?:nan|inf(?:inity)?)(?![\w.])', re.IGNORECASE
+)
+
+
+def loads(text: str) -> Any:
+    """Parse an answer; a REAL the PLC printed as nan or inf (not JSON) becomes null.
+
+    Real firmware prints a non-finite REAL as a bare word (reported for Foxtrot CPUs); the spec is
+    silent. Only words outside strings are touched, so the one point fails alone with its own
+    error (its value is missing) and no text changes.
+    """
+    try:
+        return json.loads(text)
+    except ValueError:
+        fixed = _STRINGS_OR_NON_FINITE.sub(
+            lambda match: match[0] if match[0].startswith('"') else "null", text
+        )
+        return json.loads(fixed)
 
 
 def _text(raw: bytes) -> str:
@@ -114,7 +136,7 @@ class TecoApi:
         if not raw.strip():
             return None
         try:
-            return json.loads(_text(raw))
+            return loads(_text(raw))
         except ValueError:
             raise PlcProtocolError(
                 f"the PLC answered {path[:40]} with something other than JSON"
