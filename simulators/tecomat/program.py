@@ -193,13 +193,22 @@ def place(answer: dict[str, Any], canonical: list[Segment], value: Any) -> None:
 
 
 def read(
-    variables: dict[str, Node], names: list[str], limit: int, *, leaf_names: bool = False
+    variables: dict[str, Node],
+    names: list[str],
+    limit: int,
+    *,
+    leaf_names: bool = False,
+    compact_arrays: bool = False,
 ) -> dict[str, Any]:
     """Answer GetObject; the first unknown name fails the request (400.005).
 
-    With `leaf_names` the error names only the item where the walk stopped, not the path.
+    With `leaf_names` the error names only the item where the walk stopped, not the path. With
+    `compact_arrays` elements of a top-level array come as a shorter array of the asked ones in
+    index order (`arr1[1]&arr1[4]` -> `{"arr1": ["one", "four"]}`), as real firmware may answer:
+    the spec shows no answer for elements.
     """
     answer: dict[str, Any] = {}
+    elements: dict[str, dict[int, Any]] = {}
     items = 0
     for name in names:
         parts = parse(name)
@@ -211,9 +220,14 @@ def read(
             shown = stopped_at(variables, parts) if parts and leaf_names else name
             raise Fault("400.005", f"Variable '{shown}' is not found") from None
         items += leaves(node)
+        if compact_arrays and parts and len(parts) == 2 and isinstance(parts[1], int):
+            elements.setdefault(str(parts[0]), {})[parts[1]] = render(node)
+            continue
         place(answer, canonical, render(node))
     if items > limit:
         raise Fault("413.004", f"Too many variables (maximum is {limit})")
+    for name, found in elements.items():
+        answer[name] = [found[index] for index in sorted(found)]
     return answer
 
 

@@ -86,6 +86,7 @@ class TecomatSimulator(HttpSimulator):
         self.calls: Counter[str] = Counter()
         self.rewrite: Callable[[bytes], bytes] | None = None
         self.leaf_names = False
+        self.compact_arrays = False  # elements of an array answered as a shorter array
 
     def build_app(self, app: web.Application) -> None:
         app.router.add_route("*", "/TecoApi{tail:.*}", self._handle)
@@ -260,7 +261,13 @@ class TecomatSimulator(HttpSimulator):
     def _get_object(self, query: str, body: bytes) -> web.Response:
         names = self._names(query)
         return self._json(
-            read(self.variables, names, self.max_variables, leaf_names=self.leaf_names)
+            read(
+                self.variables,
+                names,
+                self.max_variables,
+                leaf_names=self.leaf_names,
+                compact_arrays=self.compact_arrays,
+            )
         )
 
     def _set_object(self, query: str, body: bytes) -> web.Response:

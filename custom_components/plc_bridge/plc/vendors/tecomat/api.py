@@ -30,7 +30,7 @@ from .errors import (
     refused_value,
     request_error,
 )
-from .paths import SERVICE, VariablePath, find, get_uri, nest
+from .paths import SERVICE, VariablePath, answered, get_uri, nest
 
 AUTH_METHODS = ("digest", "basic")
 
@@ -188,12 +188,13 @@ class TecoApi:
                     )
                     return
                 raise request_error(err, self.auth) from None
+            placed = answered(answer, pending)
             for path in pending:
-                try:
-                    reading.found[path.key] = find(answer, path)
-                except KeyError:
+                if path.key in placed:
+                    reading.found[path.key] = placed[path.key]
+                else:
                     reading.failed[path.key] = PlcProtocolError(
-                        f"{path.text} is missing from the answer"
+                        f"{path.text} is missing from the answer, or cannot be told apart in it"
                     )
             return
 

@@ -261,3 +261,49 @@ def nest(items: Iterable[tuple[VariablePath, Any]]) -> dict[str, Any]:
                 raise PlcValueError(f"{path.text} lies inside a variable written as a value")
             node = child
     return body
+
+
+def answered(answer: Any, paths: Sequence[VariablePath]) -> dict[str, Any]:
+    """Return each path's value in a GetObject answer, by key; a path it cannot place is absent.
+
+    The spec shows whole arrays as JSON arrays (5.2) and is silent on an answer to some of an
+    array's elements. Real firmware may answer `arr1[1]&arr1[4]` with `{"arr1": ["one",
+    "four"]}`: the asked elements in index order (as public clients for it unwrap). So where an
+    array answers with fewer items than an asked index needs, and exactly as many as indices
+    were asked, they are placed by order; a list that fits neither shape places nobody: a
+    value is never shown under another point's index.
+    """
+    asked: dict[tuple[Segment, ...], set[int]] = {}
+    for path in paths:
+        for at, part in enumerate(path.segments):
+            if isinstance(part, int):
+                asked.setdefault(path.segments[:at], set()).add(part)
+                break
+    compact: dict[tuple[Segment, ...], dict[int, int] | None] = {}
+    for prefix, indices in asked.items():
+        try:
+            node = _walk(answer, prefix, 0)
+        except KeyError:
+            continue
+        if isinstance(node, list) and len(node) <= max(indices):
+            fits = len(node) == len(indices)
+            compact[prefix] = (
+                {index: at for at, index in enumerate(sorted(indices))} if fits else None
+            )
+    found: dict[str, Any] = {}
+    for path in paths:
+        segments = path.segments
+        for prefix, places in compact.items():
+            if segments[: len(prefix)] == prefix and len(segments) > len(prefix):
+                if places is None:
+                    segments = ()
+                    break
+                index = segments[len(prefix)]
+                assert isinstance(index, int)
+                segments = (*prefix, places[index], *segments[len(prefix) + 1 :])
+        try:
+            if segments:
+                found[path.key] = _walk(answer, segments, 0)
+        except KeyError:
+            continue
+    return found
