@@ -223,12 +223,42 @@ class TecomatClient(PlcClient):
         for group in chunks(items, MAX_VARIABLES):
             pairs = [(item.path, encode(item.kind, item.value, self._zone)) for item in group]
             failures = await self._teco().put(pairs)
+            taken = [item for index, item in enumerate(group) if index not in failures]
+            failures |= await self._not_taken(group, taken)
             for index, item in enumerate(group):
                 error = failures.get(index)
                 if error is None:
                     self._unknown.pop(item.path.key, None)
                 results[item.point] = PointResult(value=None if error else item.value, error=error)
         return results
+
+    async def _not_taken(self, group: Sequence[_Write], taken: list[_Write]) -> dict[int, PlcError]:
+        """Read the written variables back; return the ones the PLC does not hold.
+
+        A PutObject's 204 carries nothing that proves the values were taken (3.6), and some
+        firmware answers so to values it dropped.
+        """
+        if not taken:
+            return {}
+        paths = {item.path.key: item.path for item in taken}
+        reading = await self._teco().get(plan(paths.values()))
+        failures: dict[int, PlcError] = {}
+        for index, item in enumerate(group):
+            if item not in taken:
+                continue
+            try:
+                held = decode(item.kind, reading.found[item.path.key], self._zone, item.path.text)
+            except (KeyError, PlcError):
+                held = None
+            # Compared as sent: at the PLC's resolution (a DT keeps milliseconds, 4).
+            if held is None or encode(item.kind, held, self._zone) != encode(
+                item.kind, item.value, self._zone
+            ):
+                failures[index] = PlcWriteRefusedError(
+                    f"{item.path.text}: the PLC answered the write but holds {held!r}, "
+                    f"not {item.value!r}"
+                )
+        return failures
 
     async def browse(self) -> list[BrowseItem]:
         """List the public variables (GetList) and expand each value into its leaves."""
