@@ -26,6 +26,7 @@ from homeassistant.helpers import device_registry as dr
 import pytest
 from pytest_homeassistant_custom_component.common import MockConfigEntry, async_fire_time_changed
 
+from custom_components import plc_bridge
 from custom_components.plc_bridge import PLATFORMS
 from custom_components.plc_bridge.const import (
     CONF_ADDRESS,
@@ -345,3 +346,17 @@ def plant_entry(
     )
     entry.add_to_hass(hass)
     return entry
+
+
+@pytest.fixture
+def setups(hass: HomeAssistant, monkeypatch: pytest.MonkeyPatch) -> list[str]:
+    """Record each setup of an entry from now on (its id), through the real setup."""
+    done: list[str] = []
+    original = plc_bridge.async_setup_entry
+
+    async def counted(hass: HomeAssistant, entry: Any) -> bool:
+        done.append(entry.entry_id)
+        return await original(hass, entry)
+
+    monkeypatch.setattr(plc_bridge, "async_setup_entry", counted)
+    return done

@@ -2,16 +2,12 @@
 
 from __future__ import annotations
 
-from typing import Any
-
 from homeassistant.config_entries import ConfigEntryState
 from homeassistant.const import CONF_HOST, CONF_PASSWORD, CONF_PORT, CONF_USERNAME
 from homeassistant.core import HomeAssistant
 from homeassistant.helpers import device_registry as dr, entity_registry as er
-import pytest
 from pytest_homeassistant_custom_component.common import MockConfigEntry
 
-from custom_components import plc_bridge
 from custom_components.plc_bridge.const import CONF_TLS
 from simulators.s7_smart import DEFAULT_PASSWORD, DEFAULT_USER, S7SmartSimulator
 
@@ -97,21 +93,14 @@ async def test_reconfigure_after_a_failed_setup_loads_the_entry(
 
 
 async def test_reconfigure_reloads_once(
-    hass: HomeAssistant, s7_smart_sim: S7SmartSimulator, monkeypatch: pytest.MonkeyPatch
+    hass: HomeAssistant, s7_smart_sim: S7SmartSimulator, setups: list[str]
 ) -> None:
     """A reconfigure sets the PLC up again exactly once; editing points sets it up not at all."""
     entry = make_entry(hass, s7_smart_sim)
     hass.config_entries.async_update_entry(entry, unique_id=f"127.0.0.1:{s7_smart_sim.port}")
     assert await hass.config_entries.async_setup(entry.entry_id)
     await hass.async_block_till_done()
-    setups: list[str] = []
-    original = plc_bridge.async_setup_entry
-
-    async def counted(hass: HomeAssistant, entry: Any) -> bool:
-        setups.append(entry.entry_id)
-        return await original(hass, entry)
-
-    monkeypatch.setattr(plc_bridge, "async_setup_entry", counted)
+    setups.clear()
     await s7_smart_sim.stop()
     await s7_smart_sim.start()  # on another port: the PLC moved
     await move(hass, entry, s7_smart_sim.port)

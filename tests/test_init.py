@@ -2,8 +2,6 @@
 
 from __future__ import annotations
 
-from typing import Any
-
 from freezegun.api import FrozenDateTimeFactory
 from homeassistant.components.repairs import repairs_flow_manager
 from homeassistant.config_entries import SOURCE_REAUTH, ConfigEntryState
@@ -12,10 +10,8 @@ from homeassistant.core import HomeAssistant
 from homeassistant.data_entry_flow import FlowResultType
 from homeassistant.helpers import device_registry as dr, issue_registry as ir
 from homeassistant.setup import async_setup_component
-import pytest
 from pytest_homeassistant_custom_component.common import MockConfigEntry
 
-from custom_components import plc_bridge
 from custom_components.plc_bridge.const import CONF_FINGERPRINT, CONF_TLS, DOMAIN
 from custom_components.plc_bridge.plc.http import format_fingerprint
 from simulators.s7_smart import S7SmartSimulator
@@ -129,18 +125,11 @@ async def test_changed_certificate_while_loaded(  # noqa: PLR0917
     setup_integration: MockConfigEntry,
     issue_registry: ir.IssueRegistry,
     freezer: FrozenDateTimeFactory,
-    monkeypatch: pytest.MonkeyPatch,
+    setups: list[str],
 ) -> None:
     """A replaced certificate stops the requests; trusting it in the repair reloads once."""
     entry = setup_integration
-    setups: list[str] = []
-    original = plc_bridge.async_setup_entry
-
-    async def counted(hass: HomeAssistant, entry: Any) -> bool:
-        setups.append(entry.entry_id)
-        return await original(hass, entry)
-
-    monkeypatch.setattr(plc_bridge, "async_setup_entry", counted)
+    setups.clear()
     s7_smart_sim.new_certificate()
     await s7_smart_sim.restart()
     requests = s7_smart_sim.requests

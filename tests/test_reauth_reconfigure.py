@@ -15,7 +15,6 @@ from homeassistant.data_entry_flow import FlowResultType
 import pytest
 from pytest_homeassistant_custom_component.common import MockConfigEntry
 
-from custom_components import plc_bridge
 from custom_components.plc_bridge.const import CONF_FINGERPRINT, CONF_TLS, CONF_VENDOR, DOMAIN
 from custom_components.plc_bridge.plc.http import format_fingerprint
 from simulators.s7_smart import DEFAULT_PASSWORD, DEFAULT_USER, S7SmartSimulator
@@ -184,20 +183,6 @@ async def test_reconfigure_must_reach_the_same_plc(
     assert result["reason"] == reason
     assert entry.unique_id == unique_id
     assert entry.data[CONF_HOST] == ("new" if reason == "reconfigure_successful" else "old")
-
-
-@pytest.fixture
-def setups(hass: HomeAssistant, monkeypatch: pytest.MonkeyPatch) -> list[str]:
-    """Record each setup of an entry from now on (its id), through the real setup."""
-    done: list[str] = []
-    original = plc_bridge.async_setup_entry
-
-    async def counted(hass: HomeAssistant, entry: Any) -> bool:
-        done.append(entry.entry_id)
-        return await original(hass, entry)
-
-    monkeypatch.setattr(plc_bridge, "async_setup_entry", counted)
-    return done
 
 
 async def loaded_entry(hass: HomeAssistant, sim: S7SmartSimulator) -> MockConfigEntry:
