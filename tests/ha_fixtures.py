@@ -156,13 +156,18 @@ def add_entry(
     entry_id: str,
     unique_id: str,
     data: dict[str, Any],
-    points: Iterable[PointData],
+    points: Iterable[PointData] = (),
+    subentries: list[ConfigSubentryDataWithId] | None = None,
+    version: int = 2,
 ) -> MockConfigEntry:
-    """Add a PLC's entry with its points in one device, polled every SCAN_INTERVAL (not set up).
+    """Add a PLC's entry, polled every SCAN_INTERVAL (not set up).
 
-    The device has the PLC's name, as a migrated entry's has: entity ids stay the PLC's.
+    Its points go into one device with the PLC's name, as a migrated entry's: entity ids stay
+    the PLC's. `subentries` (and `version`) store other shapes instead.
     """
     points = list(points)
+    if subentries is None:
+        subentries = [device(points, title=title)] if points else []
     entry = MockConfigEntry(
         domain=DOMAIN,
         title=title,
@@ -170,8 +175,8 @@ def add_entry(
         unique_id=unique_id,
         data=data,
         options={CONF_SCAN_INTERVAL: SCAN_INTERVAL},
-        subentries_data=[device(points, title=title)] if points else [],
-        version=2,
+        subentries_data=subentries,
+        version=version,
     )
     entry.add_to_hass(hass)
     return entry
@@ -335,17 +340,14 @@ def plant_entry(
         )
         for d in range(machines)
     ]
-    entry = MockConfigEntry(
-        domain=DOMAIN,
+    return add_entry(
+        hass,
         title="S7-200 SMART",
         entry_id=ENTRY_ID,
         unique_id=UNIQUE_ID,
         data=sim_data(sim),
-        subentries_data=subentries,
-        version=2,
+        subentries=subentries,
     )
-    entry.add_to_hass(hass)
-    return entry
 
 
 @pytest.fixture

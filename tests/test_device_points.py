@@ -192,17 +192,15 @@ async def test_thousand_points_in_ten_devices(
 
 def legacy_entry(hass: HomeAssistant, sim: S7SmartSimulator) -> MockConfigEntry:
     """Add an entry stored as version 1 did: one point per subentry, the PLC's device shared."""
-    entry = MockConfigEntry(
-        domain=DOMAIN,
+    return add_entry(
+        hass,
         title="S7-200 SMART",
         entry_id=ENTRY_ID,
         unique_id=UNIQUE_ID,
         data=sim_data(sim),
-        subentries_data=[legacy_point(item) for item in POINTS],
+        subentries=[legacy_point(item) for item in POINTS],
         version=1,
     )
-    entry.add_to_hass(hass)
-    return entry
 
 
 async def test_migration_keeps_entities(
