@@ -121,3 +121,17 @@ async def test_unknown_variable_costs_no_request_per_poll(
     getting = tecomat_sim.calls["GetObject"]
     await tecomat_client.read([*good, lost])
     assert tecomat_sim.calls["GetObject"] - getting == usual  # back in the plan
+
+
+async def test_renamed_structure_found_in_few_requests(
+    tecomat_sim: TecomatSimulator, tecomat_client: TecomatClient
+) -> None:
+    """A PLC that names whole paths: a renamed structure costs a probe, not a request per member."""
+    members = ["varBool1", "varInt", "varReal", "varString", "varDT", "varTime", "varDint"]
+    points = [Point(f"plcData.{member}", "INT") for member in members]
+    tecomat_sim.rename("plcData", "plcData2")
+    before = tecomat_sim.requests
+    result = await tecomat_client.read([*points, NAME])
+    assert tecomat_sim.requests - before == 3  # refused, the probe of plcData, the rest
+    assert all(isinstance(result.values[point].error, PlcAddressError) for point in points)
+    assert result.values[NAME].value == "myFoxtrot"

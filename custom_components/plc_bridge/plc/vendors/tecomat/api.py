@@ -55,6 +55,11 @@ _STRINGS_OR_NON_FINITE = re.compile(
 )
 
 
+def _under(path: VariablePath, prefix: VariablePath) -> bool:
+    """True when path is prefix or lies inside it (compared as the PLC does, ignoring case)."""
+    return path.key == prefix.key or path.key.startswith((prefix.key + ".", prefix.key + "["))
+
+
 def loads(text: str) -> Any:
     """Parse an answer; a REAL the PLC printed as nan or inf (not JSON) becomes null.
 
@@ -168,6 +173,12 @@ class TecoApi:
             except TecoError as err:
                 name = missing_variable(err)
                 if name is not None and (lost := blame(pending, name)) is not None:
+                    # Named by its whole path, the PLC did not say where its walk stopped.
+                    whole = name.strip().lower() == pending[lost[0]].key
+                    if len(lost) == 1 and len(pending) > 1 and whole:
+                        gone = await self._unknown_ancestor(pending[lost[0]], pending)
+                        if gone is not None:
+                            lost = [i for i, path in enumerate(pending) if _under(path, gone)]
                     for index in lost:
                         reading.unknown.add(pending[index].key)
                         reading.failed[pending[index].key] = PlcAddressError(
@@ -197,6 +208,28 @@ class TecoApi:
                         f"{path.text} is missing from the answer, or cannot be told apart in it"
                     )
             return
+
+    async def _unknown_ancestor(
+        self, path: VariablePath, pending: Sequence[VariablePath]
+    ) -> VariablePath | None:
+        """Return the shortest ancestor of an unknown path that others share and the PLC lacks.
+
+        A PLC that names the whole path answers one unknown path per request: a renamed
+        structure would cost a request per member. One probe per level instead, from the top,
+        while another asked path lies under it (a structure too big to answer exists: 413).
+        """
+        for length in range(1, len(path.segments)):
+            prefix = VariablePath(path.segments[:length])
+            if not any(other is not path and _under(other, prefix) for other in pending):
+                return None
+            try:
+                await self.send("GET", get_uri([prefix.text]))
+            except TecoError as err:
+                if missing_variable(err) is not None:
+                    return prefix
+                if err.code not in (TOO_MANY_REQUESTED, TOO_MANY_ITEMS):
+                    raise request_error(err, self.auth) from None
+        return None
 
     async def put(self, pairs: Sequence[tuple[VariablePath, Any]]) -> dict[int, PlcError]:
         """Write (path, JSON value) pairs with one PutObject; return the failures by position.
