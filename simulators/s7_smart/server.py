@@ -84,6 +84,7 @@ class S7SmartSimulator(HttpSimulator):
         # Codes and messages other than the ones our client knows: the manual defines 3004
         # only, so a real firmware may answer with any (tests run both ways).
         self.foreign_codes = False
+        self.max_nodes = MAX_NODES  # a firmware may take fewer nodes a request than the manual
         self.forced = False
         self.cookie_name_in_token = True
         self.rewrite: Callable[[dict[str, Any]], dict[str, Any]] | None = None
@@ -256,7 +257,7 @@ class S7SmartSimulator(HttpSimulator):
             return []
         if not isinstance(params, list):
             raise Fault(INVALID_PARAMS)
-        if len(params) > MAX_NODES:
+        if len(params) > self.max_nodes:
             raise Fault(TOO_MANY_NODES)
         return params
 

@@ -272,3 +272,17 @@ async def test_calls_without_a_session_share_one_login(s7_smart_config: ConfigFa
         assert client._logins == 1
     finally:
         await client.close()
+
+
+async def test_fewer_nodes_learned(
+    s7_smart_sim: S7SmartSimulator, s7_smart_client: S7SmartClient
+) -> None:
+    """A firmware taking 10 nodes a read, whatever code it refuses with: the poll halves its
+    requests until they pass and keeps the limit; no authentication error on the way."""
+    s7_smart_sim.max_nodes = 10
+    points = [Point(f"VW{2 * index}", "signed") for index in range(40)]
+    result = await s7_smart_client.read(points)
+    assert all(outcome.ok for outcome in result.values.values())
+    before = s7_smart_sim.calls["read"]
+    await s7_smart_client.read(points)
+    assert s7_smart_sim.calls["read"] - before == 5  # 40 nodes, 8 a request (32 -> 16 -> 8)

@@ -41,6 +41,7 @@ from .codec import (
     MAX_NODES,
     STOP_MESSAGE,
     Node,
+    RequestRefused,
     check_value,
     decode,
     decode_status,
@@ -84,7 +85,7 @@ def cookie_header(token: str) -> str:
 class _PollPlan:
     """A poll parsed and grouped once: kept while the same points are polled again."""
 
-    key: tuple[Point, ...]
+    key: tuple[tuple[Point, ...], int]  # the points, and the node limit they were planned for
     invalid: dict[Point, PointResult]
     wanted: dict[Node, list[Point]]
     groups: list[tuple[list[Node], list[dict[str, Any]]]]
@@ -131,6 +132,7 @@ class S7SmartClient(PlcClient):
         self._logins = 0  # successful logins so far: concurrent callers share one
         self._mode: str | None = None  # the operating mode the last status block reported
         self._can_write = True  # what get_permission said at connect (manual 6)
+        self._max_nodes = MAX_NODES  # lowered, and kept, when the PLC refuses as many
 
     @classmethod
     def validate_point(cls, point: Point) -> Point:
@@ -189,7 +191,7 @@ class S7SmartClient(PlcClient):
 
         An on-demand read (`keep` false) is planned on its own and leaves the poll's plan.
         """
-        key = tuple(points)
+        key = (tuple(points), self._max_nodes)
         if not keep or self._plan is None or self._plan.key != key:
             invalid: dict[Point, PointResult] = {}
             wanted: dict[Node, list[Point]] = {}
@@ -199,7 +201,8 @@ class S7SmartClient(PlcClient):
                 except PlcError as err:
                     invalid[point] = PointResult(error=err)
             groups = [
-                (group, [node.request() for node in group]) for group in read_plan(list(wanted))
+                (group, [node.request() for node in group])
+                for group in read_plan(list(wanted), self._max_nodes)
             ]
             planned = _PollPlan(key, invalid, wanted, groups)
             if not keep:
@@ -209,11 +212,27 @@ class S7SmartClient(PlcClient):
 
     async def _read(self, points: Sequence[Point], *, poll: bool) -> ReadResult:
         """Read every distinct point once, 32 nodes a request; status from the last reply."""
-        planned = self._poll_plan(points, keep=poll)
+        while True:
+            planned = self._poll_plan(points, keep=poll)
+            try:
+                replies = [await self._call("read", params) for _group, params in planned.groups]
+                break
+            except RequestRefused:
+                largest = max(len(group) for group, _params in planned.groups)
+                if largest <= 1:
+                    raise
+                # Refused even after a fresh login: perhaps a firmware taking fewer nodes than
+                # the manual's 32 (8.1). Halve, and keep the smaller limit for later polls.
+                self._max_nodes = largest // 2
+                _LOGGER.info(
+                    "%s refused %d nodes in one read; reading at most %d from now on",
+                    self.config.host,
+                    largest,
+                    self._max_nodes,
+                )
         values = dict(planned.invalid)
         status = PlcStatus()
-        for group, params in planned.groups:
-            result = await self._call("read", params)
+        for (group, _params), result in zip(planned.groups, replies, strict=True):
             status = decode_status(result.get("status"), self._zone)
             for node, item in zip(group, reply_nodes(result, group), strict=True):
                 outcome = self._outcome(node, item)

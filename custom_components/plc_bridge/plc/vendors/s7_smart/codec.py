@@ -76,6 +76,10 @@ _NODE_ERRORS: dict[int, tuple[type[PlcError], str]] = {
 }
 
 
+class RequestRefused(PlcProtocolError):
+    """The PLC answered a whole request with an error object that no fresh login cured."""
+
+
 def request_error(code: int, message: str) -> PlcError:
     """Return the exception for a refused request that a fresh login did not cure.
 
@@ -87,7 +91,7 @@ def request_error(code: int, message: str) -> PlcError:
         return PlcWriteRefusedError(f"the PLC user has no write permission ({text})")
     if code == NOT_IN_RUN:
         return PlcWriteRefusedError(STOP_MESSAGE)
-    return PlcProtocolError(f"the PLC refused the request: {text} (code {code})")
+    return RequestRefused(f"the PLC refused the request: {text} (code {code})")
 
 
 def node_error(code: Any, var: str) -> PlcError:
@@ -226,20 +230,22 @@ def node_for(point: Point) -> Node:
     return Node(address, point_kind(address, point.data_type))
 
 
-def plan[T](items: Sequence[T], node_json: Callable[[T], dict[str, Any]]) -> list[list[T]]:
-    """Group items into requests of at most 32 nodes and 15 KB."""
+def plan[T](
+    items: Sequence[T], node_json: Callable[[T], dict[str, Any]], max_nodes: int = MAX_NODES
+) -> list[list[T]]:
+    """Group items into requests of at most 32 nodes (or fewer) and 15 KB."""
     return pack(
         items,
         lambda item: len(dumps(node_json(item))) + 1,
         PAYLOAD_LIMIT,
         base=_ENVELOPE,
-        max_items=MAX_NODES,
+        max_items=max_nodes,
     )
 
 
-def read_plan(nodes: Sequence[Node]) -> list[list[Node]]:
+def read_plan(nodes: Sequence[Node], max_nodes: int = MAX_NODES) -> list[list[Node]]:
     """Group the distinct nodes of a poll; a poll without nodes still reads the status."""
-    return plan(nodes, Node.request) or [[]]
+    return plan(nodes, Node.request, max_nodes) or [[]]
 
 
 def reply_nodes(result: dict[str, Any], nodes: Sequence[Node]) -> list[dict[str, Any]]:
