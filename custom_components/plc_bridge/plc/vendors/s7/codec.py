@@ -76,6 +76,17 @@ def _datetime(value: Value, what: str) -> datetime:
 
 def decode(variable: Variable, data: bytes, zone: tzinfo) -> Value:
     """Return the value of a variable from its bytes; raise PlcProtocolError for bad content."""
+    try:
+        return _decode(variable, data, zone)
+    except (struct.error, IndexError) as err:  # fewer bytes than the type holds
+        raise PlcProtocolError(
+            f"{variable.text}: the PLC answered {len(data)} bytes,"
+            f" too few for a {variable.data_type}"
+        ) from err
+
+
+def _decode(variable: Variable, data: bytes, zone: tzinfo) -> Value:
+    """Decode the bytes of a variable (the reader checked their count; this never trusts it)."""
     kind = variable.data_type
     if kind == "BOOL":
         return bool(data[0] >> (variable.bit or 0) & 1)
