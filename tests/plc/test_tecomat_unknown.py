@@ -135,3 +135,17 @@ async def test_renamed_structure_found_in_few_requests(
     assert tecomat_sim.requests - before == 3  # refused, the probe of plcData, the rest
     assert all(isinstance(result.values[point].error, PlcAddressError) for point in points)
     assert result.values[NAME].value == "myFoxtrot"
+
+
+async def test_fewer_names_learned(
+    tecomat_sim: TecomatSimulator, tecomat_client: TecomatClient
+) -> None:
+    """A CPU taking 3 names a request (413.002): halved while refused, then kept as learned."""
+    tecomat_sim.max_variables = 3
+    members = ["varBool1", "varInt", "varReal", "varString", "varDT", "varTime", "varDint"]
+    points = [Point(f"plcData.{member}", "INT") for member in members]
+    first = await tecomat_client.read(points)
+    assert not [p for p, r in first.values.items() if isinstance(r.error, PlcValueError)]
+    before = tecomat_sim.requests
+    await tecomat_client.read(points)
+    assert tecomat_sim.requests - before == 4  # halved to 3, then 2 names a request: none refused

@@ -95,7 +95,9 @@ class TecomatClient(PlcClient):
         self._zone = ZoneInfo(config.time_zone)
         self._status = PlcStatus()
         self._status_at = -float("inf")
-        self._plan: tuple[tuple[str, ...], list[list[VariablePath]]] | None = None
+        self._plan: tuple[tuple[tuple[str, ...], int | None], list[list[VariablePath]]] | None = (
+            None
+        )
         self._unknown: dict[str, PlcError] = {}  # paths the PLC said it does not know (400.005)
         self._probed_at = -float("inf")
 
@@ -209,8 +211,12 @@ class TecomatClient(PlcClient):
     def _planned(self, paths: dict[str, VariablePath]) -> list[list[VariablePath]]:
         """Return the request groups of a poll; the last poll's plan is kept (polls repeat)."""
         names = tuple(paths)
-        if self._plan is None or self._plan[0] != names:
-            self._plan = names, plan(paths.values())
+        limit = self._teco().max_names
+        if self._plan is None or self._plan[0] != (names, limit):
+            groups = plan(paths.values())
+            if limit:  # the PLC refused as many names a request (413.002): kept from then on
+                groups = [list(part) for group in groups for part in chunks(group, limit)]
+            self._plan = (names, limit), groups
         return self._plan[1]
 
     async def _write(self, values: Mapping[Point, Value]) -> dict[Point, PointResult]:
