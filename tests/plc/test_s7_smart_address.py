@@ -269,4 +269,8 @@ def test_node_errors() -> None:
     assert isinstance(node_error(3007, "SMB0"), PlcWriteRefusedError)
     unknown = node_error(None, "VB9")
     assert isinstance(unknown, PlcProtocolError)
-    assert str(unknown) == "VB9: the PLC answered result None (code None)"
+    assert str(unknown) == "VB9: the PLC refused it without a reason (code None)"
+    # Codes the table does not know keep the PLC's words; a write node is a refused write.
+    foreign = node_error(7107, "AIW16", "Request refused (E7107)", write=True)
+    assert isinstance(foreign, PlcWriteRefusedError)
+    assert str(foreign) == "AIW16: the PLC refused it: Request refused (E7107) (code 7107)"

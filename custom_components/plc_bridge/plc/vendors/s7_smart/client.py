@@ -244,7 +244,7 @@ class S7SmartClient(PlcClient):
         """Return the result of one read node: its value or its own error."""
         code = item.get("code")
         if code != 0:
-            return PointResult(error=node_error(code, node.address.text))
+            return PointResult(error=node_error(code, node.address.text, item.get("message")))
         try:
             return PointResult(value=decode(node.address, node.kind, item.get("value"), self._zone))
         except PlcProtocolError as err:
@@ -263,7 +263,11 @@ class S7SmartClient(PlcClient):
             nodes = [node for node, _point, _value in group]
             for (node, point, value), data in zip(group, reply_nodes(result, nodes), strict=True):
                 code = data.get("code")
-                error = node_error(code, node.address.text) if code != 0 else None
+                error = (
+                    node_error(code, node.address.text, data.get("message"), write=True)
+                    if code != 0
+                    else None
+                )
                 results[point] = PointResult(value=None if error else value, error=error)
         return results
 

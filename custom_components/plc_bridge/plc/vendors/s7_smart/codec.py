@@ -94,10 +94,20 @@ def request_error(code: int, message: str) -> PlcError:
     return RequestRefused(f"the PLC refused the request: {text} (code {code})")
 
 
-def node_error(code: Any, var: str) -> PlcError:
-    """Return the exception for a node whose result code is not 0."""
-    kind, text = _NODE_ERRORS.get(code, (PlcProtocolError, f"the PLC answered result {code!r}"))
-    return kind(f"{var}: {text} (code {code})")
+def node_error(code: Any, var: str, message: Any = None, *, write: bool = False) -> PlcError:
+    """Return the exception for a node whose result code is not 0, with the PLC's own words.
+
+    A code this table knows refines the kind; any other is, by structure, the PLC refusing that
+    node: a write it did not take, or a read it could not answer (manual 8.1 f, 9.1: "nodes
+    shall return the exact reason").
+    """
+    words = f": {message}" if isinstance(message, str) and message.strip() else ""
+    if code in _NODE_ERRORS:
+        kind, text = _NODE_ERRORS[code]
+        said = "" if message == ERRORS.get(code) else words  # no echo of what the table says
+        return kind(f"{var}: {text}{said} (code {code})")
+    kind = PlcWriteRefusedError if write else PlcProtocolError
+    return kind(f"{var}: the PLC refused it{words or ' without a reason'} (code {code!r})")
 
 
 def check_value(address: Address, kind: str, value: Value) -> Value:
