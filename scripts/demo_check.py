@@ -1,16 +1,20 @@
 """Check the demo as a new user meets it: scripts/develop, onboarding, the integrations page.
 
 Starts scripts/develop on a throwaway configuration (inside the work tree, where the demo's
-Python can see it) and a free port, completes onboarding through the same HTTP API the
-frontend uses, loads the integrations page, adds the S7 simulator as a PLC through the config
-flow API, and fails on any integration that onboarding set up but that did not load. Always
-stops what it started. Standard library only: it runs with the machine's own python3.
+Python can see it) and free ports, completes onboarding through the HTTP and websocket calls
+the frontend makes, waits for Home Assistant to finish starting, loads what the frontend loads
+first and the integrations page, adds the S7 simulator as a PLC through the config flow API,
+and fails on any integration onboarding set up that did not load, and on any missing module or
+failed setup in the log. Always stops what it started, within a bounded time. Standard library
+only: it runs with the machine's own python3.
 
     python3 scripts/demo_check.py
 """
 
 from __future__ import annotations
 
+from collections.abc import Callable
+import contextlib
 import json
 import os
 from pathlib import Path
@@ -19,18 +23,24 @@ import signal
 import socket
 import subprocess
 import sys
+import tempfile
 import time
 from typing import Any
 import urllib.error
-import urllib.parse
-import urllib.request
+
+from hass_client import CLIENT_ID, Hass, Socket
 
 ROOT = Path(__file__).resolve().parent.parent
 CONFIG = ROOT / ".demo-check"
-CLIENT_ID = "http://127.0.0.1/"
 START_TIMEOUT = 300.0
 """Seconds for scripts/develop to bring Home Assistant up (a cold .venv-demo is made first)."""
+RUNNING_TIMEOUT = 180.0
+"""Seconds for Home Assistant to finish starting once onboarded."""
 ONBOARDED = ("google_translate", "met", "radio_browser", "shopping_list")
+"""What the core config step adds (components/onboarding/views.py); met needs a location."""
+FAILED = ("setup_error", "migration_error", "failed_unload")
+STARTING = ("not_loaded", "setup_in_progress")
+FRONTEND_START = ("auth/current_user", "get_config", "get_states", "get_services", "get_panels")
 
 
 def free_port() -> int:
@@ -40,62 +50,47 @@ def free_port() -> int:
         return int(sock.getsockname()[1])
 
 
-class Hass:
-    """A few calls of Home Assistant's HTTP API."""
-
-    def __init__(self, port: int) -> None:
-        """Talk to the Home Assistant on this port."""
-        self.base = f"http://127.0.0.1:{port}"
-        self.token = ""
-
-    def call(self, method: str, path: str, body: Any = None, *, form: bool = False) -> Any:
-        """Send one request; return the decoded JSON answer (or the text)."""
-        headers = {"Authorization": f"Bearer {self.token}"} if self.token else {}
-        data = None
-        if body is not None and form:
-            data = urllib.parse.urlencode(body).encode()
-            headers["Content-Type"] = "application/x-www-form-urlencoded"
-        elif body is not None:
-            data = json.dumps(body).encode()
-            headers["Content-Type"] = "application/json"
-        request = urllib.request.Request(self.base + path, data, headers, method=method)
-        with urllib.request.urlopen(request, timeout=30) as answer:
-            text = answer.read().decode()
-        try:
-            return json.loads(text)
-        except json.JSONDecodeError:
-            return text
-
-
 def onboard(hass: Hass) -> None:
-    """Create the owner, get a token, finish the core config, analytics and integration steps."""
-    user = hass.call(
-        "POST",
-        "/api/onboarding/users",
-        {
-            "client_id": CLIENT_ID,
-            "name": "Demo",
-            "username": "demo",
-            "password": "demo-password-1",
-            "language": "en",
-        },
+    """Walk the onboarding steps as the frontend does: owner, location, analytics, integrations."""
+    user = {"name": "Demo", "username": "demo", "password": "demo-password-1", "language": "en"}
+    hass.tokens(
+        hass.call("POST", "/api/onboarding/users", {"client_id": CLIENT_ID, **user})["auth_code"]
     )
-    tokens = hass.call(
-        "POST",
-        "/auth/token",
-        {"grant_type": "authorization_code", "code": user["auth_code"], "client_id": CLIENT_ID},
-        form=True,
-    )
-    hass.token = tokens["access_token"]
+    ws = Socket(hass)
+    try:
+        ws.call(
+            "config/core/update",
+            latitude=52.3731,
+            longitude=4.8922,
+            elevation=0,
+            unit_system="metric",
+            time_zone="Europe/Amsterdam",
+            currency="EUR",
+            country="NL",
+        )
+    finally:
+        ws.close()
     hass.call("POST", "/api/onboarding/core_config", {})
     hass.call("POST", "/api/onboarding/analytics", {})
-    hass.call(
-        "POST", "/api/onboarding/integration", {"client_id": CLIENT_ID, "redirect_uri": CLIENT_ID}
-    )
+    redirect = {"client_id": CLIENT_ID, "redirect_uri": CLIENT_ID}
+    hass.tokens(hass.call("POST", "/api/onboarding/integration", redirect)["auth_code"])
 
 
-def add_s7_plc(hass: Hass) -> dict[str, Any]:
-    """Add the S7 simulator through the config flow API, as the dialog would; return the entry."""
+def entry_states(ws: Socket) -> dict[str, dict[str, Any]]:
+    """Return the config entries by id, as the integrations page asks for them."""
+    return {entry["entry_id"]: entry for entry in ws.call("config_entries/get")}
+
+
+def wait_for(ready: Callable[[], bool], timeout: float) -> bool:
+    """Poll ready() once a second until it is true or time runs out; return the last answer."""
+    deadline = time.monotonic() + timeout
+    while not (answer := ready()) and time.monotonic() < deadline:
+        time.sleep(1)
+    return answer
+
+
+def add_s7_plc(hass: Hass) -> str:
+    """Add the S7 simulator through the config flow API, as the dialog would; return its id."""
     simulators = [
         json.loads(line)
         for line in (CONFIG / ".simulators.json").read_text().splitlines()
@@ -111,94 +106,146 @@ def add_s7_plc(hass: Hass) -> dict[str, Any]:
     if flow.get("step_id") == "name":
         flow = hass.call("POST", step, {"name": "Demo S7"})
     assert flow.get("type") == "create_entry", flow
-    return dict(flow["result"])
+    return str(flow["result"]["entry_id"])
+
+
+def frontend(hass: Hass, ws: Socket) -> list[str]:
+    """Return what keeps the frontend from loading: its first calls and the integrations page."""
+    problems = []
+    for kind in FRONTEND_START:
+        try:
+            ws.call(kind)
+        except RuntimeError as err:  # the frontend would stay on "Loading data"
+            problems.append(f"the frontend cannot load: {err}")
+    if "<html" not in str(hass.call("GET", "/config/integrations/dashboard")).lower():
+        problems.append("the integrations page did not load")
+    return problems
+
+
+def integrations(hass: Hass, ws: Socket) -> list[str]:
+    """Return the integrations onboarding added, and the S7 PLC added now, that did not load."""
+
+    def settled() -> bool:
+        """Tell whether every onboarded integration has an entry that is not starting."""
+        states = {entry["domain"]: entry["state"] for entry in entry_states(ws).values()}
+        return all(states.get(domain, "") not in ("", *STARTING) for domain in ONBOARDED)
+
+    # A service on the internet (met, radio_browser) may wait to retry: not so a broken setup.
+    wait_for(settled, 60)
+    entries = entry_states(ws).values()
+    domains = {entry["domain"] for entry in entries}
+    problems = [f"onboarding did not add {name}" for name in ONBOARDED if name not in domains]
+    problems += [
+        f"{entry['domain']} is {entry['state']}: {entry.get('reason')}"
+        for entry in entries
+        if entry["state"] in FAILED
+    ]
+    added = add_s7_plc(hass)
+    wait_for(lambda: entry_states(ws)[added]["state"] not in STARTING, 30)
+    if (entry := entry_states(ws)[added])["state"] != "loaded":
+        problems.append(f"the S7 PLC is {entry['state']}: {entry.get('reason')}")
+    return problems
 
 
 def check(hass: Hass) -> list[str]:
     """Return what is wrong with the onboarded demo (nothing, when all is well)."""
-    problems: list[str] = []
-    page = hass.call("GET", "/config/integrations/dashboard")
-    if "<html" not in str(page).lower():
-        problems.append("the integrations page did not load")
-    deadline = time.monotonic() + 60
-    while True:
-        entries = hass.call("GET", "/api/config/config_entries/entry")
-        states = {entry["domain"]: entry["state"] for entry in entries}
-        pending = [d for d in ONBOARDED if states.get(d) in ("not_loaded", "setup_in_progress")]
-        if not pending or time.monotonic() > deadline:
-            break
-        time.sleep(1)
-    # A service on the internet (radio_browser) may wait to retry: not so a broken setup.
-    problems += [
-        f"{entry['domain']} is {entry['state']}: {entry.get('reason')}"
-        for entry in entries
-        if entry["state"] in ("setup_error", "migration_error", "failed_unload")
-    ]
-    added = add_s7_plc(hass)
-    time.sleep(3)
-    entries = {
-        entry["entry_id"]: entry for entry in hass.call("GET", "/api/config/config_entries/entry")
-    }
-    if entries[added["entry_id"]]["state"] != "loaded":
-        problems.append(f"the S7 PLC did not load: {entries[added['entry_id']]}")
+    ws = Socket(hass)
+    try:
+        if wait_for(lambda: ws.call("get_config")["state"] == "RUNNING", RUNNING_TIMEOUT):
+            problems = frontend(hass, ws) + integrations(hass, ws)
+        else:
+            problems = [f"Home Assistant did not finish starting within {RUNNING_TIMEOUT:.0f} s"]
+    finally:
+        ws.close()
     log = (CONFIG / "home-assistant.log").read_text(errors="replace")
-    problems += [
+    return problems + [
         line
         for line in log.splitlines()
         if "ModuleNotFoundError" in line or "Setup failed for" in line
     ]
-    return problems
+
+
+def leftovers() -> list[int]:
+    """Return the processes still running on the throwaway configuration."""
+    found: list[int] = []
+    for process in Path("/proc").iterdir() if Path("/proc").is_dir() else ():
+        try:
+            if (
+                process.name.isdigit()
+                and str(CONFIG).encode() in (process / "cmdline").read_bytes()
+            ):
+                found.append(int(process.name))
+        except OSError:
+            pass
+    return found
+
+
+def stop(develop: subprocess.Popen[bytes]) -> None:
+    """Stop scripts/develop as Ctrl-C does, then anything of the demo that lingers."""
+    os.killpg(develop.pid, signal.SIGINT)
+    try:
+        develop.wait(timeout=90)
+    except subprocess.TimeoutExpired:
+        os.killpg(develop.pid, signal.SIGKILL)
+        develop.wait()
+    for signum in (signal.SIGTERM, signal.SIGKILL):
+        for pid in leftovers():
+            with contextlib.suppress(ProcessLookupError):
+                os.kill(pid, signum)
+        wait_for(lambda: not leftovers(), 10)
+
+
+def serving(hass: Hass, develop: subprocess.Popen[bytes]) -> bool:
+    """Tell whether Home Assistant answers, or scripts/develop has ended without it."""
+    try:
+        hass.call("GET", "/manifest.json")
+    except (urllib.error.URLError, ConnectionError):
+        return develop.poll() is not None
+    return True
 
 
 def main() -> int:
     """Run the demo, check it, stop it; print a closing line."""
     shutil.rmtree(CONFIG, ignore_errors=True)
-    port = free_port()
-    env = {**os.environ, "PLC_BRIDGE_DEMO_CONFIG": str(CONFIG), "PLC_BRIDGE_DEMO_PORT": str(port)}
+    hass = Hass(free_port())
+    env = {
+        **os.environ,
+        "PLC_BRIDGE_DEMO_CONFIG": str(CONFIG),
+        "PLC_BRIDGE_DEMO_PORT": str(hass.port),
+        "PLC_BRIDGE_DEMO_SIMULATOR_PORT": "0",
+    }
     started = time.monotonic()
-    develop = subprocess.Popen(
-        [str(ROOT / "scripts" / "develop")],
-        env=env,
-        stdin=subprocess.DEVNULL,
-        stdout=subprocess.PIPE,
-        stderr=subprocess.STDOUT,
-        text=True,
-        start_new_session=True,
-    )
-    hass = Hass(port)
-    problems: list[str] = []
-    try:
-        while True:
-            try:
-                hass.call("GET", "/manifest.json")
-                break
-            except (urllib.error.URLError, ConnectionError):
-                if develop.poll() is not None or time.monotonic() - started > START_TIMEOUT:
-                    problems.append("scripts/develop did not bring Home Assistant up")
-                    break
-                time.sleep(1)
-        if not problems:
-            print(f"demo: Home Assistant up in {time.monotonic() - started:.0f} s", flush=True)
-            onboard(hass)
-            problems = check(hass)
-    except Exception as err:  # any failure of the check is reported as one
-        problems.append(f"{type(err).__name__}: {err}")
-    finally:
-        os.killpg(develop.pid, signal.SIGINT)
+    with tempfile.TemporaryFile() as output:
+        develop = subprocess.Popen(
+            [str(ROOT / "scripts" / "develop")],
+            env=env,
+            stdin=subprocess.DEVNULL,
+            stdout=output,
+            stderr=subprocess.STDOUT,
+            start_new_session=True,
+        )
         try:
-            output, _ = develop.communicate(timeout=60)
-        except subprocess.TimeoutExpired:
-            os.killpg(develop.pid, signal.SIGKILL)
-            output, _ = develop.communicate()
+            up = wait_for(lambda: serving(hass, develop), START_TIMEOUT)
+            if not up or develop.poll() is not None:
+                problems = ["scripts/develop did not bring Home Assistant up"]
+            else:
+                print(f"demo: Home Assistant up in {time.monotonic() - started:.0f} s", flush=True)
+                onboard(hass)
+                problems = check(hass)
+        except Exception as err:  # any failure of the check is reported as one
+            problems = [f"{type(err).__name__}: {err}"]
+        finally:
+            stop(develop)
+        output.seek(0)
+        said = output.read().decode(errors="replace")
     for problem in problems:
         print(f"demo: {problem}")
     if problems:
-        print(output[-3000:])
         log = CONFIG / "home-assistant.log"
-        if log.exists():
-            print(log.read_text(errors="replace")[-5000:])
+        print(said[-3000:], log.read_text(errors="replace")[-5000:] if log.exists() else "")
     else:
         shutil.rmtree(CONFIG, ignore_errors=True)
+    print(f"demo: checked in {time.monotonic() - started:.0f} s")
     print(f"demo: {0 if problems else 1} passed, {1 if problems else 0} failed")
     return 1 if problems else 0
 
