@@ -2,25 +2,26 @@
 
 from __future__ import annotations
 
-from types import SimpleNamespace
 from typing import Any
 
-from homeassistant.config_entries import SOURCE_USER, ConfigEntryState
+from homeassistant.config_entries import SOURCE_USER
 from homeassistant.const import CONF_HOST, CONF_PORT
 from homeassistant.core import HomeAssistant
 from homeassistant.data_entry_flow import FlowResultType
+from homeassistant.helpers import area_registry as ar
 import pytest
 from pytest_homeassistant_custom_component.common import MockConfigEntry
 
 from custom_components.plc_bridge.const import CONF_POINTS, CONF_VENDOR, DOMAIN, SUBENTRY_DEVICE
-from custom_components.plc_bridge.plc import BrowseItem, ConnectionConfig
+from custom_components.plc_bridge.point_table import export_points
 from simulators.s7_smart import S7SmartSimulator
 
-from .flow_fixtures import FAKE_VENDOR, FakeClient, error_message, smart_data, translated
+from .flow_fixtures import error_message, smart_data, translated
 from .ha_fixtures import device, point
 
 DEVICE = ("config_subentries", SUBENTRY_DEVICE)
 TEMPERATURE = {"name": "Tank", "platform": "sensor", "address": "vd100", "data_type": "float"}
+CELSIUS = {"device_class": "temperature", "unit_of_measurement": "°C", "scale": 1.0}
 
 
 @pytest.fixture
@@ -64,34 +65,45 @@ async def add_point(hass: HomeAssistant, menu: Any, base: dict[str, Any], **deta
     return await step(hass, result, {"read_only": False, **details})
 
 
+async def paste(hass: HomeAssistant, menu: Any, table: str) -> Any:
+    """Import a pasted table from the menu."""
+    result = await step(hass, menu, {"next_step_id": "import_points"})
+    return await step(hass, result, {"table": table})
+
+
+def saved(entry: MockConfigEntry, title: str) -> dict[str, dict[str, Any]]:
+    """Return the points of the entry's one device with this title."""
+    (subentry,) = [s for s in entry.subentries.values() if s.title == title]
+    return dict(subentry.data[CONF_POINTS])
+
+
 async def test_add_two_points_and_save(hass: HomeAssistant, smart_entry: MockConfigEntry) -> None:
-    """Two points, one device subentry; addresses normalized by the vendor's parser."""
-    menu = await new_device(hass, smart_entry, "Heating")
-    menu = await add_point(
-        hass,
-        menu,
-        TEMPERATURE,
-        unit_of_measurement="°C",
-        device_class="temperature",
-        state_class="measurement",
-        scale=1.0,
-        offset=0.0,
+    """Two points, one device subentry with its area; addresses normalized by the parser."""
+    area = ar.async_get(hass).async_create("Boiler room")
+    result = await hass.config_entries.subentries.async_init(
+        (smart_entry.entry_id, SUBENTRY_DEVICE), context={"source": SOURCE_USER}
     )
+    result = await step(hass, result, {"name": " "})
+    assert result["errors"] == {"name": "device_name_required"}
+    menu = await step(hass, result, {"name": "Heating", "area": area.id})
+    assert "save" not in menu["menu_options"]  # a device needs a point
+    menu = await add_point(hass, menu, TEMPERATURE, **CELSIUS, state_class="measurement")
     assert menu["type"] is FlowResultType.MENU
     switch = {"name": "Pump", "platform": "switch", "address": "Q0.0", "data_type": "signed"}
     menu = await add_point(hass, menu, switch)
     assert menu["description_placeholders"]["count"] == "2"
     result = await step(hass, menu, {"next_step_id": "save"})
     assert result["type"] is FlowResultType.CREATE_ENTRY
-    new = [s for s in smart_entry.subentries.values() if s.title == "Heating"]
-    assert len(new) == 1
-    points = sorted(new[0].data[CONF_POINTS].values(), key=lambda data: data["name"])
+    (new,) = [s for s in smart_entry.subentries.values() if s.title == "Heating"]
+    assert new.data["area"] == area.id
+    points = sorted(new.data[CONF_POINTS].values(), key=lambda data: data["name"])
     assert [(p["name"], p["address"], p["platform"]) for p in points] == [
         ("Pump", "Q0.0", "switch"),
         ("Tank", "VD100", "sensor"),
     ]
     assert points[1]["device_class"] == "temperature"
     assert points[1]["unit_of_measurement"] == "°C"
+    assert len({*new.data[CONF_POINTS]}) == 2
 
 
 @pytest.mark.parametrize(
@@ -122,45 +134,30 @@ async def test_point_refused(  # noqa: PLR0917
     assert text in error_message(result, field, *DEVICE)
 
 
+def field(result: Any, name: str) -> Any:
+    """Return the selector of a form's field."""
+    return next(value for key, value in result["data_schema"].schema.items() if str(key) == name)
+
+
 async def test_details_fit_the_point(hass: HomeAssistant, smart_entry: MockConfigEntry) -> None:
-    """A numeric sensor is offered no timestamp class; a unit the class cannot carry is refused."""
+    """A numeric sensor is offered no timestamp; units and state classes must fit the class."""
     menu = await new_device(hass, smart_entry)
     result = await step(hass, menu, {"next_step_id": "point"})
     result = await step(hass, result, TEMPERATURE)
-    classes = next(
-        marker for marker in result["data_schema"].schema if str(marker) == "device_class"
-    )
-    options = result["data_schema"].schema[classes].config["options"]
-    assert "temperature" in options
-    assert "timestamp" not in options
-    assert result["data_schema"].schema[classes].config["translation_key"] == (
-        "sensor_device_class"
-    )
-    result = await step(
-        hass,
-        result,
-        {
-            "device_class": "temperature",
-            "unit_of_measurement": "bar",
-            "scale": 1.0,
-            "offset": 0.0,
-            "read_only": True,
-        },
-    )
+    classes = field(result, "device_class").config
+    assert "temperature" in classes["options"]
+    assert "timestamp" not in classes["options"]
+    assert classes["translation_key"] == "sensor_device_class"
+    result = await step(hass, result, {**CELSIUS, "unit_of_measurement": "bar", "offset": 0.0})
     assert result["errors"] == {"unit_of_measurement": "unit_not_valid"}
-    result = await step(
-        hass,
-        result,
-        {
-            "device_class": "temperature",
-            "state_class": "total_increasing",
-            "unit_of_measurement": "°C",
-            "scale": 1.0,
-            "offset": 0.0,
-            "read_only": True,
-        },
-    )
+    assert error_message(result, "unit_of_measurement", *DEVICE).endswith("K, °C, °F.")
+    assert set(field(result, "unit_of_measurement").config["options"]) == {"K", "°C", "°F"}
+    result = await step(hass, result, {**CELSIUS, "state_class": "total_increasing"})
     assert result["errors"] == {"state_class": "state_class_not_valid"}
+    result = await step(hass, result, {"device_class": "temperature", "scale": 1.0})
+    assert result["errors"] == {"unit_of_measurement": "unit_required"}
+    menu = await step(hass, result, {**CELSIUS, "state_class": "measurement"})
+    assert menu["type"] is FlowResultType.MENU
 
 
 async def test_edit_and_remove_in_reconfigure(
@@ -173,17 +170,17 @@ async def test_edit_and_remove_in_reconfigure(
     result = await step(hass, result, {"next_step_id": "edit"})
     result = await step(hass, result, {"point": "level"})
     assert result["step_id"] == "point"
-    result = await step(
-        hass,
-        result,
-        {"name": "Tank level", "platform": "sensor", "address": "VW10", "data_type": "signed"},
-    )
+    base = {"name": "Tank level", "platform": "sensor", "address": "VW10", "data_type": "signed"}
+    result = await step(hass, result, base)
     result = await step(hass, result, {"scale": 0.1, "offset": 0.0, "read_only": True})
     menu = await add_point(hass, result, TEMPERATURE, scale=1.0, offset=0.0)
     result = await step(hass, menu, {"next_step_id": "remove"})
     result = await step(hass, result, {"point": []})
+    result = await step(hass, result, {"next_step_id": "device"})
+    result = await step(hass, result, {"name": "Tank"})
     result = await step(hass, result, {"next_step_id": "save"})
     assert result["reason"] == "reconfigure_successful"
+    assert smart_entry.subentries[subentry.subentry_id].title == "Tank"
     points = smart_entry.subentries[subentry.subentry_id].data[CONF_POINTS]
     assert points["level"]["name"] == "Tank level"
     assert points["level"]["scale"] == 0.1
@@ -196,83 +193,102 @@ async def test_edit_and_remove_in_reconfigure(
     assert left["address"] == "VD100"
 
 
+async def test_a_new_entity_type_drops_the_old_class(
+    hass: HomeAssistant, smart_entry: MockConfigEntry
+) -> None:
+    """A bit shown as a sensor (1 or 0), edited into a binary sensor: no sensor class suggested."""
+    bit = {"name": "Burner", "platform": "sensor", "address": "I0.0", "data_type": "signed"}
+    menu = await add_point(
+        hass, await new_device(hass, smart_entry), bit, device_class="power_factor"
+    )
+    result = await step(hass, menu, {"next_step_id": "edit"})
+    (option,) = field(result, "point").config["options"]
+    result = await step(hass, result, {"point": option["value"]})
+    result = await step(hass, result, {**bit, "platform": "number"})
+    assert result["errors"] == {"platform": "needs_number"}
+    result = await step(hass, result, {**bit, "platform": "binary_sensor"})
+    assert field(result, "device_class").config["translation_key"] == "binary_sensor_device_class"
+    marker = next(key for key in result["data_schema"].schema if str(key) == "device_class")
+    assert (marker.description or {}).get("suggested_value") is None
+
+
 async def test_import_500_lines(hass: HomeAssistant, smart_entry: MockConfigEntry) -> None:
-    """500 pasted lines become 500 points in one step."""
+    """500 pasted lines become 500 points in one step; the menu lists the first 20."""
     lines = ["name\taddress\tdata_type"] + [
         f"Word {i}\tVW{100 + 2 * i}\tsigned" for i in range(500)
     ]
     menu = await new_device(hass, smart_entry, "Line 1")
-    result = await step(hass, menu, {"next_step_id": "import_points"})
-    result = await step(hass, result, {"table": "\n".join(lines)})
+    result = await paste(hass, menu, "\n".join(lines))
     assert result["type"] is FlowResultType.MENU
     assert result["description_placeholders"]["count"] == "500"
+    assert result["description_placeholders"]["points"].count("\n") == 20
+    assert result["description_placeholders"]["points"].endswith("(+480)")
     result = await step(hass, result, {"next_step_id": "save"})
-    (new,) = [s for s in smart_entry.subentries.values() if s.title == "Line 1"]
-    assert len(new.data[CONF_POINTS]) == 500
+    assert len(saved(smart_entry, "Line 1")) == 500
 
 
 async def test_import_names_bad_lines(hass: HomeAssistant, smart_entry: MockConfigEntry) -> None:
-    """A bad address is named by its line number; nothing joins the device."""
+    """Bad lines are named by number, in the form's own words; nothing joins the device."""
     table = "name,address,data_type\nGood,VW100,signed\nBad,VX100,signed\nTaken,VW10,signed"
     menu = await new_device(hass, smart_entry)
-    result = await step(hass, menu, {"next_step_id": "import_points"})
-    result = await step(hass, result, {"table": table})
+    result = await paste(hass, menu, table)
     assert result["errors"] == {"table": "import_failed"}
-    listed = result["description_placeholders"]["errors"]
-    assert "line 3: address: invalid_address" in listed
-    assert "line 4: VW10 (signed) is already a point" in listed
+    listed = result["description_placeholders"]["errors"].splitlines()
+    assert listed[0].startswith("- line 3: Invalid address: 'VX100' is not an S7-200 SMART")
+    assert listed[1] == "- line 4: The PLC already has a point with this address and data type."
     result = await step(hass, result, {"table": "name,address\nGood,VW100"})
     assert result["description_placeholders"]["count"] == "1"
 
 
-ITEMS = [
-    BrowseItem(address=f"Main.temp{i}", data_type="REAL", name=f"Temp {i}", unit="°C")
-    for i in range(300)
-] + [BrowseItem(address="Main.pump", data_type="BOOL", name="Pump")]
+async def test_export_then_import(hass: HomeAssistant, smart_entry: MockConfigEntry) -> None:
+    """A device's exported points, imported again, are the same points."""
+    menu = await new_device(hass, smart_entry, "Source")
+    table = (
+        "name,address,data_type,platform,unit,device_class,state_class,scale,min,max,step\n"
+        '"Tank, ""north""",VD100,float,sensor,°C,temperature,measurement,0.1,,,\n'
+        "Setpoint,VW20,signed,number,,,,0.5,10,60,0.5\n"
+        "Pump,Q0.0,signed,switch,,,,,,,\n"
+    )
+    await step(hass, await paste(hass, menu, table), {"next_step_id": "save"})
+    before = saved(smart_entry, "Source")
+    exported = export_points(before.values())
+    (source,) = [s for s in smart_entry.subentries.values() if s.title == "Source"]
+    result = await smart_entry.start_subentry_reconfigure_flow(hass, source.subentry_id)
+    result = await step(hass, result, {"next_step_id": "remove"})
+    result = await step(hass, result, {"point": list(before)})
+    result = await paste(hass, result, exported)
+    await step(hass, result, {"next_step_id": "save"})
+    again = saved(smart_entry, "Source")
+    assert sorted(again.values(), key=str) == sorted(before.values(), key=str)
+    assert not set(again) & set(before)  # new ids: new entities
 
 
-@pytest.fixture
-def browse_entry(hass: HomeAssistant, fake_vendor: type[FakeClient]) -> MockConfigEntry:
-    """A loaded entry of a vendor that lists 301 variables."""
+async def test_micro_win_smart_paste(hass: HomeAssistant, smart_entry: MockConfigEntry) -> None:
+    """A STEP 7-Micro/WIN SMART symbol table becomes points."""
+    table = "Symbol\tAddress\tComment\nFlow\tVD100\tFlow rate REAL\nPump\tQ0.0\tMain pump\n"
+    menu = await paste(hass, await new_device(hass, smart_entry, "Pumps"), table)
+    await step(hass, menu, {"next_step_id": "save"})
+    points = {data["name"]: data for data in saved(smart_entry, "Pumps").values()}
+    assert (points["Flow"]["data_type"], points["Pump"]["platform"]) == ("float", "switch")
+
+
+async def test_tia_portal_paste(hass: HomeAssistant) -> None:
+    """A TIA Portal tag table pasted into an S7 PLC's device."""
     entry = MockConfigEntry(
         domain=DOMAIN,
-        data={CONF_VENDOR: FAKE_VENDOR, CONF_HOST: "plc", CONF_PORT: 8080},
+        data={CONF_VENDOR: "s7", CONF_HOST: "127.0.0.1", CONF_PORT: 102},
         version=2,
     )
     entry.add_to_hass(hass)
-    entry.mock_state(hass, ConfigEntryState.LOADED)
-    entry.runtime_data = SimpleNamespace(client=FakeClient(ConnectionConfig(host="plc", port=1)))
-    fake_vendor.items = ITEMS
-    return entry
-
-
-async def test_pick_filtered_variables(hass: HomeAssistant, browse_entry: MockConfigEntry) -> None:
-    """A filter narrows 301 variables; several picks at once become points."""
-    menu = await new_device(hass, browse_entry)
-    result = await step(hass, menu, {"next_step_id": "browse"})
-    result = await step(hass, result, {})
-    assert result["description_placeholders"] == {"count": "301", "shown": "200"}
-    menu = await step(hass, result, {})  # nothing picked: back to the menu
-    result = await step(hass, menu, {"next_step_id": "browse"})
-    result = await step(hass, result, {"filter": "temp1"})
-    assert result["step_id"] == "pick"
-    assert result["description_placeholders"]["count"] == "111"  # temp1, temp10-19, temp100-199
-    result = await step(hass, result, {"variables": ["0", "1"]})
-    assert result["description_placeholders"]["count"] == "2"
-    result = await step(hass, result, {"next_step_id": "browse"})
-    result = await step(hass, result, {"filter": "PUMP"})
-    result = await step(hass, result, {"variables": ["0"]})
-    result = await step(hass, result, {"next_step_id": "save"})
-    (new,) = browse_entry.subentries.values()
-    points = {data["address"]: data for data in new.data[CONF_POINTS].values()}
-    assert set(points) == {"Main.temp1", "Main.temp10", "Main.pump"}
-    assert points["Main.temp1"]["unit_of_measurement"] == "°C"
-    assert points["Main.pump"]["platform"] == "switch"
-
-
-async def test_browse_needs_a_loaded_entry(
-    hass: HomeAssistant, smart_entry: MockConfigEntry, fake_vendor: type[FakeClient]
-) -> None:
-    """A vendor that cannot list variables has no pick option in its menu."""
-    menu = await new_device(hass, smart_entry)
-    assert "browse" not in menu["menu_options"]
+    table = (
+        "Name\tPath\tData Type\tLogical Address\tComment\n"
+        "Motor on\tDefault tag table\tBool\t%Q0.0\t\n"
+        "Speed\tDefault tag table\tInt\t%MW20\tRPM\n"
+    )
+    menu = await paste(hass, await new_device(hass, entry, "Motor"), table)
+    await step(hass, menu, {"next_step_id": "save"})
+    points = sorted(saved(entry, "Motor").values(), key=lambda data: data["name"])
+    assert [(p["address"], p["data_type"], p["platform"]) for p in points] == [
+        ("Q0.0", "BOOL", "switch"),
+        ("MW20", "INT", "number"),
+    ]

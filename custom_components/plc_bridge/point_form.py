@@ -5,7 +5,7 @@ One check (`point_data`) serves the forms, picking from the PLC and pasted impor
 
 from __future__ import annotations
 
-from collections.abc import Mapping
+from collections.abc import Iterable, Mapping
 from enum import StrEnum
 from typing import Any
 
@@ -20,7 +20,10 @@ from homeassistant.components.sensor import (
     SensorDeviceClass,
     SensorStateClass,
 )
-from homeassistant.components.sensor.const import DEVICE_CLASS_UNITS as SENSOR_UNITS
+from homeassistant.components.sensor.const import (
+    DEVICE_CLASS_UNITS as SENSOR_UNITS,
+    STATE_CLASS_UNITS,
+)
 from homeassistant.components.switch import SwitchDeviceClass  # type: ignore[attr-defined]
 from homeassistant.const import CONF_DEVICE_CLASS, CONF_NAME, CONF_UNIT_OF_MEASUREMENT
 from homeassistant.helpers.selector import (
@@ -50,6 +53,8 @@ from .const import (
 from .plc import BrowseItem, PlcAddressError, PlcClient, Point, ValueKind
 
 NUMERIC = frozenset({ValueKind.INTEGER, ValueKind.FLOAT})
+COUNTED = NUMERIC | {ValueKind.BOOL}
+"""Kinds a sensor shows as a number (a true/false point as 1 or 0): unit and classes apply."""
 PLATFORM_KINDS: dict[str, tuple[frozenset[ValueKind], str]] = {
     "binary_sensor": (frozenset({ValueKind.BOOL}), "needs_bool"),
     "switch": (frozenset({ValueKind.BOOL}), "needs_bool"),
@@ -68,11 +73,14 @@ DEVICE_CLASSES: dict[str, type[StrEnum]] = {
 NOT_NUMERIC = {SensorDeviceClass.TIMESTAMP, SensorDeviceClass.DATE, SensorDeviceClass.ENUM}
 """Sensor classes whose state is no number: a numeric point cannot carry them."""
 UNITS: dict[str, Mapping[Any, set[Any]]] = {"sensor": SENSOR_UNITS, "number": NUMBER_UNITS}
-SCALED = frozenset({"sensor", "number"})
-"""Platforms whose numbers are scaled (and carry units)."""
 
 _NUMBER = NumberSelector(NumberSelectorConfig(mode=NumberSelectorMode.BOX, step="any"))
 BASE_FIELDS = (CONF_NAME, CONF_PLATFORM, CONF_ADDRESS, CONF_DATA_TYPE)
+
+
+def point_key(data: Mapping[str, Any]) -> Point:
+    """Return the (address, data type) that makes a point unique within a PLC."""
+    return Point(data[CONF_ADDRESS], data[CONF_DATA_TYPE])
 
 
 def base_schema(client: type[PlcClient]) -> vol.Schema:
@@ -96,6 +104,13 @@ def base_schema(client: type[PlcClient]) -> vol.Schema:
     )
 
 
+def takes_unit(platform: str, kind: ValueKind | None) -> bool:
+    """True when the platform shows the point as a number that can have a unit."""
+    if platform == "sensor":
+        return kind is None or kind in COUNTED
+    return platform == "number"
+
+
 def device_classes(platform: str, kind: ValueKind | None) -> list[str]:
     """Return the device classes a point of this kind can carry on the platform."""
     if platform not in DEVICE_CLASSES:
@@ -105,17 +120,47 @@ def device_classes(platform: str, kind: ValueKind | None) -> list[str]:
         return classes
     if kind is ValueKind.DATETIME:
         return [SensorDeviceClass.TIMESTAMP.value]
-    if kind in (ValueKind.TEXT, ValueKind.BYTES):
+    if not takes_unit(platform, kind):
         return []
     return [name for name in classes if name not in NOT_NUMERIC]
 
 
-def details_schema(platform: str, kind: ValueKind | None) -> vol.Schema:
+def allowed_units(platform: str, device_class: str | None) -> set[str | None] | None:
+    """Return the units a device class takes (None in it: no unit), or None when any unit does."""
+    table = UNITS.get(platform, {})
+    if device_class is None or device_class not in table:
+        return None
+    return flat_units(table[device_class])
+
+
+def flat_units(units: Iterable[Any]) -> set[str | None]:
+    """Return a units set of Home Assistant's tables with its unit enums spelled out."""
+    flat: set[str | None] = set()
+    for unit in units:
+        if isinstance(unit, type) and issubclass(unit, StrEnum):
+            flat |= {member.value for member in unit}
+        else:
+            flat.add(unit)
+    return flat
+
+
+def unit_selector(platform: str, device_class: str | None) -> SelectSelector | TextSelector:
+    """Return the unit field: the device class's units to choose from, else free text."""
+    units = sorted(unit for unit in allowed_units(platform, device_class) or () if unit)
+    if not units:
+        return TextSelector()
+    return SelectSelector(
+        SelectSelectorConfig(
+            options=units, custom_value=True, sort=True, mode=SelectSelectorMode.DROPDOWN
+        )
+    )
+
+
+def details_schema(
+    platform: str, kind: ValueKind | None, device_class: str | None = None
+) -> vol.Schema:
     """Return the second point form: the settings that fit the platform and the value."""
     fields: dict[vol.Marker, Any] = {}
-    numeric = kind is None or kind in NUMERIC
-    if platform in SCALED and numeric:
-        fields[vol.Optional(CONF_UNIT_OF_MEASUREMENT)] = TextSelector()
     if classes := device_classes(platform, kind):
         fields[vol.Optional(CONF_DEVICE_CLASS)] = SelectSelector(
             SelectSelectorConfig(
@@ -125,7 +170,9 @@ def details_schema(platform: str, kind: ValueKind | None) -> vol.Schema:
                 sort=True,
             )
         )
-    if platform == "sensor" and numeric:
+    if takes_unit(platform, kind):
+        fields[vol.Optional(CONF_UNIT_OF_MEASUREMENT)] = unit_selector(platform, device_class)
+    if platform == "sensor" and takes_unit(platform, kind):
         fields[vol.Optional(CONF_STATE_CLASS)] = SelectSelector(
             SelectSelectorConfig(
                 options=list(SensorStateClass),
@@ -133,7 +180,7 @@ def details_schema(platform: str, kind: ValueKind | None) -> vol.Schema:
                 mode=SelectSelectorMode.DROPDOWN,
             )
         )
-    if platform in SCALED and numeric:
+    if platform in ("sensor", "number") and (kind is None or kind in NUMERIC):
         fields[vol.Required(CONF_SCALE, default=1.0)] = _NUMBER
         fields[vol.Required(CONF_OFFSET, default=0.0)] = _NUMBER
     if platform == "number":
@@ -173,14 +220,39 @@ def check_point(
     return point, kind, errors, placeholders
 
 
-def unit_fits(platform: str, device_class: str | None, unit: str | None) -> bool:
-    """True when the device class allows the unit (classes without a unit list allow any)."""
-    units = UNITS.get(platform, {})
-    if device_class is None or device_class not in units:
-        return True
-    allowed = units[device_class]
-    enums = [item for item in allowed if isinstance(item, type) and issubclass(item, StrEnum)]
-    return unit in allowed or any(unit in {member.value for member in enum} for enum in enums)
+STATE_CLASSES = {
+    str(key): set(map(str, value)) for key, value in DEVICE_CLASS_STATE_CLASSES.items()
+}
+"""The state classes each sensor device class allows."""
+STATE_UNITS = {str(key): flat_units(value) for key, value in STATE_CLASS_UNITS.items()}
+"""The units a state class needs (an angle: degrees)."""
+
+
+def class_errors(
+    platform: str, kind: ValueKind | None, values: Mapping[str, Any]
+) -> tuple[dict[str, str], dict[str, str]]:
+    """Check device class, unit and state class against each other, as Home Assistant does."""
+    device_class = str(values.get(CONF_DEVICE_CLASS) or "") or None
+    unit = str(values.get(CONF_UNIT_OF_MEASUREMENT) or "") or None
+    state_class = str(values.get(CONF_STATE_CLASS) or "") or None
+    errors: dict[str, str] = {}
+    units: set[str | None] | None = None
+    if device_class and device_class not in device_classes(platform, kind):
+        errors[CONF_DEVICE_CLASS] = "invalid_device_class"
+    elif unit and not takes_unit(platform, kind):
+        errors[CONF_UNIT_OF_MEASUREMENT] = "unit_numeric"
+    elif (units := allowed_units(platform, device_class)) is not None and unit not in units:
+        errors[CONF_UNIT_OF_MEASUREMENT] = "unit_not_valid" if unit else "unit_required"
+    if state_class and (platform != "sensor" or not takes_unit(platform, kind)):
+        errors[CONF_STATE_CLASS] = "state_class_numeric_sensor"
+    elif state_class not in (None, *SensorStateClass):
+        errors[CONF_STATE_CLASS] = "invalid_state_class"
+    elif state_class and state_class not in STATE_CLASSES.get(device_class or "", {state_class}):
+        errors[CONF_STATE_CLASS] = "state_class_not_valid"
+    elif state_class in STATE_UNITS and unit not in STATE_UNITS[state_class]:
+        errors[CONF_UNIT_OF_MEASUREMENT] = "unit_not_valid_for_state_class"
+        units = STATE_UNITS[state_class]
+    return errors, {"units": ", ".join(sorted(str(item) for item in units or () if item))}
 
 
 def point_data(
@@ -191,22 +263,9 @@ def point_data(
     if point is None:
         return {}, errors, placeholders
     platform = str(values[CONF_PLATFORM])
-    device_class = values.get(CONF_DEVICE_CLASS) or None
-    unit = values.get(CONF_UNIT_OF_MEASUREMENT) or None
-    state_class = values.get(CONF_STATE_CLASS) or None
-    if device_class and device_class not in device_classes(platform, kind):
-        errors[CONF_DEVICE_CLASS] = "invalid_device_class"
-    elif not unit_fits(platform, device_class, unit):
-        errors[CONF_UNIT_OF_MEASUREMENT] = "unit_not_valid"
-        placeholders["device_class"] = str(device_class)
-    if state_class and (platform != "sensor" or (kind is not None and kind not in NUMERIC)):
-        errors[CONF_STATE_CLASS] = "state_class_numeric_sensor"
-    elif (
-        state_class
-        and device_class in DEVICE_CLASS_STATE_CLASSES
-        and state_class not in DEVICE_CLASS_STATE_CLASSES[SensorDeviceClass(device_class)]
-    ):
-        errors[CONF_STATE_CLASS] = "state_class_not_valid"
+    found, details = class_errors(platform, kind, values)
+    errors |= found
+    placeholders |= details
     if float(values.get(CONF_SCALE, 1.0)) == 0:
         errors[CONF_SCALE] = "scale_zero"
     low, high = values.get(CONF_MIN), values.get(CONF_MAX)
@@ -221,14 +280,11 @@ def point_data(
         CONF_OFFSET: float(values.get(CONF_OFFSET, 0.0)),
         CONF_READ_ONLY: bool(values.get(CONF_READ_ONLY, False)),
     }
-    optional = {
-        CONF_UNIT_OF_MEASUREMENT: unit,
-        CONF_DEVICE_CLASS: device_class,
-        CONF_STATE_CLASS: state_class,
-    }
-    data.update({key: value for key, value in optional.items() if value})
+    for key in (CONF_UNIT_OF_MEASUREMENT, CONF_DEVICE_CLASS, CONF_STATE_CLASS):
+        if values.get(key):
+            data[key] = str(values[key])
     for key in (CONF_MIN, CONF_MAX, CONF_STEP):
-        if values.get(key) is not None:
+        if values.get(key) is not None and platform == "number":
             data[key] = float(values[key])
     return data, errors, placeholders
 
@@ -239,13 +295,18 @@ def browse_values(client: type[PlcClient], item: BrowseItem) -> dict[str, Any]:
         CONF_NAME: item.name or item.address,
         CONF_ADDRESS: item.address,
         CONF_DATA_TYPE: item.data_type,
-        CONF_UNIT_OF_MEASUREMENT: item.unit,
         CONF_MIN: item.minimum,
         CONF_MAX: item.maximum,
         CONF_READ_ONLY: item.read_only,
         CONF_PLATFORM: item.platform
         or suggested_platform(client, item.address, item.data_type, read_only=item.read_only),
     }
+    try:
+        kind = client.value_kind(client.validate_point(Point(item.address, item.data_type)))
+    except PlcAddressError:
+        kind = None
+    if item.unit and takes_unit(values[CONF_PLATFORM], kind):
+        values[CONF_UNIT_OF_MEASUREMENT] = item.unit
     return {key: value for key, value in values.items() if value is not None}
 
 

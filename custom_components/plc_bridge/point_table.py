@@ -7,7 +7,8 @@ is told by its headers. Every line is checked by the same `point_data` as the fo
 
 from __future__ import annotations
 
-from collections.abc import Collection, Iterable, Mapping
+from collections import defaultdict
+from collections.abc import Callable, Collection, Iterable, Mapping
 import csv
 import io
 import re
@@ -15,6 +16,8 @@ from typing import Any
 
 from homeassistant.components.sensor import CONF_STATE_CLASS
 from homeassistant.const import CONF_DEVICE_CLASS, CONF_NAME, CONF_UNIT_OF_MEASUREMENT
+from homeassistant.core import HomeAssistant
+from homeassistant.helpers.translation import async_get_translations
 
 from .const import (
     CONF_ADDRESS,
@@ -26,9 +29,11 @@ from .const import (
     CONF_READ_ONLY,
     CONF_SCALE,
     CONF_STEP,
+    DOMAIN,
+    SUBENTRY_DEVICE,
 )
-from .plc import PlcClient, Point
-from .point_form import point_data, suggested_platform
+from .plc import PlcAddressError, PlcClient, Point
+from .point_form import point_data, point_key, suggested_platform
 
 COLUMNS = (
     CONF_NAME,
@@ -46,6 +51,7 @@ COLUMNS = (
     CONF_READ_ONLY,
 )
 """The columns of the format, in the order export writes them."""
+COMMENT = "comment"
 HEADERS: dict[str, str] = {
     **{column: column for column in COLUMNS},
     "unit_of_measurement": "unit",
@@ -53,16 +59,45 @@ HEADERS: dict[str, str] = {
     "datatype": CONF_DATA_TYPE,
     "entity_type": CONF_PLATFORM,
     "readonly": CONF_READ_ONLY,
-    # TIA Portal tag tables: Name, Path, Data Type, Logical Address, Comment, ...
+    COMMENT: COMMENT,
+    # TIA Portal tag tables: Name, Path, Data Type, Logical Address, Comment (English, German).
     "logical_address": CONF_ADDRESS,
+    "logische_adresse": CONF_ADDRESS,
+    "datentyp": CONF_DATA_TYPE,
+    "kommentar": COMMENT,
     # STEP 7-Micro/WIN SMART symbol tables: Symbol, Address, Comment.
     "symbol": CONF_NAME,
+    "adresse": CONF_ADDRESS,
 }
 """Header names (lower case, spaces as underscores) and the column each one means."""
 NUMBERS = (CONF_SCALE, CONF_OFFSET, CONF_MIN, CONF_MAX, CONF_STEP)
 TRUE = {"1", "true", "yes", "y", "on", "x"}
 FALSE = {"", "0", "false", "no", "n", "off"}
-SMART_SIZES = re.compile(r"^[A-Z]+(B|W|D)\d", re.IGNORECASE)
+SIGNED = ("signed", "INT", "DINT")
+"""Types tried when a table names none and the vendor's first type does not fit the address."""
+TYPE_WORDS = {"real": "float", "float": "real"}
+"""A comment's word for a type, as the other vendor family spells it."""
+
+type Describe = Callable[[str, Mapping[str, str]], str]
+"""Turns a problem's key and placeholders into the text shown for its line."""
+
+
+def plain(key: str, placeholders: Mapping[str, str]) -> str:
+    """Describe a problem without translations: its key and what it names."""
+    details = ", ".join(value for value in placeholders.values() if value)
+    return f"{key} ({details})" if details else key
+
+
+async def async_describe(hass: HomeAssistant) -> Describe:
+    """Return how problems are worded: as the device flow's errors, in Home Assistant's language."""
+    texts = await async_get_translations(hass, hass.config.language, "config_subentries", [DOMAIN])
+    prefix = f"component.{DOMAIN}.config_subentries.{SUBENTRY_DEVICE}.error."
+
+    def describe(key: str, placeholders: Mapping[str, str]) -> str:
+        """Return the problem's text with its placeholders filled in."""
+        return texts.get(prefix + key, key).format_map(defaultdict(str, placeholders))
+
+    return describe
 
 
 def _header(text: str) -> str:
@@ -71,15 +106,21 @@ def _header(text: str) -> str:
 
 
 def _rows(text: str) -> tuple[list[str], list[tuple[int, list[str]]]]:
-    """Split pasted text into its header and its numbered rows (blank lines dropped)."""
-    lines = text.strip("\n").splitlines()
-    first = lines[0] if lines else ""
-    delimiter = max(("\t", ";", ","), key=first.count)
-    rows = list(csv.reader(io.StringIO("\n".join(lines)), delimiter=delimiter))
-    numbered = [
-        (number, row) for number, row in enumerate(rows[1:], 2) if any(c.strip() for c in row)
-    ]
-    return (rows[0] if rows else []), numbered
+    """Split pasted text into its header and its rows by line number (blank lines dropped)."""
+    text = text.lstrip("\ufeff")
+    first = next((line for line in text.splitlines() if line.strip()), "")
+    reader = csv.reader(io.StringIO(text), delimiter=max(("\t", ";", ","), key=first.count))
+    header: list[str] = []
+    rows: list[tuple[int, list[str]]] = []
+    line = 1
+    for row in reader:
+        blank = not any(cell.strip() for cell in row)
+        if header and not blank:
+            rows.append((line, row))
+        elif not blank:
+            header = row
+        line = reader.line_num + 1
+    return header, rows
 
 
 def _flag(text: str) -> bool | None:
@@ -88,27 +129,49 @@ def _flag(text: str) -> bool | None:
     return True if word in TRUE else False if word in FALSE else None
 
 
-def _values(client: type[PlcClient], cells: Mapping[str, str]) -> tuple[dict[str, Any], str]:
-    """Return a row as the values point_data takes, or an error for a cell it cannot read."""
-    values: dict[str, Any] = {CONF_NAME: cells.get(CONF_NAME, "").strip()}
+def _fits(client: type[PlcClient], address: str, data_type: str) -> bool:
+    """True when the vendor's parser takes the address with the type."""
+    try:
+        client.validate_point(Point(address, data_type))
+    except PlcAddressError:
+        return False
+    return True
+
+
+def _data_type(client: type[PlcClient], address: str, cells: Mapping[str, str]) -> str:
+    """Return the cell's type; else one a comment names, or the first that fits the address."""
+    if data_type := cells.get(CONF_DATA_TYPE, "").strip():
+        return data_type
+    named = {name.lower(): name for name in client.data_types}
+    for word in re.findall(r"\w+", cells.get(COMMENT, "").lower()):
+        for name in (word, TYPE_WORDS.get(word, "")):
+            if name in named and _fits(client, address, named[name]):
+                return named[name]
+    first = client.data_types[0]
+    tried = (first, *(name for name in SIGNED if name in client.data_types), *client.data_types)
+    return next((name for name in tried if _fits(client, address, name)), first)
+
+
+def _values(
+    client: type[PlcClient], cells: Mapping[str, str]
+) -> tuple[dict[str, Any], str, dict[str, str]]:
+    """Return a row as the values point_data takes, or the problem with a cell it cannot read."""
     address = cells.get(CONF_ADDRESS, "").strip().lstrip("%")
-    values[CONF_ADDRESS] = address
-    data_type = cells.get(CONF_DATA_TYPE, "").strip()
-    if not data_type:
-        # A symbol table names no type: a byte, word or double word is read as signed.
-        smart = SMART_SIZES.match(address) and "signed" in client.data_types
-        data_type = "signed" if smart else client.data_types[0]
-    values[CONF_DATA_TYPE] = data_type
+    data_type = _data_type(client, address, cells)
+    values: dict[str, Any] = {
+        CONF_NAME: cells.get(CONF_NAME, "").strip(),
+        CONF_ADDRESS: address,
+        CONF_DATA_TYPE: data_type,
+    }
     for key in NUMBERS:
-        text = cells.get(key, "").strip()
-        if text:
+        if text := cells.get(key, "").strip():
             try:
                 values[key] = float(text.replace(",", "."))  # a decimal comma too
             except ValueError:
-                return {}, f"{key}: '{text}' is not a number"
+                return {}, "import_not_a_number", {"column": key, "text": text}
     read_only = _flag(cells.get(CONF_READ_ONLY, ""))
     if read_only is None:
-        return {}, f"read_only: '{cells[CONF_READ_ONLY].strip()}' is not yes or no"
+        return {}, "import_not_yes_or_no", {"column": CONF_READ_ONLY, "text": cells[CONF_READ_ONLY]}
     values[CONF_READ_ONLY] = read_only
     for key, column in (
         (CONF_UNIT_OF_MEASUREMENT, "unit"),
@@ -121,51 +184,50 @@ def _values(client: type[PlcClient], cells: Mapping[str, str]) -> tuple[dict[str
     values[CONF_PLATFORM] = platform or suggested_platform(
         client, address, data_type, read_only=read_only
     )
-    return values, ""
+    return values, "", {}
 
 
 def parse_points(
-    client: type[PlcClient], text: str, taken: Collection[Point] = ()
+    client: type[PlcClient],
+    text: str,
+    taken: Collection[Point] = (),
+    describe: Describe = plain,
 ) -> tuple[list[dict[str, Any]], list[tuple[int, str]]]:
     """Return the points of a pasted table and the errors by line; no points unless no errors.
 
     `taken` holds the points already configured: a line naming one again is an error, as is a
-    line repeating an earlier line's address and data type.
+    line repeating an earlier line's address and data type. `describe` words each problem.
     """
     header, rows = _rows(text)
     columns = [HEADERS.get(_header(cell)) for cell in header]
     if CONF_NAME not in columns or CONF_ADDRESS not in columns:
-        return [], [(1, "the first line must be a header naming at least name and address")]
+        return [], [(1, describe("import_no_header", {}))]
+    if not rows:
+        return [], [(1, describe("import_no_points", {}))]
     points: list[dict[str, Any]] = []
     errors: list[tuple[int, str]] = []
-    seen = set(taken)
-    for number, row in rows:
+    seen: dict[Point, int] = dict.fromkeys(taken, 0)
+    for line, row in rows:
         cells = {
             column: cell for column, cell in zip(columns, row, strict=False) if column is not None
         }
-        values, problem = _values(client, cells)
+        values, problem, placeholders = _values(client, cells)
         if problem:
-            errors.append((number, problem))
+            errors.append((line, describe(problem, placeholders)))
             continue
-        data, field_errors, placeholders = point_data(client, values)
-        if field_errors:
-            detail = placeholders.get("error", "")
-            errors.append(
-                (
-                    number,
-                    "; ".join(f"{field}: {key}" for field, key in field_errors.items())
-                    + (f" ({detail})" if detail else ""),
-                )
-            )
+        data, found, placeholders = point_data(client, values)
+        if found:
+            texts = dict.fromkeys(describe(key, placeholders) for key in found.values())
+            errors.append((line, " ".join(texts)))
             continue
-        point = Point(data[CONF_ADDRESS], data[CONF_DATA_TYPE])
+        point = point_key(data)
         if point in seen:
-            errors.append((number, f"{point.address} ({point.data_type}) is already a point"))
+            earlier = {"line": str(seen[point]), **placeholders}
+            key = "import_repeated" if seen[point] else "already_configured"
+            errors.append((line, describe(key, earlier)))
             continue
-        seen.add(point)
+        seen[point] = line
         points.append(data)
-    if not rows:
-        errors.append((1, "no point follows the header"))
     return ([] if errors else points), errors
 
 
@@ -175,15 +237,9 @@ def export_points(points: Iterable[Mapping[str, Any]]) -> str:
     writer = csv.writer(out, lineterminator="\n")
     writer.writerow(COLUMNS)
     for data in points:
-        row = {**data, "unit": data.get(CONF_UNIT_OF_MEASUREMENT, "")}
-        writer.writerow(
-            [
-                ("true" if row.get(column) else "false")
-                if column == CONF_READ_ONLY
-                else _cell(row.get(column))
-                for column in COLUMNS
-            ]
-        )
+        row = {**data, "unit": data.get(CONF_UNIT_OF_MEASUREMENT)}
+        row[CONF_READ_ONLY] = "true" if data.get(CONF_READ_ONLY) else "false"
+        writer.writerow([_cell(row.get(column)) for column in COLUMNS])
     return out.getvalue()
 
 

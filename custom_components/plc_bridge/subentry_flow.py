@@ -7,54 +7,52 @@ pasted table, edit or remove a point, save. Reconfigure opens the same menu.
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 import secrets
 from typing import Any
 
 from homeassistant.config_entries import ConfigEntryState, ConfigSubentryFlow, SubentryFlowResult
-from homeassistant.const import CONF_NAME
+from homeassistant.const import CONF_DEVICE_CLASS, CONF_NAME
 from homeassistant.helpers.selector import (
     AreaSelector,
-    SelectOptionDict,
-    SelectSelector,
-    SelectSelectorConfig,
-    SelectSelectorMode,
     TextSelector,
     TextSelectorConfig,
 )
 import voluptuous as vol
 
-from .const import CONF_ADDRESS, CONF_AREA, CONF_DATA_TYPE, CONF_POINTS, CONF_VENDOR
+from .const import (
+    CONF_ADDRESS,
+    CONF_AREA,
+    CONF_DATA_TYPE,
+    CONF_PLATFORM,
+    CONF_POINTS,
+    CONF_VENDOR,
+)
+from .flow_lists import (
+    CONF_FILTER,
+    CONF_VARIABLES,
+    MAX_LISTED,
+    listing,
+    matching,
+    pick_schema,
+    picked_points,
+    point_choice,
+)
 from .plc import BrowseItem, PlcClient, PlcError, Point
 from .plc.vendors import client_class
 from .point_form import (
     BASE_FIELDS,
     base_schema,
-    browse_values,
     check_point,
     details_schema,
+    device_classes,
     point_data,
+    point_key,
 )
-from .point_table import parse_points
+from .point_table import async_describe, parse_points
 
 CONF_POINT = "point"
-CONF_FILTER = "filter"
-CONF_VARIABLES = "variables"
 CONF_TABLE = "table"
-MAX_LISTED = 200
-"""Variables listed at most in one pick list: a real PLC publishes hundreds; filter first."""
-MAX_ERRORS = 20
-"""Import errors shown at most (the count says how many there are)."""
-
-
-def variable_label(item: BrowseItem) -> str:
-    """Return how a published variable is listed: its name, address and type."""
-    name = f"{item.name} – " if item.name and item.name != item.address else ""
-    return f"{name}{item.address} ({item.data_type})"
-
-
-def _key(data: dict[str, Any]) -> Point:
-    """Return the (address, data type) that makes a point unique within a PLC."""
-    return Point(data[CONF_ADDRESS], data[CONF_DATA_TYPE])
 
 
 class DeviceSubentryFlowHandler(ConfigSubentryFlow):
@@ -67,7 +65,9 @@ class DeviceSubentryFlowHandler(ConfigSubentryFlow):
         self._points: dict[str, dict[str, Any]] = {}
         self._editing: str | None = None
         self._base: dict[str, Any] = {}
+        self._published: list[BrowseItem] | None = None
         self._items: list[BrowseItem] = []
+        self._ticked: list[str] = []
 
     @property
     def _client(self) -> type[PlcClient]:
@@ -76,19 +76,15 @@ class DeviceSubentryFlowHandler(ConfigSubentryFlow):
 
     def _taken(self) -> set[Point]:
         """Points of the PLC already used, outside the one being edited."""
-        subentry_id = self._reconfigure_id()
+        subentry_id = self._reconfigure_subentry_id if self.source == "reconfigure" else None
         taken = {
-            _key(data)
+            point_key(data)
             for subentry in self._get_entry().subentries.values()
             if subentry.subentry_id != subentry_id
             for data in subentry.data.get(CONF_POINTS, {}).values()
         }
-        taken |= {_key(data) for pid, data in self._points.items() if pid != self._editing}
+        taken |= {point_key(data) for pid, data in self._points.items() if pid != self._editing}
         return taken
-
-    def _reconfigure_id(self) -> str | None:
-        """The id of the subentry being reconfigured, if this is a reconfigure."""
-        return self._reconfigure_subentry_id if self.source == "reconfigure" else None
 
     async def async_step_user(self, user_input: dict[str, Any] | None = None) -> SubentryFlowResult:
         """Ask the device's name and area."""
@@ -108,10 +104,12 @@ class DeviceSubentryFlowHandler(ConfigSubentryFlow):
         self, user_input: dict[str, Any] | None = None
     ) -> SubentryFlowResult:
         """Name the device (a machine or part of the plant) and suggest its area."""
-        if user_input is not None and str(user_input.get(CONF_NAME, "")).strip():
-            self._name = str(user_input[CONF_NAME]).strip()
-            self._area = user_input.get(CONF_AREA)
-            return await self.async_step_menu()
+        errors: dict[str, str] = {}
+        if user_input is not None:
+            if name := str(user_input.get(CONF_NAME, "")).strip():
+                self._name, self._area = name, user_input.get(CONF_AREA) or None
+                return await self.async_step_menu()
+            errors[CONF_NAME] = "device_name_required"
         schema = vol.Schema(
             {vol.Required(CONF_NAME): TextSelector(), vol.Optional(CONF_AREA): AreaSelector()}
         )
@@ -120,28 +118,31 @@ class DeviceSubentryFlowHandler(ConfigSubentryFlow):
             data_schema=self.add_suggested_values_to_schema(
                 schema, {CONF_NAME: self._name, CONF_AREA: self._area}
             ),
+            errors=errors,
         )
 
     async def async_step_menu(self, user_input: dict[str, Any] | None = None) -> SubentryFlowResult:
         """Show what can be done next, and the points so far."""
         options = ["point"]
-        if self._client.can_browse:
+        if self._client.can_browse and self._get_entry().state is ConfigEntryState.LOADED:
             options.append("browse")
         options.append("import_points")
         if self._points:
             options += ["edit", "remove"]
-        options += ["device", "save"]
-        listed = "\n".join(
-            f"- {data[CONF_NAME]}: {data[CONF_ADDRESS]} ({data[CONF_DATA_TYPE]})"
+        options.append("device")
+        if self._points:
+            options.append("save")
+        listed = [
+            f"{data[CONF_NAME]}: {data[CONF_ADDRESS]} ({data[CONF_DATA_TYPE]})"
             for data in self._points.values()
-        )
+        ]
         return self.async_show_menu(
             step_id="menu",
             menu_options=options,
             description_placeholders={
                 "name": self._name,
                 "count": str(len(self._points)),
-                "points": listed or "-",
+                "points": listing(listed),
             },
         )
 
@@ -164,7 +165,7 @@ class DeviceSubentryFlowHandler(ConfigSubentryFlow):
             step_id="point",
             data_schema=self.add_suggested_values_to_schema(base_schema(self._client), user_input),
             errors=errors,
-            description_placeholders=placeholders or {"error": ""},
+            description_placeholders={"error": "", **placeholders},
         )
 
     async def async_step_details(
@@ -172,9 +173,9 @@ class DeviceSubentryFlowHandler(ConfigSubentryFlow):
     ) -> SubentryFlowResult:
         """The settings that fit the point's entity type and value."""
         point, kind, _, _ = check_point(self._client, self._base)
-        platform = self._base["platform"]
+        platform = self._base[CONF_PLATFORM]
         errors: dict[str, str] = {}
-        placeholders: dict[str, str] = {"device_class": ""}
+        placeholders: dict[str, str] = {"units": ""}
         if user_input is not None:
             data, errors, found = point_data(self._client, {**self._base, **user_input})
             placeholders |= found
@@ -182,14 +183,17 @@ class DeviceSubentryFlowHandler(ConfigSubentryFlow):
                 self._points[self._editing or secrets.token_hex(6)] = data
                 self._editing = None
                 return await self.async_step_menu()
-        suggested = user_input or {
+        suggested: Mapping[str, Any] = user_input or {
             **self._points.get(self._editing or "", {}),
             **{key: self._base[key] for key in BASE_FIELDS},
         }
+        device_class = suggested.get(CONF_DEVICE_CLASS)
+        if device_class not in device_classes(platform, kind):  # the entity type was changed
+            suggested, device_class = dict(suggested, device_class=None), None
         return self.async_show_form(
             step_id="details",
             data_schema=self.add_suggested_values_to_schema(
-                details_schema(platform, kind), suggested
+                details_schema(platform, kind, device_class), suggested
             ),
             errors=errors,
             description_placeholders={
@@ -199,19 +203,6 @@ class DeviceSubentryFlowHandler(ConfigSubentryFlow):
             },
         )
 
-    def _point_choice(self, *, multiple: bool) -> SelectSelector:
-        """A list of the device's points."""
-        return SelectSelector(
-            SelectSelectorConfig(
-                options=[
-                    SelectOptionDict(value=pid, label=f"{data[CONF_NAME]} ({data[CONF_ADDRESS]})")
-                    for pid, data in self._points.items()
-                ],
-                multiple=multiple,
-                mode=SelectSelectorMode.DROPDOWN,
-            )
-        )
-
     async def async_step_edit(self, user_input: dict[str, Any] | None = None) -> SubentryFlowResult:
         """Choose the point to edit."""
         if user_input is not None:
@@ -219,7 +210,9 @@ class DeviceSubentryFlowHandler(ConfigSubentryFlow):
             return await self.async_step_point()
         return self.async_show_form(
             step_id="edit",
-            data_schema=vol.Schema({vol.Required(CONF_POINT): self._point_choice(multiple=False)}),
+            data_schema=vol.Schema(
+                {vol.Required(CONF_POINT): point_choice(self._points, multiple=False)}
+            ),
         )
 
     async def async_step_remove(
@@ -232,7 +225,9 @@ class DeviceSubentryFlowHandler(ConfigSubentryFlow):
             return await self.async_step_menu()
         return self.async_show_form(
             step_id="remove",
-            data_schema=vol.Schema({vol.Optional(CONF_POINT): self._point_choice(multiple=True)}),
+            data_schema=vol.Schema(
+                {vol.Optional(CONF_POINT): point_choice(self._points, multiple=True)}
+            ),
         )
 
     async def async_step_browse(
@@ -241,77 +236,66 @@ class DeviceSubentryFlowHandler(ConfigSubentryFlow):
         """Ask which variables to list: part of their name (a PLC publishes hundreds)."""
         entry = self._get_entry()
         if entry.state is not ConfigEntryState.LOADED:
-            return self.async_abort(reason="entry_not_loaded")
+            return await self.async_step_menu()  # unloaded since the menu was shown
         if user_input is None:
             return self.async_show_form(
                 step_id="browse",
                 data_schema=vol.Schema({vol.Optional(CONF_FILTER): TextSelector()}),
-                description_placeholders={"error": ""},
             )
+        self._items, self._ticked = [], []
         try:
-            items = await entry.runtime_data.client.browse()
+            if self._published is None:
+                self._published = await entry.runtime_data.client.browse()
         except PlcError as err:
-            return self.async_show_form(
-                step_id="browse",
-                data_schema=vol.Schema({vol.Optional(CONF_FILTER): TextSelector()}),
-                errors={"base": "browse_failed"},
-                description_placeholders={"error": str(err)},
-            )
-        needle = str(user_input.get(CONF_FILTER, "")).strip().lower()
-        taken = self._taken()
-        self._items = [
-            item
-            for item in items
-            if Point(item.address, item.data_type) not in taken
-            and (needle in item.address.lower() or needle in (item.name or "").lower())
-        ]
-        return await self.async_step_pick()
+            return self._pick_form({"base": "browse_failed"}, {"error": str(err)})
+        self._items = matching(self._published, str(user_input.get(CONF_FILTER, "")), self._taken())
+        return self._pick_form()
 
-    async def async_step_pick(self, user_input: dict[str, Any] | None = None) -> SubentryFlowResult:
-        """Pick any number of the listed variables; each becomes a point."""
-        if user_input is not None:
-            for index in user_input.get(CONF_VARIABLES, []):
-                values = browse_values(self._client, self._items[int(index)])
-                data, errors, _ = point_data(self._client, values)
-                if not errors and _key(data) not in self._taken():
-                    self._points[secrets.token_hex(6)] = data
-            return await self.async_step_menu()
-        shown = self._items[:MAX_LISTED]
-        options = [
-            SelectOptionDict(value=str(index), label=variable_label(item))
-            for index, item in enumerate(shown)
-        ]
+    def _pick_form(
+        self, errors: dict[str, str] | None = None, placeholders: dict[str, str] | None = None
+    ) -> SubentryFlowResult:
+        """List the variables that matched the filter, any number to tick (ticks kept)."""
         return self.async_show_form(
             step_id="pick",
-            data_schema=vol.Schema(
-                {
-                    vol.Optional(CONF_VARIABLES): SelectSelector(
-                        SelectSelectorConfig(
-                            options=options, multiple=True, mode=SelectSelectorMode.LIST
-                        )
-                    )
-                }
+            data_schema=self.add_suggested_values_to_schema(
+                pick_schema(self._items), {CONF_VARIABLES: self._ticked}
             ),
-            description_placeholders={"count": str(len(self._items)), "shown": str(len(shown))},
+            errors=errors,
+            description_placeholders={
+                "count": str(len(self._items)),
+                "shown": str(min(len(self._items), MAX_LISTED)),
+                "error": "",
+                **(placeholders or {}),
+            },
         )
+
+    async def async_step_pick(self, user_input: dict[str, Any] | None = None) -> SubentryFlowResult:
+        """Pick any number of the listed variables; each becomes a point (none if one is bad)."""
+        self._ticked = list((user_input or {}).get(CONF_VARIABLES, []))
+        ticked = [self._items[int(index)] for index in self._ticked]
+        points, refused = picked_points(self._client, ticked, await async_describe(self.hass))
+        if refused:
+            return self._pick_form({"base": "pick_failed"}, {"error": listing(refused)})
+        self._points |= {secrets.token_hex(6): data for data in points}
+        return await self.async_step_menu()
 
     async def async_step_import_points(
         self, user_input: dict[str, Any] | None = None
     ) -> SubentryFlowResult:
         """Take pasted lines, all checked; nothing joins the device unless every line is good."""
         errors: dict[str, str] = {}
-        listed = ""
+        problems: list[tuple[int, str]] = []
         if user_input is not None:
             points, problems = parse_points(
-                self._client, str(user_input.get(CONF_TABLE, "")), self._taken()
+                self._client,
+                str(user_input.get(CONF_TABLE, "")),
+                self._taken(),
+                await async_describe(self.hass),
             )
             if not problems:
                 self._points |= {secrets.token_hex(6): data for data in points}
                 return await self.async_step_menu()
             errors[CONF_TABLE] = "import_failed"
-            listed = "\n".join(f"- line {line}: {text}" for line, text in problems[:MAX_ERRORS])
-            if len(problems) > MAX_ERRORS:
-                listed += f"\n- … {len(problems) - MAX_ERRORS} more"
         schema = vol.Schema(
             {vol.Required(CONF_TABLE): TextSelector(TextSelectorConfig(multiline=True))}
         )
@@ -319,7 +303,9 @@ class DeviceSubentryFlowHandler(ConfigSubentryFlow):
             step_id="import_points",
             data_schema=self.add_suggested_values_to_schema(schema, user_input or {}),
             errors=errors,
-            description_placeholders={"errors": listed},
+            description_placeholders={
+                "errors": listing([f"line {line}: {text}" for line, text in problems])
+            },
         )
 
     async def async_step_save(self, user_input: dict[str, Any] | None = None) -> SubentryFlowResult:
