@@ -24,6 +24,7 @@ import tempfile
 import time
 from typing import IO, Any
 
+import aiohttp
 from snap7.async_client import AsyncISOTCPConnection
 
 from custom_components.plc_bridge.plc import ConnectionConfig, PlcClient, Point, TlsMode
@@ -135,9 +136,17 @@ class Simulator:
 
     async def requests(self) -> int:
         """Return how many requests the simulator has answered so far."""
+        return await self._count("requests")
+
+    async def connections(self) -> int:
+        """Return how many client connections (TLS handshakes on HTTPS) it has accepted."""
+        return await self._count("connections")
+
+    async def _count(self, what: str) -> int:
+        """Ask the simulator for one of its counters."""
         assert self._process is not None
         assert self._process.stdin is not None
-        self._process.stdin.write(b"requests\n")
+        self._process.stdin.write(f"{what}\n".encode())
         await self._process.stdin.drain()
         return int(json.loads(await self._line())[self.vendor])
 
@@ -150,8 +159,16 @@ class Simulator:
             self._log.close()
 
 
-def make_client(vendor: str, info: dict[str, Any]) -> PlcClient:
-    """Return an unpaced client for the simulator, pinned to its certificate if it has one."""
+def make_client(
+    vendor: str,
+    info: dict[str, Any],
+    session: aiohttp.ClientSession | None = None,
+    poll_interval: float = 5.0,
+) -> PlcClient:
+    """Return an unpaced client for the simulator, pinned to its certificate if it has one.
+
+    Without `session`, the client makes its own, which keeps a connection for `poll_interval`.
+    """
     cls = client_class(vendor)
     cls.request_interval = 0.0
     tls = TlsMode.PIN if info.get("fingerprint") else TlsMode.NONE
@@ -162,8 +179,9 @@ def make_client(vendor: str, info: dict[str, Any]) -> PlcClient:
         password=info.get("password") or "",
         tls=tls if tls in cls.tls_modes else cls.default_tls,
         fingerprint=info.get("fingerprint") or "",
+        poll_interval=poll_interval,
     )
-    return cls(config)
+    return cls(config, session)
 
 
 TRANSPORT_CPU = [0.0]
@@ -351,6 +369,10 @@ def main() -> int:
     args = parser.parse_args()
     time_transports()
     rows = asyncio.run(run(args.points, args.polls))
+    # Imported here: bench.keepalive builds on this module's simulator driver and points.
+    from .keepalive import keepalive_rows, keepalive_text  # noqa: PLC0415
+
+    keepalive = asyncio.run(keepalive_rows(ready_vendors()))
     checks = ha_checks() if args.ha is not False else None
     if isinstance(checks, str):
         print(f"Home Assistant checks could not run:\n{checks}")
@@ -359,10 +381,12 @@ def main() -> int:
         for row in rows:
             extra = ("cpu_ms_per_poll", "protocol_cpu_ms_per_poll")
             print(json.dumps({key: row[key] for key in (*keys, *extra)}))
-        for result in checks if isinstance(checks, list) else []:
+        for result in [*keepalive, *(checks if isinstance(checks, list) else [])]:
             print(json.dumps(result))
     else:
         print(table(rows, shlex.join(["scripts/bench", *sys.argv[1:]])))
+        for result in keepalive:
+            print(keepalive_text(result))
         for result in checks if isinstance(checks, list) else []:
             print(check_text(result))
     checks_ok = checks is None or (isinstance(checks, list) and all(c["passed"] for c in checks))

@@ -128,19 +128,29 @@ def show(info: dict[str, Any]) -> str:
 def _control(
     loop: asyncio.AbstractEventLoop, simulators: list[tuple[Entry, Any]], stop: asyncio.Event
 ) -> None:
-    """Answer "requests" lines on stdin with the counters; set `stop` at end of input.
+    """Answer "requests" (or "connections") lines on stdin with the counters; stop at its end.
 
-    Runs in a daemon thread: a blocking read there never delays the shutdown.
+    "connections" counts the client connections (TCP, and TLS handshakes where the simulator
+    speaks HTTPS) seen since the start. Runs in a daemon thread: a blocking read there never
+    delays the shutdown.
     """
 
-    def answer() -> None:
-        counts = {entry.vendor: getattr(sim, "requests", None) for entry, sim in simulators}
+    def answer(what: str) -> None:
+        counts = {entry.vendor: _count(sim, what) for entry, sim in simulators}
         print(json.dumps(counts), flush=True)
 
     for line in sys.stdin:
-        if line.strip() == "requests":
-            loop.call_soon_threadsafe(answer)
+        if (what := line.strip()) in ("requests", "connections"):
+            loop.call_soon_threadsafe(answer, what)
     loop.call_soon_threadsafe(stop.set)
+
+
+def _count(simulator: Any, what: str) -> int | None:
+    """Return a simulator's request or connection count (None where it keeps none)."""
+    if what == "connections":
+        peers = getattr(simulator, "peers", None)
+        return None if peers is None else len(peers)
+    return getattr(simulator, "requests", None)
 
 
 def keep_certificate(simulator: Any, folder: Path, vendor: str) -> None:
@@ -224,7 +234,9 @@ def main() -> int:
     parser.add_argument("--port", type=int, help="one port for all (0: any free port)")
     parser.add_argument("--json", action="store_true", help="one JSON line per simulator")
     parser.add_argument(
-        "--control", action="store_true", help="serve until stdin closes; answer 'requests'"
+        "--control",
+        action="store_true",
+        help="serve until stdin closes; answer 'requests' and 'connections'",
     )
     parser.add_argument("--demo", action="store_true", help="let some values move, once a second")
     parser.add_argument(

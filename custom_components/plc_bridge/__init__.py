@@ -8,7 +8,7 @@ from homeassistant.core import HomeAssistant
 from homeassistant.helpers import config_validation as cv, device_registry as dr
 from homeassistant.helpers.typing import ConfigType
 
-from .connection import create_client
+from .connection import create_polling_client
 from .const import CONF_TLS, DOMAIN
 from .coordinator import PlcBridgeConfigEntry, PlcCoordinator, PlcRuntimeData, link_error
 from .entity import device_info
@@ -48,7 +48,7 @@ async def async_setup_entry(hass: HomeAssistant, entry: PlcBridgeConfigEntry) ->
         async_raise_issue(hass, entry, TLS_OFF)
     else:
         async_clear_issue(hass, entry, TLS_OFF)
-    client = create_client(hass, entry.data, entry.options)
+    client = create_polling_client(hass, entry.data, entry.options)
     entry.async_on_unload(client.close)  # also when the setup below fails
     try:
         device = await client.connect()

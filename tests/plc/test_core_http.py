@@ -22,6 +22,7 @@ from custom_components.plc_bridge.plc import (
 from custom_components.plc_bridge.plc.http import (
     HttpTransport,
     base_url,
+    client_session,
     fetch_fingerprint,
     format_fingerprint,
 )
@@ -155,3 +156,31 @@ def test_urls_and_formatting() -> None:
     assert base_url(ConnectionConfig(host="::1", port=443, tls=TlsMode.PIN)) == "https://[::1]:443"
     assert base_url(ConnectionConfig(host="plc", port=80)) == "http://plc:80"
     assert format_fingerprint("ab01ff") == "AB:01:FF"
+
+
+@pytest.mark.parametrize(("interval", "connections"), [(60.0, 1), (5.0, 2)])
+async def test_own_session_keeps_connection_for_poll_interval(
+    tls_sim: TlsEchoSimulator,
+    monkeypatch: pytest.MonkeyPatch,
+    interval: float,
+    connections: int,
+) -> None:
+    """Idle 60 s between two requests: a 60 s poller reuses its TLS connection, a 5 s one not.
+
+    aiohttp's own default (15 s, Home Assistant's shared connector) would open a new one.
+    """
+    now = [time.monotonic()]
+    monkeypatch.setattr("aiohttp.connector.monotonic", lambda: now[0])
+    config = ConnectionConfig(
+        host="127.0.0.1",
+        port=tls_sim.port,
+        tls=TlsMode.PIN,
+        fingerprint=tls_sim.fingerprint or "",
+        poll_interval=interval,
+    )
+    async with client_session(config) as own:
+        transport = HttpTransport(config, own, ClientMetrics())
+        await transport.request("POST", "/echo", data="1")
+        now[0] += 60.0
+        await transport.request("POST", "/echo", data="2")
+    assert len(tls_sim.peers) == connections

@@ -20,6 +20,9 @@ def test_shown_masks_credentials_and_cuts_long_bodies() -> None:
     for secret in ("admin", "abc123", "t0k"):
         assert secret not in text
     assert '"password": "***"' in text
+    tokens = shown('{"access_token":"a1","auth_token":"b2","refresh_token":"c3","expires_in":60}')
+    assert tokens.count('"***"') == 3
+    assert '"expires_in":60' in tokens
     assert shown("x" * 600).endswith("(600 characters)")
     assert shown(None) == ""
 

@@ -6,7 +6,7 @@ import asyncio
 from pathlib import Path
 from typing import Any
 
-from simulators.__main__ import SIMULATORS, _animate, keep_certificate
+from simulators.__main__ import SIMULATORS, _animate, _count, keep_certificate
 from simulators.s7_smart import S7SmartSimulator
 
 
@@ -56,3 +56,13 @@ def test_certificate_kept_across_starts(tmp_path: Path) -> None:
     fresh = S7SmartSimulator()
     fresh.new_certificate()
     assert fresh.fingerprint != first.fingerprint
+
+
+def test_control_counters() -> None:
+    """The bench's control pipe tells requests and connections (None where none are kept)."""
+    sim = S7SmartSimulator()
+    sim.requests = 7
+    sim.peers = {("127.0.0.1", 50000), ("127.0.0.1", 50001)}
+    assert _count(sim, "requests") == 7
+    assert _count(sim, "connections") == 2
+    assert _count(object(), "connections") is None

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import base64
 from typing import TYPE_CHECKING
 
 import pytest
@@ -14,6 +15,7 @@ from custom_components.plc_bridge.plc import (
     TlsMode,
 )
 from custom_components.plc_bridge.plc.vendors.tecomat import TecomatClient
+from custom_components.plc_bridge.plc.vendors.tecomat.api import basic_authorization
 from simulators.tecomat import TecomatSimulator
 
 if TYPE_CHECKING:
@@ -162,3 +164,12 @@ def test_class_attributes() -> None:
     assert TecomatClient.tls_modes == (TlsMode.NONE, TlsMode.PIN, TlsMode.VERIFY, TlsMode.OFF)
     assert TecomatClient.can_browse
     assert TecomatClient.needs_credentials
+
+
+def test_basic_authorization_header() -> None:
+    """Basic credentials as RFC 7617 encodes them; a ':' in the user name cannot be sent."""
+    assert basic_authorization("Aladdin", "open sesame") == "Basic QWxhZGRpbjpvcGVuIHNlc2FtZQ=="
+    assert basic_authorization("jürg", "x") == "Basic " + base64.b64encode(b"j\xfcrg:x").decode()
+    assert basic_authorization("u", "€") == "Basic " + base64.b64encode("u:€".encode()).decode()
+    with pytest.raises(PlcAuthenticationError, match="cannot contain"):
+        basic_authorization("a:b", "x")

@@ -12,10 +12,11 @@ import aiohttp
 import pytest
 from yarl import URL
 
+from custom_components.plc_bridge.plc.vendors.tecomat.api import basic_authorization
 from simulators.tecomat import DEFAULT_PASSWORD, DEFAULT_USER, TecomatSimulator
 from simulators.tecomat.values import render
 
-AUTH = aiohttp.BasicAuth(DEFAULT_USER, DEFAULT_PASSWORD)
+AUTH = {"Authorization": basic_authorization(DEFAULT_USER, DEFAULT_PASSWORD)}
 
 
 @pytest.fixture
@@ -32,7 +33,7 @@ async def call(
 ) -> tuple[int, Any]:
     """Send one request verbatim; return the status and the JSON body (None when empty)."""
     url = URL(f"http://{sim.host}:{sim.port}{target}", encoded=True)
-    kwargs.setdefault("auth", AUTH)
+    kwargs.setdefault("headers", AUTH)
     async with (
         aiohttp.ClientSession() as session,
         session.request(method, url, data=body, **kwargs) as response,
@@ -123,7 +124,7 @@ async def test_get_object_answers(basic_sim: TecomatSimulator) -> None:
     assert whole["plcData"]["varDate"] == "2015-06-17"
     async with aiohttp.ClientSession() as session:
         url = f"http://{basic_sim.host}:{basic_sim.port}/TecoApi/GetObject?plcData.varReal"
-        async with session.get(url, auth=AUTH) as response:
+        async with session.get(url, headers=AUTH) as response:
             assert await response.text() == '{"plcData":{"varReal":1000.000000}}'
             assert response.headers["Server"].startswith("TecoApi/1.0.0")
 
@@ -210,18 +211,12 @@ async def test_program_faults(basic_sim: TecomatSimulator, state: str, expected:
 
 
 async def test_authentication_answers(basic_sim: TecomatSimulator) -> None:
-    status, answer = await call(basic_sim, "GET", "/TecoApi/GetInfo", auth=None)
+    status, answer = await call(basic_sim, "GET", "/TecoApi/GetInfo", headers={})
     assert (status, code(answer)) == (401, "401.023")
     headers = {"Authorization": "Bearer x"}
-    assert (
-        code((await call(basic_sim, "GET", "/TecoApi/GetInfo", auth=None, headers=headers))[1])
-        == "403.022"
-    )
+    assert code((await call(basic_sim, "GET", "/TecoApi/GetInfo", headers=headers))[1]) == "403.022"
     headers = {"Authorization": "Basic !!"}
-    assert (
-        code((await call(basic_sim, "GET", "/TecoApi/GetInfo", auth=None, headers=headers))[1])
-        == "401.021"
-    )
+    assert code((await call(basic_sim, "GET", "/TecoApi/GetInfo", headers=headers))[1]) == "401.021"
 
 
 async def test_digest_details() -> None:
@@ -244,13 +239,11 @@ async def test_digest_details() -> None:
             f'Digest username="{DEFAULT_USER}",realm="TecoApi",nonce="{nonce}",'
             f'uri="/TecoApi/GetInfo",response="{rfc2069}",opaque="{opaque}"'
         )
-        status, _ = await call(
-            sim, "GET", "/TecoApi/GetInfo", auth=None, headers={"Authorization": header}
-        )
+        status, _ = await call(sim, "GET", "/TecoApi/GetInfo", headers={"Authorization": header})
         assert status == 200
         wrong_uri = header.replace('uri="/TecoApi/GetInfo"', 'uri="/TecoApi/GetList"')
         status, answer = await call(
-            sim, "GET", "/TecoApi/GetInfo", auth=None, headers={"Authorization": wrong_uri}
+            sim, "GET", "/TecoApi/GetInfo", headers={"Authorization": wrong_uri}
         )
         assert code(answer) == "401.021"
         assert sim.auth.accepted == {"digest without qop": 1}

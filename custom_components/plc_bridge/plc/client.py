@@ -13,6 +13,7 @@ import aiohttp
 
 from .codec import IEC_KINDS
 from .errors import PlcError
+from .http import client_session
 from .types import (
     BrowseItem,
     ClientMetrics,
@@ -46,6 +47,7 @@ class PlcClient(ABC):
     max_points_per_request: ClassVar[int] = 0  # 0: the vendor packs by size, not count
     request_interval: ClassVar[float] = 0.0  # pacing between requests, in seconds
     can_browse: ClassVar[bool] = False
+    uses_http: ClassVar[bool] = True  # False: the vendor never touches `session`
 
     def __init__(
         self, config: ConnectionConfig, session: aiohttp.ClientSession | None = None
@@ -58,10 +60,17 @@ class PlcClient(ABC):
 
     @property
     def session(self) -> aiohttp.ClientSession:
-        """The injected aiohttp session, or one of the client's own made on first use."""
+        """The injected aiohttp session, or one of the client's own made on first use.
+
+        The client's own keeps an idle connection for the poll interval (`client_session`).
+        """
         if self._session is None:
-            self._session = aiohttp.ClientSession()
+            self._session = client_session(self.config)
         return self._session
+
+    def own_session(self) -> None:
+        """Take the injected session as the client's own: `close` closes it too."""
+        self._own_session = True
 
     async def _close_own_session(self) -> None:
         """Close the session the client made itself (never an injected one)."""

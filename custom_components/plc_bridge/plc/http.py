@@ -32,6 +32,39 @@ def ssl_option(config: ConnectionConfig) -> aiohttp.Fingerprint | bool | None:
     return None
 
 
+KEEPALIVE_MARGIN = 15.0
+"""Seconds a connection is kept idle beyond the poll interval (a late poll still finds it)."""
+KEEPALIVE_MAX = 1800.0
+"""The longest idle connection kept: the S7-200 SMART's session idles out after 30 minutes."""
+
+
+def keepalive_timeout(config: ConnectionConfig) -> float:
+    """Return how long an idle connection to this PLC is kept: the poll interval, and a margin.
+
+    aiohttp's default (15 s, also Home Assistant's shared connector) closes it between polls
+    whenever the interval is longer, so every poll would pay a new TCP and TLS handshake, which
+    the S7-200 SMART manual (4.2, "Use long connections") calls slow and costly for the CPU.
+    """
+    return min(config.poll_interval + KEEPALIVE_MARGIN, KEEPALIVE_MAX)
+
+
+def client_session(
+    config: ConnectionConfig, ssl_context: ssl.SSLContext | None = None
+) -> aiohttp.ClientSession:
+    """Return an HTTP session of one PLC's own, whose idle connection outlives a poll interval.
+
+    `ssl_context`: what TlsMode.VERIFY checks against (the system CAs when None); a pinned or
+    unchecked certificate is decided per request (`ssl_option`). The resolver runs in the
+    executor: a PLC is most often an IP address, which needs none.
+    """
+    connector = aiohttp.TCPConnector(
+        keepalive_timeout=keepalive_timeout(config),
+        ssl=ssl_context if ssl_context is not None else True,
+        resolver=aiohttp.ThreadedResolver(),
+    )
+    return aiohttp.ClientSession(connector=connector)
+
+
 def base_url(config: ConnectionConfig) -> str:
     """Return scheme://host:port for the configured TLS mode (IPv6 hosts bracketed)."""
     scheme = "http" if config.tls is TlsMode.NONE else "https"
@@ -71,7 +104,11 @@ def format_fingerprint(fingerprint: str) -> str:
 
 
 _LOGGER = logging.getLogger(__name__)
-SECRET = re.compile(r'("(?:password|passwd|token|cookie|username|user)"\s*:\s*)"[^"]*"', re.I)
+SECRET = re.compile(
+    r'("(?:password|passwd|token|access_token|auth_token|refresh_token|cookie|username|user)"'
+    r'\s*:\s*)"[^"]*"',
+    re.I,
+)
 """JSON fields a request or reply may carry credentials or a session in: never logged."""
 SHOWN = 500
 """Characters of a body a debug line shows."""

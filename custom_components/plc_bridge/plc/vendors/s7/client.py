@@ -43,6 +43,7 @@ class S7Client(PlcClient):
     default_tls: ClassVar[TlsMode] = TlsMode.NONE
     tls_modes: ClassVar[tuple[TlsMode, ...]] = (TlsMode.NONE,)
     needs_credentials: ClassVar[bool] = False
+    uses_http: ClassVar[bool] = False
     data_types: ClassVar[tuple[str, ...]] = DATA_TYPES
     default_scan_interval: ClassVar[float] = 2.0
     requested_pdu: ClassVar[int] = 960  # the PLC answers with what it can (240, 480, 960)

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import base64
 from collections.abc import Sequence
 from dataclasses import dataclass, field
 import json
@@ -84,6 +85,22 @@ def _text(raw: bytes) -> str:
         return raw.decode("cp1250", "replace")
 
 
+def basic_authorization(user: str, password: str) -> str:
+    """Return the Basic `Authorization` value (RFC 7617) for a TecoApi user.
+
+    Latin-1 as aiohttp's BasicAuth encoded it, UTF-8 for what Latin-1 cannot hold (RFC 7617
+    2.1); the TecoApi manual (3.1) names no charset.
+    """
+    if ":" in user:
+        raise PlcAuthenticationError("a user name for Basic authentication cannot contain ':'")
+    pair = f"{user}:{password}"
+    try:
+        raw = pair.encode("latin-1")
+    except UnicodeEncodeError:
+        raw = pair.encode()
+    return "Basic " + base64.b64encode(raw).decode("ascii")
+
+
 class TecoApi:
     """The services of one PLC; every request goes through one HttpTransport."""
 
@@ -103,11 +120,15 @@ class TecoApi:
         # Names a GetObject may carry, learned from 413.002 (a CPU taking fewer than planned).
         self.max_names: int | None = None
 
-    def _credentials(self) -> dict[str, Any]:
-        """Return the request arguments that authenticate: Digest (preferred) or Basic."""
+    def _credentials(self, headers: dict[str, str]) -> dict[str, Any]:
+        """Return the request arguments that authenticate: Digest (preferred) or Basic.
+
+        Basic goes into `headers` (aiohttp deprecates its BasicAuth helper).
+        """
         user, password = self._config.username, self._config.password
         if self.auth == "basic":
-            return {"auth": aiohttp.BasicAuth(user, password)}
+            headers["Authorization"] = basic_authorization(user, password)
+            return {}
         if self.auth != "digest":
             raise PlcAuthenticationError(
                 f"unknown authentication {self.auth!r}; use {' or '.join(AUTH_METHODS)}"
@@ -136,7 +157,7 @@ class TecoApi:
         if body is not None:
             headers["Content-Type"] = "application/json"
         status, answer_headers, raw = await self._transport.request(
-            method, path, data=body, headers=headers, encoded=True, **self._credentials()
+            method, path, data=body, headers=headers, encoded=True, **self._credentials(headers)
         )
         if not 200 <= status < 300:
             raise parse_error(status, raw, answer_headers.get("WWW-Authenticate", ""))
