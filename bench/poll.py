@@ -82,6 +82,26 @@ def s7_points(count: int) -> list[Point]:
     return points
 
 
+def softplc_points(count: int) -> list[Point]:
+    """A mix in the SoftPLC simulator's bench files: words, floats, bits, timer words, gaps.
+
+    Every fifth word of N10 is skipped and F11 is read at every third element, so that the
+    planner's merging of nearby elements shows in the `<data>` items per poll.
+    """
+    points: list[Point] = []
+    for index in range(count):
+        match index % 4:
+            case 0:
+                points.append(Point(f"N10:{index // 4 * 5 // 4}", "INT"))
+            case 1:
+                points.append(Point(f"F11:{index * 3 % 1000}", "REAL"))
+            case 2:
+                points.append(Point(f"B12:{index // 16}/{index % 16}", "BOOL"))
+            case _:
+                points.append(Point(f"T13:{index}.ACC", "INT"))
+    return points
+
+
 @dataclass(frozen=True, slots=True)
 class Vendor:
     """How to benchmark one vendor: its points and the request count its planner promises."""
@@ -89,12 +109,19 @@ class Vendor:
     points: Callable[[int], list[Point]]
     target: Callable[[int], int] | None
     target_text: str
+    items: Callable[[list[Point]], int] | None = None  # items a poll asks for, where counted
 
 
 VENDORS: dict[str, Vendor] = {
     "s7_smart": Vendor(s7_smart_points, lambda n: math.ceil(n / 32), "ceil(N/32)"),
     "tecomat": Vendor(tecomat_points, None, "URI <= 256 chars"),
     "s7": Vendor(s7_points, None, "PDU-packed"),
+    "softplc": Vendor(
+        softplc_points,
+        lambda n: 1 if n else 0,
+        "1 POST",
+        lambda points: client_class("softplc").items_for(points),  # type: ignore[attr-defined]
+    ),
 }
 
 
@@ -258,6 +285,8 @@ async def bench_vendor(vendor: str, sizes: list[int], polls: int) -> list[dict[s
             row = {"vendor": vendor, "points": size, "naive_requests": size}
             row |= await measure(client, simulator, points, polls)
             row["target_requests"] = spec.target(size) if spec.target else None
+            if spec.items is not None:
+                row["data_items"] = spec.items(points)
             rows.append(row)
     finally:
         await client.close()
@@ -379,8 +408,8 @@ def main() -> int:
     if args.json:
         keys = ("vendor", "points", "requests_per_poll", "naive_requests", "poll_ms")
         for row in rows:
-            extra = ("cpu_ms_per_poll", "protocol_cpu_ms_per_poll")
-            print(json.dumps({key: row[key] for key in (*keys, *extra)}))
+            extra = ("cpu_ms_per_poll", "protocol_cpu_ms_per_poll", "data_items")
+            print(json.dumps({key: row[key] for key in (*keys, *extra) if key in row}))
         for result in [*keepalive, *(checks if isinstance(checks, list) else [])]:
             print(json.dumps(result))
     else:

@@ -1,9 +1,10 @@
-"""Print the requirements of the integrations the demo's Home Assistant sets up.
+"""Print what the demo's Home Assistant needs: PLC Bridge's requirements and those it sets up.
 
-`hass --skip-pip` installs nothing, so everything the demo's configuration.yaml and onboarding
-load must be there beforehand: their manifests' requirements, with those of their dependencies,
-after-dependencies and platform domains, resolved recursively from Home Assistant's own files.
-(scripts/demo_check.py fails on any integration that still misses a module.)
+`hass --skip-pip` installs nothing, so everything PLC Bridge (its manifest), the demo's
+configuration.yaml and onboarding load must be there beforehand: the manifests' requirements,
+with those of their dependencies, after-dependencies and platform domains, resolved recursively
+from Home Assistant's own files. (scripts/demo_check.py fails on any integration that still
+misses a module.)
 """
 
 from __future__ import annotations
@@ -52,5 +53,11 @@ def requirements(domains: list[str]) -> list[str]:
     return sorted(found)
 
 
+def own_requirements() -> list[str]:
+    """Return PLC Bridge's own requirements (its manifest's: lxml, python-snap7)."""
+    manifest = Path(__file__).resolve().parent.parent / "custom_components/plc_bridge/manifest.json"
+    return list(json.loads(manifest.read_text(encoding="utf-8"))["requirements"])
+
+
 if __name__ == "__main__":
-    print("\n".join(requirements(DEMO + ONBOARDING + AROUND)))
+    print("\n".join(requirements(DEMO + ONBOARDING + AROUND) + own_requirements()))

@@ -40,7 +40,7 @@ class Entry:
 SIMULATORS = (
     Entry("s7_smart", "simulators.s7_smart", "S7SmartSimulator", 8443),
     Entry("tecomat", "simulators.tecomat", "TecomatSimulator", 8080),
-    Entry("plcnext", "simulators.plcnext", "PlcnextSimulator", 8444),
+    Entry("plcnext", "simulators.plcnext", "PlcnextSimulator", 5050),
     Entry("softplc", "simulators.softplc", "SoftplcSimulator", 8081),
     Entry("s7", "simulators.s7", "S7Simulator", 10102),
 )

@@ -22,6 +22,8 @@ pytest_plugins = [
     "tests.ha_fixtures",
     "tests.tecomat_ha_fixtures",
     "tests.s7_ha_fixtures",
+    "tests.plcnext_ha_fixtures",
+    "tests.softplc_ha_fixtures",
 ]
 
 

@@ -22,7 +22,7 @@ from custom_components.plc_bridge.connection_form import VendorField
 from custom_components.plc_bridge.const import CONF_TLS, CONF_VENDOR, DOMAIN
 from custom_components.plc_bridge.plc import DeviceInfo
 from custom_components.plc_bridge.plc.http import format_fingerprint
-from custom_components.plc_bridge.plc.vendors import implemented
+from custom_components.plc_bridge.plc.vendors import VENDORS, implemented
 from simulators.s7_smart import DEFAULT_PASSWORD, DEFAULT_USER, S7SmartSimulator
 from tests.flow_fixtures import (
     FAKE_VENDOR,
@@ -79,8 +79,7 @@ async def test_only_implemented_vendors_listed(hass: HomeAssistant) -> None:
     """The vendor list offers what PLC Bridge implements, nothing to be refused afterwards."""
     result = await hass.config_entries.flow.async_init(DOMAIN, context={"source": SOURCE_USER})
     selector = result["data_schema"].schema[CONF_VENDOR].config
-    assert selector["options"] == implemented()
-    assert "softplc" not in selector["options"]
+    assert selector["options"] == implemented() == list(VENDORS)
     assert selector["translation_key"] == CONF_VENDOR
     assert set(selector["options"]) <= set(strings_at("selector", CONF_VENDOR, "options"))
 

@@ -22,6 +22,9 @@ OTHERS = {
     "s7_smart": r"TecoApi|Tecomat|Mosaic|TSAP|rack|slot|ISO-on-TCP|PUT/GET",
     "tecomat": r"S7|SMART|STEP 7|TSAP|rack|slot|ISO-on-TCP|Web API",
     "s7": r"SMART|Web API|TecoApi|Tecomat|certificate|HTTPS|password|log ?in|user",
+    "plcnext": r"S7|SMART|STEP 7|TSAP|rack|slot|ISO-on-TCP|TecoApi|Tecomat|Mosaic|Web API",
+    "softplc": r"S7|SMART|STEP 7|TecoApi|Tecomat|Mosaic|TSAP|rack|slot|ISO-on-TCP|Web API|"
+    r"password|user",
 }
 """Words of other families (or of what the vendor does not have) that its pages must not use."""
 

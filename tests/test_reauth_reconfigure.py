@@ -33,10 +33,10 @@ flow_only = pytest.mark.usefixtures("mock_setup_entry")
 
 
 async def submit(hass: HomeAssistant, result: Any, values: dict[str, Any]) -> Any:
-    """Submit a form and check the answer is translated."""
-    return translated(
-        await hass.config_entries.flow.async_configure(result["flow_id"], values), *CONFIG
-    )
+    """Submit a form and check the answer is translated; the reload it started has run."""
+    result = await hass.config_entries.flow.async_configure(result["flow_id"], values)
+    await hass.async_block_till_done()
+    return translated(result, *CONFIG)
 
 
 @flow_only

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from collections.abc import Mapping
+from pathlib import Path
 from typing import Any
 
 from homeassistant.config_entries import (
@@ -23,6 +24,7 @@ from .connection import create_client
 from .connection_form import (
     CREDENTIALS_SCHEMA,
     SECOND_PAGES,
+    VENDOR_FIELDS,
     connection_data,
     connection_schema,
     connection_step,
@@ -63,6 +65,22 @@ def device_unique_id(device: DeviceInfo, data: Mapping[str, Any]) -> str:
     if device.mac:
         return format_mac(device.mac)
     return f"{data[CONF_HOST]}:{data[CONF_PORT]}"
+
+
+def pem_paths(config_dir: str, user_input: Mapping[str, Any]) -> dict[str, Any]:
+    """Return SoftPLC input with PEM paths resolved in the config folder (blocking).
+
+    Pasted PEM passes as it is; a path outside the folder stays relative, so that the
+    client's option check refuses it.
+    """
+    changed = dict(user_input)
+    folder = Path(config_dir).resolve()
+    for key in ("client_certificate", "client_key"):
+        value = str(changed.get(key) or "").strip()
+        if value and not value.startswith("-----BEGIN"):
+            path = Path(folder, value).resolve()
+            changed[key] = str(path) if path.is_relative_to(folder) else value.lstrip("/")
+    return changed
 
 
 class PlcBridgeConfigFlow(ConfigFlow, domain=DOMAIN):
@@ -113,6 +131,14 @@ class PlcBridgeConfigFlow(ConfigFlow, domain=DOMAIN):
         """Take the Tecomat's address, certificate check, TecoApi user and clock variable."""
         return await self._connection_step(user_input)
 
+    async def async_step_connection_plcnext(self, user_input: Input = None) -> ConfigFlowResult:
+        """Take the PLCnext Control's address, certificate check, user and clock variable."""
+        return await self._connection_step(user_input)
+
+    async def async_step_connection_softplc(self, user_input: Input = None) -> ConfigFlowResult:
+        """Take the SoftPLC's address, certificate check and client certificate for writes."""
+        return await self._connection_step(await self._pem_paths(user_input))
+
     async def async_step_connection_s7(self, user_input: Input = None) -> ConfigFlowResult:
         """Take the S7 CPU's address, family and way to connect (rack/slot or TSAPs)."""
         return await self._connection_step(user_input)
@@ -124,6 +150,14 @@ class PlcBridgeConfigFlow(ConfigFlow, domain=DOMAIN):
     async def async_step_reconfigure_tecomat(self, user_input: Input = None) -> ConfigFlowResult:
         """Take a configured Tecomat's new address, certificate check or TecoApi settings."""
         return await self._connection_step(user_input)
+
+    async def async_step_reconfigure_plcnext(self, user_input: Input = None) -> ConfigFlowResult:
+        """Take a configured PLCnext Control's new address, certificate check or clock variable."""
+        return await self._connection_step(user_input)
+
+    async def async_step_reconfigure_softplc(self, user_input: Input = None) -> ConfigFlowResult:
+        """Take a configured SoftPLC's new address, certificate check or client certificate."""
+        return await self._connection_step(await self._pem_paths(user_input))
 
     async def async_step_reconfigure_s7(self, user_input: Input = None) -> ConfigFlowResult:
         """Take a configured S7 CPU's new address, family or way to connect."""
@@ -175,7 +209,43 @@ class PlcBridgeConfigFlow(ConfigFlow, domain=DOMAIN):
 
     async def async_step_reauth(self, entry_data: Mapping[str, Any]) -> ConfigFlowResult:
         """Start re-authentication after the PLC refused the stored credentials."""
+        if entry_data.get(CONF_VENDOR) == "softplc":
+            return await self.async_step_reauth_softplc()
         return await self.async_step_reauth_confirm()
+
+    async def async_step_reauth_softplc(self, user_input: Input = None) -> ConfigFlowResult:
+        """Take the client certificate and key a SoftPLC trusts now; check them before storing."""
+        entry = self._get_reauth_entry()
+        schema = vol.Schema(fields_schema(VENDOR_FIELDS["softplc"]))
+        errors: dict[str, str] = {}
+        if user_input is not None:
+            submitted = await self._pem_paths(user_input) or {}
+            try:
+                submitted = vendor_options(VENDOR_FIELDS["softplc"], submitted)
+                options = client_class("softplc").validate_options(
+                    entry.data.get(CONF_OPTIONS, {}) | submitted
+                )
+            except PlcValueError as err:
+                self._problem, errors = str(err), {"base": "invalid_options"}
+            else:
+                data = {**entry.data, CONF_OPTIONS: options}
+                device, errors = await self._connect(data)
+                if device is not None:
+                    return self._store(entry, "reauth_successful", data)
+        return self.async_show_form(
+            step_id="reauth_softplc",
+            data_schema=schema,
+            errors=on_form(errors, schema),
+            description_placeholders={"name": entry.title, "problem": self._problem},
+        )
+
+    async def _pem_paths(self, user_input: Input) -> Input:
+        """Return the input with certificate and key paths made absolute in the config folder."""
+        if user_input is None:
+            return None
+        return await self.hass.async_add_executor_job(
+            pem_paths, self.hass.config.config_dir, user_input
+        )
 
     async def async_step_reauth_confirm(self, user_input: Input = None) -> ConfigFlowResult:
         """Ask for the credentials again and check them before storing."""

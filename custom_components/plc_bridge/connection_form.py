@@ -74,6 +74,11 @@ VENDOR_FIELDS: dict[str, tuple[VendorField, ...]] = {
         VendorField("auth", _choice("auth", ["digest", "basic"]), "digest"),
         VendorField("clock_variable", TextSelector()),
     ),
+    "plcnext": (VendorField("clock_variable", TextSelector()),),
+    "softplc": (
+        VendorField("client_certificate", TextSelector(TextSelectorConfig(multiline=True))),
+        VendorField("client_key", TextSelector(TextSelectorConfig(multiline=True))),
+    ),
     "s7": (
         VendorField("family", _choice("family", ["s7_300_1500", "s7_200"]), "s7_300_1500"),
         VendorField("connection", _choice("connection", ["rack_slot", "tsap"]), "rack_slot"),
@@ -162,7 +167,12 @@ def connection_schema(client: type[PlcClient], vendor: str, *, credentials: bool
             )
         )
     if credentials and client.needs_credentials:
-        fields.update(CREDENTIALS_SCHEMA.schema)
+        optional = getattr(client, "credentials_optional", False)  # PLCnext: auth may be off
+        fields.update(
+            {vol.Optional(str(key)): value for key, value in CREDENTIALS_SCHEMA.schema.items()}
+            if optional
+            else CREDENTIALS_SCHEMA.schema
+        )
     fields.update(fields_schema(VENDOR_FIELDS.get(vendor, ())))
     return vol.Schema(fields)
 

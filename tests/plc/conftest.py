@@ -11,6 +11,19 @@ from custom_components.plc_bridge.plc import ConnectionConfig, TlsMode
 from custom_components.plc_bridge.plc.vendors.s7_smart import S7SmartClient
 from simulators.s7_smart import DEFAULT_PASSWORD, DEFAULT_USER, S7SmartSimulator
 
+# The other vendors' protocol fixtures, for the tests of this folder only: imported into this
+# conftest, they override the Home Assistant tests' fixtures of the same names (which set up
+# entries) here and nowhere else. (`pytest_plugins` in a test module would register them for
+# the whole run, where the last module collected would win.)
+from .plcnext_fixtures import plcnext_client, plcnext_config, plcnext_sim  # noqa: F401
+from .softplc_fixtures import (  # noqa: F401
+    softplc_client,
+    softplc_settings,
+    softplc_sim,
+    softplc_tls_sim,
+)
+from .tecomat_fixtures import tecomat_client, tecomat_config, tecomat_sim  # noqa: F401
+
 type ConfigFactory = Callable[..., ConnectionConfig]
 
 

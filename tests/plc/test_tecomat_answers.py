@@ -9,8 +9,6 @@ from custom_components.plc_bridge.plc.vendors.tecomat import TecomatClient
 from simulators.tecomat import TecomatSimulator
 from simulators.tecomat.values import Var
 
-pytest_plugins = ["tests.plc.tecomat_fixtures"]
-
 
 async def test_odd_answers(tecomat_sim: TecomatSimulator, tecomat_client: TecomatClient) -> None:
     point = Point("plcDesc", "STRING")

@@ -9,8 +9,6 @@ from custom_components.plc_bridge.plc.vendors.tecomat import TecomatClient
 from custom_components.plc_bridge.plc.vendors.tecomat.paths import answered, parse_path
 from simulators.tecomat import TecomatSimulator
 
-pytest_plugins = ["tests.plc.tecomat_fixtures"]
-
 
 @pytest.mark.parametrize("compact", [False, True], ids=["keyed", "compact"])
 async def test_elements_read_right_in_both_shapes(

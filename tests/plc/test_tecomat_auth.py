@@ -21,7 +21,6 @@ from simulators.tecomat import TecomatSimulator
 if TYPE_CHECKING:
     from .tecomat_fixtures import ConfigFactory
 
-pytest_plugins = ["tests.plc.tecomat_fixtures"]
 
 POINTS = [Point("plcName", "STRING"), Point("Main.myObject3.value", "REAL")]
 

@@ -24,7 +24,6 @@ from simulators.tecomat import TecomatSimulator
 if TYPE_CHECKING:
     from .tecomat_fixtures import ConfigFactory
 
-pytest_plugins = ["tests.plc.tecomat_fixtures"]
 
 PRAGUE = ZoneInfo("Europe/Prague")
 ROUND_TRIPS: list[tuple[str, str, Value]] = [

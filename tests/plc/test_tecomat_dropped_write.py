@@ -8,8 +8,6 @@ from custom_components.plc_bridge.plc import Point
 from custom_components.plc_bridge.plc.vendors.tecomat import TecomatClient
 from simulators.tecomat import TecomatSimulator
 
-pytest_plugins = ["tests.plc.tecomat_fixtures"]
-
 REAL = Point("plcData.varReal", "REAL")
 
 

@@ -9,8 +9,6 @@ from custom_components.plc_bridge.plc.vendors.tecomat import TecomatClient
 from custom_components.plc_bridge.plc.vendors.tecomat.api import loads
 from simulators.tecomat import TecomatSimulator
 
-pytest_plugins = ["tests.plc.tecomat_fixtures"]
-
 REAL = Point("plcData.varReal", "REAL")
 TEXT = Point("plcData.varString", "STRING")
 

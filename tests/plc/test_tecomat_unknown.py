@@ -8,8 +8,6 @@ from custom_components.plc_bridge.plc import PlcAddressError, PlcValueError, Poi
 from custom_components.plc_bridge.plc.vendors.tecomat import TecomatClient
 from simulators.tecomat import TecomatSimulator
 
-pytest_plugins = ["tests.plc.tecomat_fixtures"]
-
 SPORT, COLOR = (
     Point("myObject.favorites.sport", "STRING"),
     Point("myObject.favorites.color", "STRING"),

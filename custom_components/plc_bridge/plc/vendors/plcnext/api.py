@@ -1,0 +1,250 @@
+"""The PLCnext REST data interface over HTTPS: version pin, access token, session, one send."""
+
+from __future__ import annotations
+
+import asyncio
+from collections.abc import Callable
+import json
+import logging
+import re
+import secrets
+from typing import Any
+from urllib.parse import urlencode
+
+import aiohttp
+
+from ...errors import PlcAuthenticationError, PlcProtocolError
+from ...http import HttpTransport
+from ...types import ClientMetrics, ConnectionConfig
+from .errors import ApiError, parse_error, request_error
+
+ROOT = "/_pxc_api"
+LATEST = f"{ROOT}/api"
+_VERSION = re.compile(r"v?(\d+)\.(\d+)", re.ASCII)
+SESSION_MIN = 300.0  # seconds: a session outlives several polls and a slow write action
+_SECRETS = re.compile(r'("(?:access_token|code)"\s*:\s*)"[^"]*"')
+
+type Request = tuple[str, bytes | None, str | None]
+"""A request made for the current session id: path with query, body, content type."""
+
+
+class _MaskTokens(logging.Filter):
+    """Mask the access token and the auth code in the HTTP debug line of an auth request.
+
+    The transport masks `"token"` and `"password"` fields; PLCnext names its tokens
+    `access_token` and `code` (notes 3a, Authentication).
+    """
+
+    def filter(self, record: logging.LogRecord) -> bool:
+        """Rewrite the record's arguments when it shows a PLCnext auth request."""
+        args = record.args
+        if isinstance(args, tuple) and len(args) > 2 and f"{ROOT}/" in str(args[2]):
+            record.args = tuple(
+                _SECRETS.sub(r'\1"***"', item) if isinstance(item, str) else item for item in args
+            )
+        return True
+
+
+logging.getLogger(HttpTransport.__module__).addFilter(_MaskTokens())
+
+
+def pinned_base(description: Any) -> str:
+    """Return the versioned base path a service description names (`/_pxc_api/v1.2`).
+
+    Phoenix Contact recommends the version used in development over `api` (latest); the
+    description gives `version` ("v1.2") or `apiVersion` ("1.8.0.0"), PyREST checks both.
+    """
+    if isinstance(description, dict):
+        for key in ("version", "apiVersion"):
+            value = description.get(key)
+            match = _VERSION.match(value.strip()) if isinstance(value, str) else None
+            if match:
+                return f"{ROOT}/v{match[1]}.{match[2]}"
+    return LATEST
+
+
+def loads(raw: bytes, what: str) -> Any:
+    """Parse a JSON answer (None when empty); raise PlcProtocolError for anything else."""
+    if not raw.strip():
+        return None
+    try:
+        return json.loads(raw)
+    except ValueError:
+        raise PlcProtocolError(f"the PLC answered {what} with something other than JSON") from None
+
+
+class PlcnextApi:
+    """One PLC's REST interface: every request goes through one HttpTransport."""
+
+    def __init__(
+        self, config: ConnectionConfig, session: aiohttp.ClientSession, metrics: ClientMetrics
+    ) -> None:
+        """Bind to a PLC; the version, token and session come with `describe` and use."""
+        self._config = config
+        self._metrics = metrics
+        self._transport = HttpTransport(config, session, metrics)
+        self.base = LATEST
+        self.auth_required: bool | None = None  # None: the PLC has not said yet
+        self._token: str | None = None
+        self._logins = 0
+        self._login_lock = asyncio.Lock()
+        self.session_id: str | None = None
+        self._sessions = 0
+        self._session_lock = asyncio.Lock()
+        self.station = secrets.randbelow(2**31 - 1) + 1
+        self.roles: list[str] = []
+
+    @property
+    def can_login(self) -> bool:
+        """True when the settings hold a user to log in with."""
+        return bool(self._config.username)
+
+    async def send(
+        self, method: str, path: str, body: bytes | None = None, content: str | None = None
+    ) -> tuple[int, Any, bytes]:
+        """Send one request with the access token, if there is one; return status and answer."""
+        headers = {"Accept": "application/json"}
+        if content is not None:
+            headers["Content-Type"] = content
+        if self._token is not None:
+            headers["Authorization"] = f"Bearer {self._token}"
+        status, answer_headers, raw = await self._transport.request(
+            method, path, data=body, headers=headers, encoded=True
+        )
+        return status, answer_headers, raw
+
+    async def describe(self) -> Any:
+        """Ask the service description and pin the API version it names."""
+        status, headers, raw = await self.send("GET", LATEST)
+        if not 200 <= status < 300:
+            raise request_error(parse_error(status, raw, headers.get("WWW-Authenticate", "")))
+        description = loads(raw, "the service description")
+        self.base = pinned_base(description)
+        self.note(description)
+        return description
+
+    def note(self, answer: Any) -> None:
+        """Remember whether the PLC says it needs a user (every data answer says so)."""
+        if isinstance(answer, dict) and isinstance(answer.get("userAuthenticationRequired"), bool):
+            self.auth_required = answer["userAuthenticationRequired"]
+
+    async def call(self, method: str, make: Callable[[str | None], Request]) -> Any:
+        """Send a data request made for the current session; return its JSON answer.
+
+        A refused token (401) and a gone session (410) are renewed once each; any other
+        failure is raised as the answer's ApiError.
+        """
+        renewed_token = renewed_session = False
+        while True:
+            if self.auth_required and self._token is None and self.can_login:
+                await self.login(self._logins)
+            logins, sessions = self._logins, self._sessions
+            path, body, content = make(self.session_id)
+            status, headers, raw = await self.send(method, path, body, content)
+            if 200 <= status < 300:
+                answer = loads(raw, path.partition("?")[0][-40:])
+                if not (isinstance(answer, dict) and "error" in answer):
+                    self.note(answer)
+                    return answer
+                # A dictionary refused for rights may come as 200 with an error object.
+                status = 401 if self._token is None else 403
+            error = parse_error(status, raw, headers.get("WWW-Authenticate", ""))
+            if status == 401 and not renewed_token and self.can_login:
+                renewed_token = True
+                if self._token is not None:
+                    self._metrics.session_renewals += 1
+                self.auth_required = True
+                await self.login(logins)
+                continue
+            if status == 410 and not renewed_session and self.session_id is not None:
+                renewed_session = True
+                self._metrics.session_renewals += 1
+                await self.open_session(sessions)
+                continue
+            if status == 401 and not self.can_login:
+                raise PlcAuthenticationError(
+                    f"the PLC asks for a user: enter a PLCnext user and password ({error.words})"
+                )
+            raise error
+
+    async def login(self, seen: int | None = None) -> None:
+        """Get an auth token, then an access token for the user (notes 3a, Authentication).
+
+        Single-flight: a caller that saw `seen` logins before its request was refused logs in
+        only if nobody has since; concurrent callers share the one new token.
+        """
+        async with self._login_lock:
+            if seen is not None and self._logins != seen and self._token is not None:
+                return
+            self._token = None
+            state = secrets.token_hex(8)
+            answer = await self._auth("auth-token", {"scope": "variables", "state": state})
+            code = answer.get("code") if isinstance(answer, dict) else None
+            if not isinstance(code, str) or not code:
+                raise PlcProtocolError("the PLC sent no auth token")
+            answer = await self._auth(
+                "access-token",
+                {
+                    "code": code,
+                    "grant_type": "authorization_code",
+                    "username": self._config.username,
+                    "password": self._config.password,
+                },
+            )
+            token = answer.get("access_token") if isinstance(answer, dict) else None
+            if not isinstance(token, str) or not token:
+                raise PlcProtocolError("the PLC accepted the user but sent no access token")
+            roles = answer.get("roles")
+            self.roles = [str(role) for role in roles] if isinstance(roles, list) else []
+            self._token = token
+            self._logins += 1
+
+    async def _auth(self, step: str, body: dict[str, str]) -> Any:
+        """Send one step of the login; any refusal of the user is an authentication error."""
+        status, headers, raw = await self.send(
+            "POST", f"{self.base}/auth/{step}", json.dumps(body).encode(), "application/json"
+        )
+        if 200 <= status < 300:
+            return loads(raw, step)
+        error = parse_error(status, raw, headers.get("WWW-Authenticate", ""))
+        if status in (400, 401, 403):
+            raise PlcAuthenticationError(f"the PLC refused the user or password ({error.words})")
+        raise request_error(error)
+
+    async def open_session(self, seen: int | None = None, timeout: float = SESSION_MIN) -> None:
+        """Create a session (form body `stationID=…&timeout=…`); once, for concurrent callers.
+
+        Sessions are optional (notes 3a, Sessions): a PLC that refuses one is used without.
+        """
+        async with self._session_lock:
+            if seen is not None and self._sessions != seen and self.session_id is not None:
+                return
+            self.session_id = None
+            millis = round(max(timeout, SESSION_MIN) * 1000)
+            for _attempt in range(2):
+                body = urlencode({"stationID": self.station, "timeout": millis}).encode()
+                try:
+                    answer = await self.call("POST", self._session_request(body))
+                except ApiError as err:
+                    if err.status == 409:  # this station has one: another station id, once
+                        self.station = secrets.randbelow(2**31 - 1) + 1
+                        continue
+                    if err.status in (401, 403):
+                        raise request_error(err) from None
+                    return
+                found = answer.get("sessionID") if isinstance(answer, dict) else None
+                if isinstance(found, str) and found:
+                    self.session_id = found
+                    self._sessions += 1
+                return
+
+    def _session_request(self, body: bytes) -> Callable[[str | None], Request]:
+        """Return the request maker of a session's creation."""
+        form = "application/x-www-form-urlencoded"
+        return lambda _session: (f"{self.base}/sessions", body, form)
+
+    async def close_session(self) -> None:
+        """Delete the session (best effort: it times out on its own)."""
+        if self.session_id is not None:
+            session, self.session_id = self.session_id, None
+            await self.send("DELETE", f"{self.base}/sessions/{session}")

@@ -1,0 +1,340 @@
+"""The PLCnext client: REST data interface, one group read per poll, one PUT per write."""
+
+from __future__ import annotations
+
+import asyncio
+from collections.abc import Mapping, Sequence
+from datetime import datetime
+import json
+import logging
+from typing import Any, ClassVar
+from zoneinfo import ZoneInfo
+
+import aiohttp
+
+from ...client import PlcClient
+from ...errors import (
+    PlcAddressError,
+    PlcError,
+    PlcProtocolError,
+    PlcValueError,
+    PlcWriteRefusedError,
+)
+from ...types import (
+    BrowseItem,
+    ConnectionConfig,
+    DeviceInfo,
+    PlcStatus,
+    Point,
+    PointResult,
+    ReadResult,
+    TlsMode,
+    Value,
+    ValueKind,
+)
+from .api import PlcnextApi
+from .browse import DATA_DICTIONARY, TYPE_DICTIONARY, declared, elementary, leaves, types
+from .codec import KINDS, TYPES, check_value, data_type, decode, encode
+from .errors import ApiError, request_error
+from .info import device_info, plc_status
+from .paths import VariablePath, parse_path
+from .reading import JSON, Reader, Reading, place
+
+_LOGGER = logging.getLogger(__name__)
+CLOSE_TIMEOUT = 2.0
+
+
+def _distinct(points: Sequence[Point]) -> dict[str, VariablePath]:
+    """Return the valid paths of points, once each."""
+    paths: dict[str, VariablePath] = {}
+    for point in points:
+        try:
+            path = parse_path(point.address)
+            data_type(point.data_type)
+        except PlcError:
+            continue
+        paths.setdefault(path.key, path)
+    return paths
+
+
+class PlcnextClient(PlcClient):
+    """A Phoenix Contact PLCnext Control through its REST data interface."""
+
+    vendor: ClassVar[str] = "plcnext"
+    default_port: ClassVar[int] = 443
+    default_tls: ClassVar[TlsMode] = TlsMode.PIN
+    tls_modes: ClassVar[tuple[TlsMode, ...]] = (TlsMode.PIN, TlsMode.VERIFY, TlsMode.OFF)
+    needs_credentials: ClassVar[bool] = True
+    credentials_optional: ClassVar[bool] = True  # a PLC with user authentication off
+    data_types: ClassVar[tuple[str, ...]] = TYPES
+    can_browse: ClassVar[bool] = True
+
+    def __init__(
+        self, config: ConnectionConfig, session: aiohttp.ClientSession | None = None
+    ) -> None:
+        """Keep the settings; the version, token, session and group come with use."""
+        super().__init__(config, session)
+        self._api: PlcnextApi | None = None
+        self._reader: Reader | None = None
+        self._zone = ZoneInfo(config.time_zone)
+        self._description: Any = None
+
+    @classmethod
+    def validate_options(cls, options: Mapping[str, object]) -> dict[str, str | int | bool]:
+        """Return the clock variable's path, normalized; raise PlcValueError."""
+        settings: dict[str, str | int | bool] = {}
+        clock = options.get("clock_variable") or ""
+        if not isinstance(clock, str):
+            raise PlcValueError(f"the clock variable is a variable path, not {clock!r}")
+        if clock.strip():
+            try:
+                settings["clock_variable"] = parse_path(clock).text
+            except PlcAddressError as err:
+                raise PlcValueError(f"clock variable: {err}") from None
+        return settings
+
+    @classmethod
+    def validate_point(cls, point: Point) -> Point:
+        """Return the point with its full path and type name; raise PlcAddressError."""
+        return Point(parse_path(point.address).text, data_type(point.data_type))
+
+    @classmethod
+    def validate_value(cls, point: Point, value: Value) -> Value:
+        """Return the value checked for the point's IEC type; raise PlcValueError."""
+        path = parse_path(point.address)
+        return check_value(data_type(point.data_type), value, path.text)
+
+    @classmethod
+    def value_kind(cls, point: Point) -> ValueKind | None:
+        """Return what the point holds (TIME and LTIME: whole milliseconds, nanoseconds)."""
+        try:
+            return KINDS[data_type(point.data_type)]
+        except PlcAddressError:
+            return None
+
+    @classmethod
+    def requests_for(cls, points: Sequence[Point]) -> int:
+        """One poll is one group read, whatever the number of points."""
+        return 1 if _distinct(points) else 0
+
+    def _rest(self) -> PlcnextApi:
+        """Return the service layer, made on first use."""
+        if self._api is None:
+            self._api = PlcnextApi(self.config, self.session, self.metrics)
+            self._reader = Reader(self._api)
+        return self._api
+
+    def _poller(self) -> Reader:
+        """Return the poll state."""
+        self._rest()
+        assert self._reader is not None
+        return self._reader
+
+    async def connect(self) -> DeviceInfo:
+        """Read the service description, log in where the PLC asks, open a session."""
+        api = self._rest()
+        self._description = await api.describe()
+        if api.can_login and api.auth_required is not False:
+            await api.login()
+        await api.open_session(timeout=4 * self.config.poll_interval)
+        return device_info(self._description, api)
+
+    async def _read(self, points: Sequence[Point], *, poll: bool) -> ReadResult:
+        """Read every distinct path once: the poll's group, or variables for an on-demand read."""
+        values: dict[Point, PointResult] = {}
+        wanted: list[tuple[Point, VariablePath, str]] = []
+        paths: dict[str, VariablePath] = {}
+        for point in points:
+            try:
+                wanted.append((point, parse_path(point.address), data_type(point.data_type)))
+            except PlcError as err:
+                values[point] = PointResult(error=err)
+                continue
+            paths.setdefault(wanted[-1][1].key, wanted[-1][1])
+        reader = self._poller()
+        if poll:
+            reading = await reader.poll(paths) if paths else Reading()
+        else:
+            reading = await reader.variables(list(paths.values()), {})
+        for point, path, kind in wanted:
+            values[point] = self._outcome(reading, path, kind)
+        status = plc_status(reader.crc, reader.regroups) if poll else PlcStatus()
+        return ReadResult(values=values, status=status)
+
+    def _outcome(self, reading: Reading, path: VariablePath, kind: str) -> PointResult:
+        """Return one point's result from a reading."""
+        if path.key in reading.failed:
+            return PointResult(error=reading.failed[path.key])
+        if path.key not in reading.found:
+            return PointResult(error=PlcProtocolError(f"{path.text} is missing from the answer"))
+        try:
+            return PointResult(value=decode(kind, reading.found[path.key], self._zone, path.text))
+        except PlcProtocolError as err:
+            return PointResult(error=err)
+
+    async def _write(self, values: Mapping[Point, Value]) -> dict[Point, PointResult]:
+        """Write every value with one PUT /variables; a refused variable fails alone."""
+        items = [
+            (
+                point,
+                parse_path(point.address),
+                encode(data_type(point.data_type), value, self._zone),
+            )
+            for point, value in values.items()
+        ]
+        results: dict[Point, PointResult] = {}
+        await self._put(items, results)
+        for point, value in values.items():
+            result = results[point]
+            results[point] = PointResult(value=value) if result.ok else result
+        return results
+
+    def _encoded(self, point: Point, value: Value) -> Any:
+        """Return a checked value as the JSON the PUT carries."""
+        return encode(data_type(point.data_type), value, self._zone)
+
+    async def _put(
+        self, items: list[tuple[Point, VariablePath, Any]], results: dict[Point, PointResult]
+    ) -> None:
+        """PUT the items; a whole refusal (403, 404) of several is sent again by halves."""
+        if not items:
+            return
+        base = self._rest().base
+
+        def make(session: str | None) -> tuple[str, bytes, str]:
+            variables = [
+                {"path": path.text, "value": value, "valueType": "Constant"}
+                for _point, path, value in items
+            ]
+            body: dict[str, Any] = {"variables": variables}
+            if session:
+                body = {"sessionID": session, **body}
+            return f"{base}/variables", json.dumps(body).encode(), JSON
+
+        try:
+            answer = await self._rest().call("PUT", make)
+        except ApiError as err:
+            if err.status in (403, 404) and len(items) > 1:
+                half = len(items) // 2
+                await self._put(items[:half], results)
+                await self._put(items[half:], results)
+                return
+            if err.status == 404:
+                error: PlcError = PlcAddressError(
+                    f"{items[0][1].text}: the PLC does not know this variable ({err.words})"
+                )
+            else:
+                error = request_error(err, write=True)
+            if len(items) > 1 or err.status not in (403, 404):
+                raise error from None
+            results[items[0][0]] = PointResult(error=error)
+            return
+        self._taken(answer, items, results)
+
+    def _taken(
+        self,
+        answer: Any,
+        items: list[tuple[Point, VariablePath, Any]],
+        results: dict[Point, PointResult],
+    ) -> None:
+        """Read a PUT's per-variable results: an error or a null value is a refused write."""
+        reading = Reading()
+        entries = answer.get("variables") if isinstance(answer, dict) else None
+        if not isinstance(entries, list):  # an answer without results: taken as written
+            for point, _path, _value in items:
+                results[point] = PointResult()
+            return
+        place(answer, [path for _point, path, _value in items], reading)
+        for point, path, _value in items:
+            if path.key in reading.failed:
+                said = reading.failed[path.key]
+                results[point] = PointResult(
+                    error=PlcWriteRefusedError(f"the PLC refused the write: {said}")
+                )
+            elif reading.found.get(path.key) is None:
+                results[point] = PointResult(
+                    error=PlcWriteRefusedError(f"{path.text}: the PLC did not take the value")
+                )
+            else:
+                results[point] = PointResult()
+
+    async def browse(self) -> list[BrowseItem]:
+        """List the HMI variables of the dictionary; expand structures and arrays to leaves."""
+        api = self._rest()
+        dictionary = await self._dictionary(DATA_DICTIONARY)
+        variables = declared(dictionary)
+        others = [variable for variable in variables if elementary(variable.type) is None]
+        known: dict[str, dict[str, Any]] = {}
+        values: dict[str, Any] = {}
+        if others:
+            try:
+                known = types(await self._dictionary(TYPE_DICTIONARY))
+            except PlcError as err:
+                _LOGGER.debug("No type dictionary from %s: %s", self.config.host, err)
+            reading = await Reader(api).variables([v.path for v in others], {})
+            values = reading.found
+        items: list[BrowseItem] = []
+        for variable in variables:
+            if elementary(variable.type) is None and variable.path.key not in values:
+                continue
+            items.extend(leaves(variable, values.get(variable.path.key), known))
+        return items
+
+    async def _dictionary(self, path: str) -> Any:
+        """Fetch an eHMI dictionary (with the token, where the PLC asks for one)."""
+        try:
+            return await self._rest().call("GET", lambda _session: (path, None, None))
+        except ApiError as err:
+            raise request_error(err) from None
+
+    def _clock_point(self) -> Point | None:
+        """Return the clock variable's point, when one is chosen."""
+        variable = str(self.config.options.get("clock_variable", "")).strip()
+        return Point(variable, "DT") if variable else None
+
+    @property
+    def can_set_clock(self) -> bool:
+        """True once a clock variable is chosen: the REST interface has no clock service."""
+        return self._clock_point() is not None
+
+    async def read_clock(self) -> datetime:
+        """Return the clock variable's time (the PLC program keeps it)."""
+        point = self._clock_point()
+        if point is None:
+            raise PlcProtocolError(
+                "the REST interface has no clock service: choose the PLC's clock variable"
+            )
+        result = (await self._read([point], poll=False)).values[point]
+        if result.error is not None:
+            raise result.error
+        assert isinstance(result.value, datetime)
+        return result.value
+
+    async def set_clock(self, when: datetime) -> None:
+        """Write the time to the clock variable (a DT the PLC program copies into its clock)."""
+        point = self._clock_point()
+        if point is None:
+            raise PlcWriteRefusedError(
+                "the REST interface has no service that sets the PLC clock: choose a DT "
+                "variable that the PLC program copies into its clock as the clock variable"
+            )
+        error = (await self.write({point: when}))[point].error
+        if error is not None:
+            raise error
+
+    async def close(self) -> None:
+        """Delete the session (best effort, briefly) and release the client's own session."""
+        if self._api is not None:
+            try:
+                async with asyncio.timeout(CLOSE_TIMEOUT):
+                    await self._api.close_session()
+            except (PlcError, TimeoutError) as err:
+                _LOGGER.debug("Closing the session on %s failed: %s", self.config.host, err)
+        self._api = None
+        self._reader = None
+        await self._close_own_session()
+
+    @property
+    def roles(self) -> list[str]:
+        """The EHmi roles the PLC gave the user at login (empty without a login)."""
+        return list(self._api.roles) if self._api is not None else []

@@ -1,0 +1,194 @@
+"""PLCnext values: the IEC types the REST interface carries, checks before a write, decoders.
+
+The sources show values as JSON numbers, booleans and strings, and as strings of digits
+(`"799244562"` for a DINT in the Groups page's example; pyPLCn writes `"500"`, `"true"`): every
+decoder takes both forms. They say nothing of how dates and times travel; where they are
+silent this module follows IEC 61131-3 and ISO 8601 (see `decode`), and says so.
+"""
+
+from __future__ import annotations
+
+from datetime import UTC, date, datetime, tzinfo
+import math
+import re
+from typing import Any
+
+from ...codec import (
+    INTEGER_RANGES,
+    check_bool,
+    check_float,
+    check_integer,
+    local_time,
+    shortest_real,
+)
+from ...errors import PlcAddressError, PlcProtocolError, PlcValueError
+from ...types import Value, ValueKind
+
+INTEGERS = tuple(INTEGER_RANGES)
+TYPES = ("BOOL", *INTEGERS, "REAL", "LREAL", "STRING", "WSTRING", "TIME", "LTIME", "DATE", "DT")
+"""The elementary types a point may have, also the point form's data types."""
+ALIASES = {"DATE_AND_TIME": "DT", "LDT": "DT", "LDATE": "DATE"}
+KINDS: dict[str, ValueKind] = {
+    "BOOL": ValueKind.BOOL,
+    **dict.fromkeys(INTEGERS, ValueKind.INTEGER),
+    "REAL": ValueKind.FLOAT,
+    "LREAL": ValueKind.FLOAT,
+    "STRING": ValueKind.TEXT,
+    "WSTRING": ValueKind.TEXT,
+    "TIME": ValueKind.INTEGER,  # milliseconds (IEC TIME, a signed 32-bit count in PLCnext)
+    "LTIME": ValueKind.INTEGER,  # nanoseconds (IEC LTIME, 64 bits)
+    "DATE": ValueKind.DATETIME,
+    "DT": ValueKind.DATETIME,
+}
+TIME_RANGES = {"TIME": INTEGER_RANGES["DINT"], "LTIME": INTEGER_RANGES["LINT"]}
+MAX_STRING = 255  # no source gives PLCnext's STRING limit; the PLC refuses a longer one itself
+_WHOLE = re.compile(r"\s*[+-]?\d{1,20}\s*", re.ASCII)
+_TRUE, _FALSE = ("true", "1"), ("false", "0")
+
+
+def data_type(text: str) -> str:
+    """Return the canonical type name; raise PlcAddressError for a type the client lacks."""
+    name = text.strip().upper()
+    name = ALIASES.get(name, name)
+    if name not in KINDS:
+        raise PlcAddressError(f"unknown data type {text!r}; use one of {', '.join(TYPES)}")
+    return name
+
+
+def check_value(kind: str, value: Value, what: str) -> Value:
+    """Return a value coerced for an IEC type; raise PlcValueError before anything is sent."""
+    if kind == "BOOL":
+        return check_bool(value, what)
+    if kind in INTEGER_RANGES:
+        return check_integer(value, *INTEGER_RANGES[kind], what)
+    if kind in TIME_RANGES:
+        return check_integer(value, *TIME_RANGES[kind], what)
+    if kind in ("REAL", "LREAL"):
+        return check_float(value, single=kind == "REAL", what=what)
+    if kind in ("DATE", "DT"):
+        return _check_moment(kind, value, what)
+    return _check_text(kind, value, what)
+
+
+def _check_text(kind: str, value: Value, what: str) -> str:
+    """Return text a STRING (one byte a character, IEC) or WSTRING (UTF-16) can hold."""
+    if not isinstance(value, str):
+        raise PlcValueError(f"{what} takes text, not {value!r}")
+    if kind == "STRING":
+        try:
+            value.encode("latin-1")
+        except UnicodeEncodeError:
+            raise PlcValueError(
+                f"{what}: a STRING holds one byte a character; use a WSTRING for {value!r}"
+            ) from None
+    elif any(0xD800 <= ord(char) <= 0xDFFF for char in value):
+        raise PlcValueError(f"{what}: the text holds a lone surrogate")
+    if len(value) > MAX_STRING:
+        raise PlcValueError(f"{what}: the text is longer than {MAX_STRING} characters")
+    return value
+
+
+def _check_moment(kind: str, value: Value, what: str) -> datetime:
+    """Return a DATE or DT as a datetime (naive: the PLC's time), ISO text accepted."""
+    if isinstance(value, str):
+        try:
+            value = datetime.fromisoformat(value.strip())
+        except ValueError:
+            raise PlcValueError(f"{what} takes a {kind} as an ISO date, not {value!r}") from None
+    if not isinstance(value, datetime):
+        raise PlcValueError(f"{what} takes a {kind} (a date and time), not {value!r}")
+    if value.year < 1970:
+        raise PlcValueError(f"{what}: a {kind} starts on 1970-01-01")
+    return value
+
+
+def encode(kind: str, value: Value, zone: tzinfo) -> Any:
+    """Return the JSON value of a checked value: numbers and booleans as JSON, dates as ISO text.
+
+    A DT goes as ISO 8601 in UTC with its `Z` (the sources show no date; an aware ISO time is
+    the one form no reader can take for another zone); a naive one is the PLC's local time.
+    """
+    if isinstance(value, datetime):
+        if kind == "DATE":
+            return f"{local_time(value, zone):%Y-%m-%d}"
+        moment = value.replace(tzinfo=zone) if value.tzinfo is None else value
+        try:
+            moment = moment.astimezone(UTC)
+        except OverflowError as err:
+            raise PlcValueError(f"{value.isoformat()} has no time in UTC") from err
+        return f"{moment:%Y-%m-%dT%H:%M:%S}.{moment.microsecond // 1000:03d}Z"
+    return value
+
+
+def decode(kind: str, raw: Any, zone: tzinfo, what: str) -> Value:
+    """Return a point's value from its JSON; raise PlcProtocolError when it does not fit."""
+    if kind == "BOOL":
+        return _bool(raw, what)
+    if kind in INTEGER_RANGES or kind in TIME_RANGES:
+        low, high = INTEGER_RANGES.get(kind) or TIME_RANGES[kind]
+        number = _whole(raw)
+        if number is not None and low <= number <= high:
+            return number
+    elif kind in ("REAL", "LREAL"):
+        real = _real(raw)
+        if real is not None:
+            return shortest_real(real) if kind == "REAL" else real
+    elif kind in ("STRING", "WSTRING"):
+        if isinstance(raw, str):
+            return raw
+    elif isinstance(raw, str) and (moment := parse_moment(kind, raw, zone)) is not None:
+        return moment
+    if isinstance(raw, dict | list):
+        shape = "a structure" if isinstance(raw, dict) else "an array"
+        raise PlcProtocolError(f"{what} is {shape}, not a {kind}; choose one of its members")
+    raise PlcProtocolError(f"{what}: the PLC sent {str(raw)[:40]!r}, which is no {kind}")
+
+
+def _bool(raw: Any, what: str) -> bool:
+    """Return a BOOL sent as true/false, 0/1 or their text."""
+    if isinstance(raw, bool):
+        return raw
+    if isinstance(raw, int) and raw in (0, 1):
+        return bool(raw)
+    if isinstance(raw, str) and raw.strip().lower() in _TRUE + _FALSE:
+        return raw.strip().lower() in _TRUE
+    raise PlcProtocolError(f"{what}: the PLC sent {str(raw)[:40]!r}, which is no BOOL")
+
+
+def _whole(raw: Any) -> int | None:
+    """Return a whole number sent as a JSON number or as text; None for anything else."""
+    if isinstance(raw, bool):
+        return None
+    if isinstance(raw, int):
+        return raw
+    if isinstance(raw, float) and math.isfinite(raw) and raw.is_integer():
+        return int(raw)
+    if isinstance(raw, str) and _WHOLE.fullmatch(raw):
+        return int(raw)
+    return None
+
+
+def _real(raw: Any) -> float | None:
+    """Return a finite number sent as a JSON number or as text; None for anything else."""
+    if isinstance(raw, bool) or not isinstance(raw, int | float | str):
+        return None
+    try:
+        number = float(raw)
+    except (ValueError, OverflowError):
+        return None
+    return number if math.isfinite(number) else None
+
+
+def parse_moment(kind: str, text: str, zone: tzinfo) -> datetime | None:
+    """Return an ISO 8601 DATE or DT as an aware datetime; naive text is the PLC's time."""
+    try:
+        if kind == "DATE":
+            day = date.fromisoformat(text.strip()[:10])
+            return datetime(day.year, day.month, day.day, tzinfo=zone)
+        moment = datetime.fromisoformat(text.strip())
+    except ValueError:
+        return None
+    try:
+        return moment.replace(tzinfo=zone) if moment.tzinfo is None else moment.astimezone(zone)
+    except OverflowError:
+        return None

@@ -1,0 +1,268 @@
+"""PLCnext reads: one registered group per poll, variable reads where groups cannot serve.
+
+Unknown names are found by registering halves (a register naming one answers 404 as a whole,
+PyREST's real-device log: `invalidNames`) and left out of the group; they are tried again when
+the program changes (`projectCRC`) or the points do.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Awaitable, Callable, Sequence
+from dataclasses import dataclass, field
+import json
+from typing import Any
+from urllib.parse import quote, urlencode
+
+from ...errors import PlcAddressError, PlcError, PlcProtocolError
+from .api import PlcnextApi, Request
+from .errors import ApiError, reasons_of, request_error
+from .paths import MAX_URI, VariablePath, path_list, same_path, variables_uri
+
+JSON = "application/json"
+FORM = "application/x-www-form-urlencoded"
+REFUSED_BODY = (400, 415)  # a register body the PLC does not parse: try the other form once
+NO_GROUPS = (400, 405, 415, 501)  # groups cannot serve: read variables instead
+
+
+@dataclass(slots=True)
+class Reading:
+    """Raw values and per-path errors, by path key, and the projectCRC the answer carried."""
+
+    found: dict[str, Any] = field(default_factory=dict)
+    failed: dict[str, PlcError] = field(default_factory=dict)
+    crc: Any = None
+
+
+@dataclass(frozen=True, slots=True)
+class Group:
+    """A group the PLC registered: its id, the paths in its order, the program it was made for."""
+
+    id: str
+    paths: tuple[VariablePath, ...]
+    crc: Any
+
+
+def place(answer: Any, paths: Sequence[VariablePath], reading: Reading) -> None:
+    """Put an answer's variables under their paths: by position where every path agrees.
+
+    The PLC answers in request order; an entry whose `path` names another variable, or a list
+    of another length, is matched by path instead, so that no value shows under a wrong point.
+    """
+    entries = answer.get("variables") if isinstance(answer, dict) else None
+    if not isinstance(entries, list):
+        raise PlcProtocolError("the PLC's answer holds no variables")
+    reading.crc = answer.get("projectCRC")
+    in_order = len(entries) == len(paths) and all(
+        isinstance(entry, dict) and ("path" not in entry or same_path(entry["path"], path))
+        for entry, path in zip(entries, paths, strict=False)
+    )
+    for index, path in enumerate(paths):
+        if in_order:
+            entry = entries[index]
+        else:
+            entry = next(
+                (e for e in entries if isinstance(e, dict) and same_path(e.get("path"), path)),
+                None,
+            )
+        if entry is None:
+            reading.failed[path.key] = PlcProtocolError(f"{path.text} is missing from the answer")
+        elif entry.get("error") is not None:
+            said = ", ".join(reasons_of(entry["error"])) or "no reason given"
+            reading.failed[path.key] = PlcAddressError(f"{path.text}: the PLC says {said}")
+        elif "value" not in entry:
+            reading.failed[path.key] = PlcProtocolError(f"{path.text}: the answer has no value")
+        else:
+            reading.found[path.key] = entry["value"]
+
+
+async def isolate(
+    paths: Sequence[VariablePath],
+    attempt: Callable[[Sequence[VariablePath]], Awaitable[Any]],
+    unknown: dict[str, PlcError],
+) -> tuple[list[VariablePath], Any]:
+    """Try the paths; on 404 try each half, down to single unknown names.
+
+    Return the paths the PLC knows and the answer of the last attempt that took them all.
+    """
+    if not paths:
+        return [], None
+    try:
+        return list(paths), await attempt(paths)
+    except ApiError as err:
+        if err.status != 404:
+            raise
+        if len(paths) == 1:
+            unknown[paths[0].key] = PlcAddressError(
+                f"{paths[0].text}: the PLC does not know this variable, or it has no HMI flag "
+                f"({err.words})"
+            )
+            return [], None
+    half = len(paths) // 2
+    first, first_answer = await isolate(paths[:half], attempt, unknown)
+    second, second_answer = await isolate(paths[half:], attempt, unknown)
+    if not second:
+        return first, first_answer
+    return first + second, second_answer if not first else None
+
+
+class Reader:
+    """Keeps the poll's group, the names the PLC lacks and what the groups can do."""
+
+    def __init__(self, api: PlcnextApi) -> None:
+        """Start with no group; groups are tried first, with a JSON body."""
+        self._api = api
+        self.group: Group | None = None
+        self.unknown: dict[str, PlcError] = {}
+        self.groups_ok = True
+        self.form_body = False  # the Groups page's form body instead of the clients' JSON
+        self.crc: Any = None  # the program the last answer was made for
+        self.regroups = 0  # groups registered again after the PLC lost one (diagnostics)
+
+    async def poll(self, paths: dict[str, VariablePath], *, again: bool = False) -> Reading:
+        """Read the poll's paths in one request (a group read) where nothing changed.
+
+        A projectCRC other than the last one (a program downloaded again) drops the group and
+        the unknown names, and reads once more with a group registered for the new program.
+        """
+        self.unknown = {key: err for key, err in self.unknown.items() if key in paths}
+        wanted = [path for key, path in paths.items() if key not in self.unknown]
+        if self.groups_ok:
+            reading = await self._group_read(wanted)
+        else:
+            reading = await self.variables(wanted, self.unknown)
+        changed = reading.crc is not None and self.crc is not None and reading.crc != self.crc
+        if reading.crc is not None:
+            self.crc = reading.crc
+        fresh = self.group is not None and self.group.crc == reading.crc
+        if changed and not again and (self.unknown or not fresh):
+            self.group, self.unknown = None, {}
+            return await self.poll(paths, again=True)
+        reading.failed.update(self.unknown)
+        return reading
+
+    async def _group_read(self, wanted: list[VariablePath]) -> Reading:
+        """Read the group of these paths, registering it where the PLC has none."""
+        reading = Reading()
+        if self.group is None or list(self.group.paths) != wanted:
+            await self._register(wanted)
+            if not self.groups_ok:
+                return await self.variables(wanted, self.unknown)
+        group = self.group
+        if group is None or not group.paths:
+            return reading
+        try:
+            answer = await self._api.call("GET", self._group_uri(group))
+        except ApiError as err:
+            if err.status != 404:
+                raise request_error(err) from None
+            # The PLC no longer knows the group (120 s idle, restart, new program).
+            self.regroups += 1
+            await self._register(wanted)
+            group = self.group
+            if group is None or not group.paths:
+                return reading
+            try:
+                answer = await self._api.call("GET", self._group_uri(group))
+            except ApiError as again:
+                raise request_error(again) from None
+        if isinstance(answer, dict) and answer.get("id") not in (None, group.id):
+            raise PlcProtocolError(f"the PLC answered group {answer.get('id')!r}, not {group.id}")
+        place(answer, group.paths, reading)
+        return reading
+
+    def _group_uri(self, group: Group) -> Callable[[str | None], Request]:
+        """Return the request maker of a group read (its session id keeps the session alive)."""
+
+        def make(session: str | None) -> Request:
+            query = f"?sessionID={quote(session, safe='')}" if session else ""
+            return f"{self._api.base}/groups/{quote(group.id, safe='')}{query}", None, None
+
+        return make
+
+    async def _register(self, wanted: list[VariablePath]) -> None:
+        """Register a group of the paths the PLC knows; learn the unknown ones by halves."""
+        self.group = None
+        if not wanted:
+            self.group = Group("", (), self.crc)
+            return
+        try:
+            known, answer = await isolate(wanted, self._register_once, self.unknown)
+            if known and answer is None:
+                answer = await self._register_once(known)
+        except ApiError as err:
+            if err.status in NO_GROUPS:
+                self.groups_ok = False
+                return
+            raise request_error(err) from None
+        if not known:
+            self.group = Group("", (), self.crc)
+            return
+        group_id = answer.get("id") if isinstance(answer, dict) else None
+        if not isinstance(group_id, str) or not group_id:
+            raise PlcProtocolError("the PLC registered the group but sent no id")
+        self.group = Group(group_id, tuple(known), answer.get("projectCRC"))
+
+    async def _register_once(self, paths: Sequence[VariablePath]) -> Any:
+        """POST /groups once; a body the PLC cannot parse is sent once in the other form.
+
+        The Groups page describes a form body and shows a JSON one in its example; pyPLCn and
+        PyREST send JSON. JSON first, the form where the PLC refuses it (kept from then on).
+        """
+        for form in (self.form_body, not self.form_body):
+            try:
+                answer = await self._api.call("POST", self._register_request(paths, form=form))
+            except ApiError as err:
+                if err.status not in REFUSED_BODY or form != self.form_body:
+                    raise
+                continue
+            self.form_body = form
+            return answer
+        raise AssertionError("not reached")  # pragma: no cover
+
+    def _register_request(
+        self, paths: Sequence[VariablePath], *, form: bool
+    ) -> Callable[[str | None], Request]:
+        """Return the request maker of a group registration."""
+        base = self._api.base
+
+        def make(session: str | None) -> Request:
+            if form:
+                body = f"sessionID={quote(session or '', safe='')}&paths={path_list(paths)}"
+                return f"{base}/groups", body.encode(), FORM
+            data = {"sessionID": session or "", "paths": [path.text for path in paths]}
+            return f"{base}/groups", json.dumps(data).encode(), JSON
+
+        return make
+
+    async def variables(
+        self, paths: Sequence[VariablePath], unknown: dict[str, PlcError]
+    ) -> Reading:
+        """Read variables directly: GET for a short list, POST for a long one."""
+        reading = Reading()
+        try:
+            known, answer = await isolate(paths, self._read_once, unknown)
+            if known and answer is None:
+                answer = await self._read_once(known)
+        except ApiError as err:
+            raise request_error(err) from None
+        if known:
+            place(answer, known, reading)
+        reading.failed.update(
+            {key: err for key, err in unknown.items() if key not in reading.found}
+        )
+        return reading
+
+    async def _read_once(self, paths: Sequence[VariablePath]) -> Any:
+        """Read the paths with one GET /variables, or one POST where the URI would be long."""
+        base = self._api.base
+        long = len(variables_uri(base, paths, None)) > MAX_URI - 64  # room for a session id
+
+        def make(session: str | None) -> Request:
+            if not long:
+                return variables_uri(base, paths, session), None, None
+            fields = {"paths": ",".join(path.text for path in paths)}
+            if session:
+                fields = {"sessionID": session, **fields}
+            return f"{base}/variables", urlencode(fields).encode(), FORM
+
+        return await self._api.call("POST" if long else "GET", make)

@@ -1,0 +1,199 @@
+"""SoftPLC datatable addresses and tag names: parse, check, normalise, compare with replies.
+
+The manual (4, "Quick review of the SoftPLC datatable") defines `<type><file>:<element>` with
+the type in one or two letters (N7:3, PD12:3000), a word of a structured element after a period
+(T4:0.PRE, PD12:3000.SP), up to 10,000 files, and normalised replies (N0007:0033, O:0000,
+I:0001). Where it is silent we follow the PLC-5 layout SoftPLC's datatable copies, said so below.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+import re
+
+from ...errors import PlcAddressError
+
+MAX_FILE = 9999  # "the top most array can hold up to 10,000 sub-arrays"
+MAX_ELEMENT = 99999  # the manual shows PD12:3000; no upper bound is given
+FIXED_FILES: dict[str, int] = {"O": 0, "I": 1, "S": 2}
+"""Files at a fixed position, written without their number in replies ("O:0000", "I:0001").
+
+The manual's POST example asks for "O0" and "I1" and is answered "O:0000" with 8 values and
+"I:0001" with 7: the digits after O, I or S without a colon are the element (PLC-5 style).
+"""
+WORDS_PER_ELEMENT: dict[str, int] = {"T": 3, "C": 3, "R": 3}
+"""Timers, counters and controls "consist of 3 words each" (manual 4); every other type one."""
+STRUCTURE_WORDS: dict[str, dict[str, int]] = {
+    "T": {"PRE": 1, "ACC": 2},
+    "C": {"PRE": 1, "ACC": 2},
+    "R": {"LEN": 1, "POS": 2},
+}
+"""Word names of a 3-word element. The manual names T4:0.PRE; the rest is the PLC-5 layout:
+word 0 holds the status bits, then the preset (length) and the accumulator (position)."""
+STATUS_BITS: dict[str, dict[str, int]] = {
+    "T": {"EN": 15, "TT": 14, "DN": 13},
+    "C": {"CU": 15, "CD": 14, "DN": 13, "OV": 12, "UN": 11},
+    "R": {"EN": 15, "EU": 14, "DN": 13, "EM": 12, "ER": 11, "UL": 10, "IN": 9, "FD": 8},
+}
+"""Status bits in word 0 of timers, counters and controls (PLC-5 layout; the manual is silent)."""
+FLOAT_TYPES = ("F",)
+WORD_TYPES = ("O", "I", "S", "B", "N", "F", "T", "C", "R")
+"""Types read as ranges of elements; PD elements (a mix of integers and floats whose layout the
+manual does not give) are read and written one named word at a time (PD12:3000.SP)."""
+EXAMPLES = (
+    "N7:3, N7:3/4, B3:0/5, B3/37, F8:2, T4:0.PRE, T4:0.DN, C5:1.ACC, O:0, I:1, S:5, PD12:3000.SP"
+)
+
+_PATTERN = re.compile(
+    r"(?P<type>PD|[OISBTCRNF])(?P<file>[0-9]{1,6})?(?::(?P<element>[0-9]{1,6}))?"
+    r"(?:\.(?P<word>[A-Z]{1,8}|[0-9]{1,2}))?(?:/(?P<bit>[0-9]{1,7}))?"
+)
+_TAG = re.compile(r"[A-Za-z_][A-Za-z0-9_.]{0,63}")
+
+
+@dataclass(frozen=True, slots=True)
+class Address:
+    """A datatable word (or bit, or named PD word), or a tag from the descriptor table."""
+
+    type: str  # O I S B T C R N F PD; "" for a tag
+    file: int = 0
+    element: int = 0
+    word: int = 0  # word of a 3-word element (T, C, R); 0 otherwise
+    bit: int | None = None
+    name: str = ""  # the PD word's name (SP), or the tag
+    bit_name: str = ""  # T4:0.DN: the status bit's name, kept for the text
+
+    @property
+    def is_tag(self) -> bool:
+        """True for a tag name of the descriptor table instead of an address."""
+        return not self.type
+
+    @property
+    def is_named_word(self) -> bool:
+        """True for a PD word (PD12:3000.SP), read and written by its own name."""
+        return self.type == "PD"
+
+    @property
+    def file_text(self) -> str:
+        """The file part of the address as sent: N7, O (fixed files carry no number)."""
+        return self.type if self.type in FIXED_FILES else f"{self.type}{self.file}"
+
+    @property
+    def text(self) -> str:
+        """The address spelled as the manual writes it (upper case, no leading zeros)."""
+        if self.is_tag:
+            return self.name
+        text = f"{self.file_text}:{self.element}"
+        if self.name:
+            return f"{text}.{self.name}"
+        if self.bit_name:
+            return f"{text}.{self.bit_name}"
+        if self.suffix:
+            text = f"{text}.{self.suffix}"
+        return text if self.bit is None else f"{text}/{self.bit}"
+
+    @property
+    def suffix(self) -> str:
+        """The word's name after the period (SP, PRE), "" for a whole element."""
+        return self.name if self.is_named_word else word_name(self.type, self.word)
+
+    @property
+    def range_key(self) -> tuple[str, int]:
+        """The file this address lies in, for merging neighbours into one range."""
+        return self.type, self.file
+
+    @property
+    def words(self) -> int:
+        """Words per element of the address's file."""
+        return WORDS_PER_ELEMENT.get(self.type, 1)
+
+
+def element_ad(type_: str, file: int, element: int) -> str:
+    """Return the `ad` of an element (N7:33, O:0), as the request carries it."""
+    return f"{type_ if type_ in FIXED_FILES else f'{type_}{file}'}:{element}"
+
+
+def parse_address(text: str) -> Address:
+    """Parse an address or tag name; raise PlcAddressError with a message for a form."""
+    if not isinstance(text, str):
+        raise PlcAddressError(f"{text!r} is not a SoftPLC address")
+    stripped = text.strip()
+    match = _PATTERN.fullmatch(stripped.upper())
+    if match is None:
+        if _TAG.fullmatch(stripped):
+            return Address("", name=stripped)
+        raise PlcAddressError(f"{text!r} is not a SoftPLC address or tag name; try {EXAMPLES}")
+    return _checked(text, match)
+
+
+def _checked(text: str, match: re.Match[str]) -> Address:
+    """Turn a pattern match into an Address; refuse what the file type does not allow."""
+    type_, file_digits, element_digits = match["type"], match["file"], match["element"]
+    word, bit_digits = match["word"], match["bit"]
+    if type_ in FIXED_FILES:
+        fixed = FIXED_FILES[type_]
+        if element_digits is None:  # O3 is O:3 (see FIXED_FILES)
+            element_digits, file_digits = file_digits or "0", None
+        if file_digits is not None and int(file_digits) != fixed:
+            raise PlcAddressError(f"{text!r}: the {type_} file is file {fixed}")
+        file = fixed
+    elif file_digits is None:
+        raise PlcAddressError(f"{text!r} names no file number ({type_}7:0, not {type_}:0)")
+    else:
+        file = int(file_digits)
+    if file > MAX_FILE:
+        raise PlcAddressError(f"{text!r}: files are numbered 0 to {MAX_FILE}")
+    element = int(element_digits or 0)
+    bit = None if bit_digits is None else int(bit_digits)
+    if element_digits is None and bit is not None and word is None:
+        element, bit = divmod(bit, 16)  # B3/37 is B3:2/5: bits counted through the file
+    if element > MAX_ELEMENT:
+        raise PlcAddressError(f"{text!r}: elements are numbered 0 to {MAX_ELEMENT}")
+    if bit is not None and bit > 15:
+        raise PlcAddressError(f"{text!r}: a word has bits 0 to 15")
+    if type_ == "PD":
+        if word is None or word.isdigit() or bit is not None:
+            raise PlcAddressError(f"{text!r}: a PID element is read by word, as PD12:3000.SP")
+        return Address(type_, file, element, name=word)
+    if word is not None:
+        return _structure_word(text, Address(type_, file, element), word, bit)
+    if type_ in FLOAT_TYPES and bit is not None:
+        raise PlcAddressError(f"{text!r}: a float has no bits")
+    return Address(type_, file, element, bit=bit)
+
+
+def _structure_word(text: str, base: Address, word: str, bit: int | None) -> Address:
+    """Return the word (T4:0.PRE) or status bit (T4:0.DN) of a timer, counter or control."""
+    type_, file, element = base.type, base.file, base.element
+    if type_ not in STRUCTURE_WORDS:
+        raise PlcAddressError(f"{text!r}: only T, C, R and PD elements have words")
+    if word.isdigit():
+        if int(word) >= WORDS_PER_ELEMENT[type_]:
+            raise PlcAddressError(f"{text!r}: a {type_} element has words 0 to 2")
+        return Address(type_, file, element, word=int(word), bit=bit)
+    if word in STRUCTURE_WORDS[type_]:
+        return Address(type_, file, element, word=STRUCTURE_WORDS[type_][word], bit=bit)
+    if word in STATUS_BITS[type_] and bit is None:
+        return Address(type_, file, element, bit=STATUS_BITS[type_][word], bit_name=word)
+    names = ", ".join([*STRUCTURE_WORDS[type_], *STATUS_BITS[type_]])
+    raise PlcAddressError(f"{text!r}: a {type_} element has {names}")
+
+
+def reply_key(ad: str) -> tuple[str, int, int, str] | None:
+    """Return what a reply's `ad` names (type, file, element, word name), normalised or not.
+
+    N0007:0033 and N7:33 give the same key; a tag gives ("", 0, 0, name in lower case).
+    None when the text is neither.
+    """
+    try:
+        address = parse_address(ad)
+    except PlcAddressError:
+        return None
+    if address.is_tag:
+        return "", 0, 0, address.name.lower()
+    return address.type, address.file, address.element, address.suffix
+
+
+def word_name(type_: str, word: int) -> str:
+    """Return the name of word `word` of a T, C or R element ("" for word 0)."""
+    return next((k for k, v in STRUCTURE_WORDS.get(type_, {}).items() if v == word), "")

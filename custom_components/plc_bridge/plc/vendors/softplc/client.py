@@ -1,0 +1,316 @@
+"""The SoftPLC WEB.TLM client: every point of a poll in one POST /dt, writes in one PUT /dt."""
+
+from __future__ import annotations
+
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
+from datetime import datetime
+import time
+from typing import ClassVar
+
+import aiohttp
+
+from ...client import PlcClient
+from ...errors import (
+    PlcAddressError,
+    PlcAuthenticationError,
+    PlcConnectionError,
+    PlcError,
+    PlcProtocolError,
+    PlcTimeoutError,
+    PlcTlsError,
+    PlcValueError,
+    PlcWriteRefusedError,
+)
+from ...http import HttpTransport
+from ...types import (
+    ConnectionConfig,
+    DeviceInfo,
+    Point,
+    PointResult,
+    ReadResult,
+    TlsMode,
+    Value,
+    ValueKind,
+)
+from .address import Address, parse_address
+from .codec import KINDS, TYPES, check_value, data_type, decode, parse_token
+from .document import Item
+from .exchange import Answers, Refused, exchange, send
+from .planner import ReadItem, item_of, plan
+from .tls import client_context, has_certificate, pem_options
+from .writing import confirm, write_items
+
+type Key = tuple[str, int, int, str]
+
+
+@dataclass(frozen=True, slots=True)
+class _Wanted:
+    """A valid point of a read: its address and type."""
+
+    point: Point
+    address: Address
+    kind: str
+
+
+def _key(address: Address) -> Key:
+    """Return the key a refused address is remembered by."""
+    return address.type, address.file, address.element, address.suffix or address.name
+
+
+def check_writable(address: Address) -> None:
+    """Refuse what no PUT of the manual can write: the status word of a T, C or R element."""
+    if address.type in ("T", "C", "R") and address.word == 0:
+        raise PlcAddressError(
+            f"{address.text}: the manual has no word name for a {address.type} element's status "
+            "word, so it cannot be written; write its PRE/ACC (LEN/POS) words"
+        )
+
+
+class SoftplcClient(PlcClient):
+    """A SoftPLC runtime through its WEB.TLM REST server (XML)."""
+
+    vendor: ClassVar[str] = "softplc"
+    default_port: ClassVar[int] = 80
+    default_tls: ClassVar[TlsMode] = TlsMode.NONE
+    tls_modes: ClassVar[tuple[TlsMode, ...]] = (
+        TlsMode.NONE,
+        TlsMode.PIN,
+        TlsMode.VERIFY,
+        TlsMode.OFF,
+    )
+    needs_credentials: ClassVar[bool] = False
+    data_types: ClassVar[tuple[str, ...]] = TYPES
+    probe_interval: ClassVar[float] = 60.0  # refused addresses are asked again this often
+
+    def __init__(
+        self, config: ConnectionConfig, session: aiohttp.ClientSession | None = None
+    ) -> None:
+        """Keep the settings; the transport (and its client certificate) is made on first use."""
+        super().__init__(config, session)
+        self._http: HttpTransport | None = None
+        self._refused: dict[Key, PlcError] = {}
+        self._probed_at = -float("inf")
+        self._certificate = has_certificate(config) and config.tls is not TlsMode.NONE
+
+    @classmethod
+    def validate_options(cls, options: Mapping[str, object]) -> dict[str, str | int | bool]:
+        """Return the client certificate and key (pasted PEM or absolute paths), or nothing."""
+        return dict(pem_options(options))
+
+    @classmethod
+    def validate_point(cls, point: Point) -> Point:
+        """Return the point with its address spelled as the manual does and its type."""
+        address = parse_address(point.address)
+        return Point(address.text, data_type(address, point.data_type))
+
+    @classmethod
+    def validate_value(cls, point: Point, value: Value) -> Value:
+        """Return the value checked for the point's type (decimal or 0x hex for words)."""
+        address = parse_address(point.address)
+        check_writable(address)
+        return check_value(data_type(address, point.data_type), value, address.text)
+
+    @classmethod
+    def value_kind(cls, point: Point) -> ValueKind | None:
+        """Return what the point holds."""
+        try:
+            return KINDS[data_type(parse_address(point.address), point.data_type)]
+        except PlcAddressError:
+            return None
+
+    @classmethod
+    def requests_for(cls, points: Sequence[Point]) -> int:
+        """One POST a poll, whatever the points (refused items cost more only while found)."""
+        return 1 if points else 0
+
+    @classmethod
+    def items_for(cls, points: Sequence[Point]) -> int:
+        """Return how many `<data>` items one poll of these points asks for."""
+        addresses = []
+        for point in points:
+            try:
+                addresses.append(parse_address(point.address))
+            except PlcAddressError:
+                continue
+        return len(plan(addresses))
+
+    async def _transport(self) -> HttpTransport:
+        """Return the transport; with a client certificate, over an SSL context presenting it."""
+        if self._http is None:
+            transport = HttpTransport(self.config, self.session, self.metrics)
+            if self._certificate:
+                # HttpTransport takes no SSL context of its own yet: its `ssl` is replaced here
+                # (passing ssl= through request() would repeat the keyword).
+                transport._ssl = await client_context(self.config)  # type: ignore[assignment]
+            self._http = transport
+        return self._http
+
+    async def _send(self, method: str, items: Sequence[ReadItem], answers: Answers) -> None:
+        """Exchange items with the PLC (halving around refused ones)."""
+        transport = await self._transport()
+        try:
+            await exchange(transport, method, items, answers, certificate=self._certificate)
+        except PlcConnectionError as err:
+            await self._refused_certificate(err)
+            raise
+
+    async def _refused_certificate(self, err: PlcConnectionError) -> None:
+        """Raise PlcAuthenticationError when the PLC drops us for our client certificate.
+
+        Under TLS 1.3 a server refuses a client certificate after the handshake, and the
+        client sees only a closed connection. One request without the certificate tells:
+        answered, the link is fine and the certificate is what the PLC refuses.
+        """
+        if not self._certificate or isinstance(err, PlcTimeoutError | PlcTlsError):
+            return
+        bare = HttpTransport(self.config, self.session, self.metrics)
+        try:
+            await bare.request("GET", "/dt")
+        except PlcError:
+            return
+        raise PlcAuthenticationError(
+            "the PLC closes every connection that presents the client certificate: it does not "
+            "trust it"
+        ) from None
+
+    async def connect(self) -> DeviceInfo:
+        """Ask for the file listing (GET /dt): the PLC answers, and the certificate is usable."""
+        transport = await self._transport()
+        try:
+            status, _body = await send(transport, "GET", "/dt", None, certificate=self._certificate)
+        except PlcConnectionError as err:
+            await self._refused_certificate(err)
+            raise
+        if status != 200:
+            raise PlcProtocolError(f"the PLC answered GET /dt with HTTP {status}, not its files")
+        return DeviceInfo(
+            vendor=self.vendor,
+            model="SoftPLC WEB.TLM",
+            name="SoftPLC",
+            extra={"client_certificate": "yes" if self._certificate else "no"},
+        )
+
+    async def _read(self, points: Sequence[Point], *, poll: bool) -> ReadResult:
+        """Read every point with one POST; refused addresses are asked again once a minute."""
+        values: dict[Point, PointResult] = {}
+        wanted: list[_Wanted] = []
+        for point in points:
+            try:
+                address = parse_address(point.address)
+                wanted.append(_Wanted(point, address, data_type(address, point.data_type)))
+            except PlcError as err:
+                values[point] = PointResult(error=err)
+        refused = dict(self._refused) if poll else {}
+        if refused and time.monotonic() - self._probed_at >= self.probe_interval:
+            refused = {}
+        if poll and not refused:  # this poll asks for every address: it is the probe
+            self._refused, self._probed_at = {}, time.monotonic()
+        asked = [want.address for want in wanted if _key(want.address) not in refused]
+        answers, items = await self.fetch(asked)
+        for want in wanted:
+            error = refused.get(_key(want.address))
+            item = None if error else item_of(want.address, items)
+            if item is None:
+                values[want.point] = PointResult(error=error or PlcProtocolError("not planned"))
+                continue
+            values[want.point] = _result(want, item, answers[item])
+            error = values[want.point].error
+            if poll and error and isinstance(answers[item], Refused) and item.count in (None, 1):
+                self._refused[_key(want.address)] = error
+        return ReadResult(values=values)
+
+    async def fetch(self, addresses: Sequence[Address]) -> tuple[Answers, list[ReadItem]]:
+        """Read addresses; a refused range is asked again element by element.
+
+        Returns the answers and the items to look an address up in (the pieces first).
+        """
+        items = plan(addresses)
+        answers: Answers = {}
+        await self._send("POST", items, answers)
+        pieces: list[ReadItem] = []
+        for item in items:
+            if isinstance(answers[item], Refused) and item.count not in (None, 1):
+                inside = [a for a in addresses if item_of(a, [item]) is not None]
+                pieces.extend(plan(inside, max_gap=-1))
+        if pieces:
+            await self._send("POST", pieces, answers)
+        split = {item for item in items if isinstance(answers[item], Refused) and item.count != 1}
+        final = [*pieces, *(item for item in items if item not in split)]
+        if len(final) > 1 and all(isinstance(answers[item], Refused) for item in final):
+            raise PlcProtocolError(
+                f"the PLC refused every item of the request: {answers[final[0]]}"
+            )
+        return answers, [*pieces, *items]
+
+    async def _write(self, values: Mapping[Point, Value]) -> dict[Point, PointResult]:
+        """Write every value with one PUT (bits: their words are read first, in one POST)."""
+        results: dict[Point, PointResult] = {}
+        plan_ = await write_items(self, values, results)
+        answers: Answers = {}
+        await self._send("PUT", list(plan_), answers)
+        for item, writes in plan_.items():
+            answer = answers[item]
+            for sent in writes:
+                if isinstance(answer, PlcError):
+                    error: PlcError = (
+                        PlcWriteRefusedError(str(answer)) if isinstance(answer, Refused) else answer
+                    )
+                    results[sent.point] = PointResult(error=error)
+                else:
+                    results[sent.point] = confirm(answer, sent)
+        return results
+
+    @property
+    def can_set_clock(self) -> bool:
+        """False: WEB.TLM serves the datatable only, no clock."""
+        return False
+
+    async def read_clock(self) -> datetime:
+        """WEB.TLM has no clock service."""
+        raise PlcProtocolError("SoftPLC's WEB.TLM has no clock service")
+
+    async def set_clock(self, when: datetime) -> None:
+        """WEB.TLM has no clock service."""
+        raise PlcWriteRefusedError("SoftPLC's WEB.TLM has no clock service")
+
+    async def close(self) -> None:
+        """Release the client's own session (WEB.TLM has no sessions)."""
+        self._http = None
+        await self._close_own_session()
+
+
+def _result(want: _Wanted, item: ReadItem, answer: Item | PlcError) -> PointResult:
+    """Return a point's value out of its item's reply."""
+    if isinstance(answer, PlcError):
+        if isinstance(answer, Refused):
+            return PointResult(error=PlcAddressError(f"{want.address.text}: {answer}"))
+        return PointResult(error=answer)
+    what = want.address.text
+    tokens = answer.tokens
+    counted = item.count is not None and answer.count is not None and not want.address.is_tag
+    if counted and len(tokens) != (answer.count or 0) * item.words:
+        return PointResult(
+            error=PlcProtocolError(
+                f"{what}: the PLC answered {len(tokens)} values for {answer.count} elements "
+                f"of {item.words} words"
+            )
+        )
+    index = 0
+    if not (want.address.is_tag or want.address.is_named_word):
+        index = (want.address.element - item.start) * item.words + want.address.word
+    if index >= len(tokens):
+        return PointResult(
+            error=PlcAddressError(
+                f"{what} lies past the end of its file (the PLC answered "
+                f"{len(tokens) // item.words} elements from {item.ad})"
+            )
+        )
+    try:
+        raw = parse_token(tokens[index], what)
+        return PointResult(value=decode(want.kind, raw, want.address.bit, what))
+    except PlcError as err:
+        return PointResult(error=err)
+
+
+__all__ = ["PlcValueError", "SoftplcClient"]

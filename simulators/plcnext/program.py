@@ -1,0 +1,226 @@
+"""The PLCnext simulator's HMI variables: IEC types, structures, arrays, checked writes."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from datetime import datetime
+import math
+import struct
+from typing import Any
+
+INTEGERS = {
+    "BYTE": (0, 0xFF),
+    "WORD": (0, 0xFFFF),
+    "DWORD": (0, 0xFFFF_FFFF),
+    "LWORD": (0, 2**64 - 1),
+    "USINT": (0, 0xFF),
+    "UINT": (0, 0xFFFF),
+    "UDINT": (0, 0xFFFF_FFFF),
+    "ULINT": (0, 2**64 - 1),
+    "SINT": (-0x80, 0x7F),
+    "INT": (-0x8000, 0x7FFF),
+    "DINT": (-(2**31), 2**31 - 1),
+    "LINT": (-(2**63), 2**63 - 1),
+    "TIME": (-(2**31), 2**31 - 1),
+    "LTIME": (-(2**63), 2**63 - 1),
+}
+PREFIX = "Arp.Plc.Eclr/"
+
+
+class Refused(Exception):
+    """A value the variable cannot take."""
+
+
+@dataclass(slots=True)
+class Leaf:
+    """One elementary value."""
+
+    type: str
+    value: Any
+
+    def json(self, as_text: bool) -> Any:
+        """Return the value as the interface sends it (text where the PLC sends text)."""
+        value = self.value
+        if self.type == "REAL":
+            value = struct.unpack("<f", struct.pack("<f", value))[0]  # 2.412008762359619
+        if as_text and not isinstance(value, str):
+            return str(value).lower() if isinstance(value, bool) else str(value)
+        return value
+
+    def convert(self, raw: Any) -> Any:
+        """Return the stored form of a JSON value (a number, or its text); raise Refused."""
+        kind = self.type
+        if kind == "BOOL":
+            if isinstance(raw, bool):
+                return raw
+            if isinstance(raw, str) and raw.strip().lower() in ("true", "false", "1", "0"):
+                return raw.strip().lower() in ("true", "1")
+            if raw in (0, 1) and isinstance(raw, int):
+                return bool(raw)
+        elif kind in INTEGERS:
+            number = _number(raw)
+            if isinstance(number, float) and number.is_integer():
+                number = int(number)
+            low, high = INTEGERS[kind]
+            if isinstance(number, int) and low <= number <= high:
+                return number
+        elif kind in ("REAL", "LREAL"):
+            number = _number(raw)
+            if number is not None and math.isfinite(number):
+                if kind == "REAL" and abs(number) > 3.4028234663852886e38:
+                    raise Refused
+                return float(number)
+        elif kind in ("STRING", "WSTRING"):
+            one_byte = isinstance(raw, str) and all(ord(char) < 256 for char in raw)
+            if isinstance(raw, str) and len(raw) <= 255 and (kind == "WSTRING" or one_byte):
+                return raw
+        elif kind in ("DT", "DATE") and isinstance(raw, str):
+            try:
+                datetime.fromisoformat(raw)
+            except ValueError:
+                raise Refused from None
+            return raw
+        raise Refused
+
+
+def _number(raw: Any) -> int | float | None:
+    """Return a JSON number, or the number a text holds (pyPLCn writes "500")."""
+    if isinstance(raw, bool):
+        return None
+    if isinstance(raw, int | float):
+        return raw
+    if isinstance(raw, str):
+        try:
+            return int(raw.strip())
+        except ValueError:
+            try:
+                return float(raw.strip())
+            except ValueError:
+                return None
+    return None
+
+
+type Node = Leaf | dict[str, "Node"] | list["Node"]
+
+
+@dataclass(slots=True)
+class Variable:
+    """An HMI variable: declared type name, value tree, read-only flag, first array index."""
+
+    type: str
+    node: Node
+    read_only: bool = False
+    first: int = 0
+    element: str = ""
+
+
+def as_json(node: Node, as_text: bool) -> Any:
+    """Return a value tree as JSON: objects for structures, lists for arrays."""
+    if isinstance(node, Leaf):
+        return node.json(as_text)
+    if isinstance(node, dict):
+        return {name: as_json(member, as_text) for name, member in node.items()}
+    return [as_json(member, as_text) for member in node]
+
+
+@dataclass(slots=True)
+class Program:
+    """The HMI variables of one project download, by full path."""
+
+    variables: dict[str, Variable] = field(default_factory=dict)
+
+    def find(self, path: str) -> tuple[Variable, Node] | None:
+        """Return the variable and node a full path names (members, `[i]` elements)."""
+        lowered = path.strip().lower()
+        for name, variable in self.variables.items():
+            key = name.lower()
+            if lowered == key:
+                return variable, variable.node
+            if lowered.startswith((key + ".", key + "[")):
+                node = _walk(variable, path.strip()[len(name) :])
+                return None if node is None else (variable, node)
+        return None
+
+
+def _walk(variable: Variable, rest: str) -> Node | None:
+    """Follow `.member` and `[i]` steps from a variable's node."""
+    node: Node = variable.node
+    first = variable.first
+    while rest:
+        if rest.startswith("."):
+            name, rest = _name(rest[1:])
+            if not isinstance(node, dict):
+                return None
+            match = next((key for key in node if key.lower() == name.lower()), None)
+            if match is None:
+                return None
+            node, first = node[match], 0
+        elif rest.startswith("["):
+            index, _bracket, rest = rest[1:].partition("]")
+            if not isinstance(node, list) or not index.strip().isdigit():
+                return None
+            position = int(index) - first
+            if not 0 <= position < len(node):
+                return None
+            node, first = node[position], 0
+        else:
+            return None
+    return node
+
+
+def _name(text: str) -> tuple[str, str]:
+    """Split a member name from the steps after it."""
+    end = len(text)
+    for mark in ".[":
+        found = text.find(mark)
+        if found != -1:
+            end = min(end, found)
+    return text[:end], text[end:]
+
+
+def default_program(bench: int = 0) -> Program:
+    """Return the demo project: every elementary type, a structure, an array, bench values."""
+    main = PREFIX + "MainInstance."
+    leaves: dict[str, tuple[str, Any, bool]] = {
+        "Temperature": ("REAL", 21.5, True),
+        "Setpoint": ("REAL", 22.0, False),
+        "Pump": ("BOOL", False, False),
+        "Alarm": ("BOOL", True, True),
+        "Counter": ("DINT", 799244562, True),
+        "Speed": ("INT", -1200, False),
+        "Small": ("SINT", -5, False),
+        "Tiny": ("USINT", 200, False),
+        "Mask": ("BYTE", 0x5A, False),
+        "Status": ("WORD", 0xBEEF, False),
+        "Wide": ("UINT", 60000, False),
+        "Flags": ("DWORD", 0xDEADBEEF, False),
+        "Energy": ("UDINT", 4_000_000_000, False),
+        "Total": ("LINT", -(2**40), False),
+        "Big": ("ULINT", 2**63, False),
+        "Pattern": ("LWORD", 2**60, False),
+        "Precise": ("LREAL", 123456.789, False),
+        "Message": ("STRING", "Hello PLCnext", False),
+        "Label": ("WSTRING", "Grüße ✓", False),
+        "Runtime": ("TIME", 90_000, False),
+        "Uptime": ("LTIME", 5_000_000_000, True),
+        "Clock": ("DT", "2026-11-26T08:00:00.000Z", False),
+        "Today": ("DATE", "2026-11-26", False),
+    }
+    variables = {
+        main + name: Variable(kind, Leaf(kind, value), read_only)
+        for name, (kind, value, read_only) in leaves.items()
+    }
+    variables[main + "Recipe"] = Variable(
+        "RecipeType",
+        {
+            "Name": Leaf("STRING", "Bread"),
+            "Weight": Leaf("REAL", 2.5),
+            "Ready": Leaf("BOOL", False),
+        },
+    )
+    levels: list[Node] = [Leaf("INT", level) for level in (10, 20, 30, 40)]
+    variables[main + "Levels"] = Variable("LevelArray", levels, first=1, element="INT")
+    variables[PREFIX + "GlobalFlag"] = Variable("BOOL", Leaf("BOOL", True))
+    for index in range(bench):
+        variables[f"{PREFIX}Bench.Value{index}"] = Variable("DINT", Leaf("DINT", index), True)
+    return Program(variables)

@@ -1,0 +1,432 @@
+"""A PLCnext Control's REST data interface (../shared/specs/phoenix-plcnext-rest-*.{txt,md}).
+
+Service description, two-step authentication, sessions, variables, groups and the eHMI
+dictionaries, over HTTPS with a self-signed certificate. Where the sources disagree, switches
+choose: `bodies` ("both", "json", "form" group registrations), `text_values` (values sent as
+text), `trailing_slashes`, `group_timeout`, `auth` (user authentication on or off),
+`unknown_entries` (unknown names in a variable read fail their entry, not the request).
+`foreign` answers the cases the sources leave open with other reasons and error shapes than
+the client's tests assume, so the client is tested on structure.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import secrets
+import time
+from typing import Any
+from urllib.parse import parse_qs
+
+from aiohttp import web
+
+from ..base import HttpSimulator
+from .access import Access
+from .program import PREFIX, Leaf, Program, Refused, Variable, as_json, default_program
+
+DEFAULT_USER = "admin"
+DEFAULT_PASSWORD = "PLCnext-1"
+VIEWER_USER = "viewer"  # EHmiViewer only: may read, not write
+API_VERSION = "1.8.0.0"
+VERSIONS = ("api", "v1.0", "v1.1", "v1.2", "v1.3", "v1.4", "v1.5", "v1.6", "v1.7", "v1.8")
+
+
+class Fault(Exception):
+    """An error answer: status, reason, and the WWW-Authenticate of a token refusal."""
+
+    def __init__(self, status: int, reason: str, challenge: str = "") -> None:
+        super().__init__(status, reason)
+        self.status, self.reason, self.challenge = status, reason, challenge
+
+
+class PlcnextSimulator(HttpSimulator):
+    """A PLCnext Control running the demo project (`program.default_program`)."""
+
+    tls = True
+    common_name = "plcnext-axc-f-2152"
+
+    def __init__(self, *, auth: bool = True, bench: int = 0, foreign: bool = False) -> None:
+        super().__init__()
+        self.auth = auth
+        self.foreign = foreign
+        self.access = Access(
+            {
+                DEFAULT_USER: (DEFAULT_PASSWORD, ["EHmiViewer", "EHmiChanger"]),
+                VIEWER_USER: (DEFAULT_PASSWORD, ["EHmiViewer"]),
+            }
+        )
+        self.program: Program = default_program(bench)
+        self.crc = 2373751656
+        self.bodies = "both"
+        self.text_values = False
+        self.trailing_slashes = True
+        self.unknown_entries = False
+        self.keep_groups = False  # groups survive a download (then stale names fail per entry)
+        self.group_timeout = 120.0
+        self.groups: dict[str, tuple[str, list[str], float]] = {}  # id -> prefix, paths, used
+        self.calls: dict[str, int] = {}
+
+    def build_app(self, app: web.Application) -> None:
+        app.router.add_route("*", "/_pxc_api/{version}{tail:.*}", self._handle)
+        app.router.add_get("/ehmi/{name}", self._ehmi)
+
+    # -- the test-facing API ---------------------------------------------------------------
+
+    def var(self, path: str) -> Leaf:
+        """Return an elementary value by path (`Arp.Plc.Eclr/` may be left out)."""
+        found = self.program.find(path if "/" in path else PREFIX + path)
+        if found is None or not isinstance(found[1], Leaf):
+            raise KeyError(path)
+        return found[1]
+
+    def get(self, path: str) -> Any:
+        """Return a value as stored."""
+        return self.var(path).value
+
+    def set(self, path: str, value: Any) -> None:
+        """Store a value without any check."""
+        self.var(path).value = value
+
+    def expire_groups(self) -> None:
+        """Forget every group (120 s idle, or a restart of the web server)."""
+        self.groups.clear()
+
+    def download(self, renames: dict[str, str] | None = None) -> None:
+        """Download the project again: a new projectCRC, renamed variables, groups dropped."""
+        for old, new in (renames or {}).items():
+            self.program.variables[new] = self.program.variables.pop(old)
+        self.crc = (self.crc * 1103515245 + 12345) % 2**32
+        if not self.keep_groups:
+            self.groups.clear()
+
+    def animate(self, elapsed: float) -> None:
+        """Let the temperature drift and the counter count, as a running program would."""
+        self.set("MainInstance.Temperature", round(21.5 + 1.5 * math.sin(elapsed / 300), 1))
+        self.set("MainInstance.Counter", (self.get("MainInstance.Counter") + 1) % 2**31)
+
+    # -- HTTP ------------------------------------------------------------------------------
+
+    async def _handle(self, request: web.Request) -> web.Response:
+        """Check the version and the path's form, then run the command."""
+        version, tail = request.match_info["version"], request.match_info["tail"]
+        try:
+            if version not in VERSIONS:
+                raise Fault(404, "invalidApiVersion")
+            if tail.endswith("/") and len(tail) > 1 and not self.trailing_slashes:
+                raise Fault(404, "invalidPath")
+            parts = [part for part in tail.split("/") if part]
+            body = await request.read()
+            return self._command(request, parts, body)
+        except Fault as fault:
+            return self._error(fault)
+
+    def _command(self, request: web.Request, parts: list[str], body: bytes) -> web.Response:
+        """Run one command of the interface."""
+        method, head = request.method, parts[0] if parts else ""
+        self.calls[f"{method} {head}"] = self.calls.get(f"{method} {head}", 0) + 1
+        if not parts and method == "GET":
+            return self._json({"version": "v1.8"}, status=200)
+        if head == "auth" and method == "POST" and len(parts) == 2:
+            return self._auth(parts[1], _fields(body))
+        if head == "sessions":
+            return self._sessions(method, parts[1:], _fields(body))
+        user = self._user(request)
+        fields = {**_query(request), **_fields(body)}
+        self._keep_session(fields.get("sessionID"))
+        if head == "variables" and method in ("GET", "POST") and len(parts) == 1:
+            return self._read(fields)
+        if head == "variables" and method == "PUT":
+            return self._write(fields, user)
+        if head == "groups":
+            return self._groups(method, parts[1:], fields, body, _query(request))
+        raise Fault(404, "invalidPath")
+
+    def _json(self, data: dict[str, Any], status: int = 200, **headers: str) -> web.Response:
+        """Return a JSON answer carrying the three fields every data answer carries."""
+        data = {
+            "apiVersion": API_VERSION,
+            "projectCRC": self.crc,
+            "userAuthenticationRequired": self.auth,
+            **data,
+        }
+        return web.json_response(data, status=status, headers=headers)
+
+    def _error(self, fault: Fault) -> web.Response:
+        """Return an error answer: the documented shape, or another one in foreign mode."""
+        headers = {"WWW-Authenticate": fault.challenge} if fault.challenge else {}
+        if self.foreign:
+            error: Any = {"code": secrets.randbelow(900) + 100, "message": f"E_{fault.reason}"}
+        else:
+            error = {"details": [{"reason": fault.reason}]}
+        return web.json_response({"error": error}, status=fault.status, headers=headers)
+
+    def _reason(self, documented: str, own: str) -> str:
+        """Return a reason: the documented one, or in foreign mode the simulator's own."""
+        return own if self.foreign else documented
+
+    # -- authentication and sessions -------------------------------------------------------
+
+    def _auth(self, step: str, fields: dict[str, Any]) -> web.Response:
+        """The two steps of the login."""
+        if step == "auth-token" and fields.get("scope") == "variables":
+            answer = {"code": self.access.auth_code(), "expires_in": 600}
+            if "state" in fields:
+                answer["state"] = fields["state"]
+            return web.json_response(answer)
+        if step == "access-token":
+            token = self.access.access_token(
+                fields.get("code"), fields.get("username"), fields.get("password")
+            )
+            if token is None:
+                status = 403 if self.foreign else 401
+                raise Fault(status, self._reason("wrongPassword", "loginRefused"))
+            roles = self.access.roles(self.access.tokens[token])
+            return web.json_response(
+                {"token_type": "Bearer", "access_token": token, "roles": roles}
+            )
+        raise Fault(400, "invalidRequest")
+
+    def _user(self, request: web.Request) -> str | None:
+        """Return the user of a protected request; refuse a missing or unknown token."""
+        if not self.auth:
+            return None
+        user = self.access.user_of(request.headers.get("Authorization", ""))
+        if user is None:
+            challenge = "" if self.foreign else 'Bearer realm="pxcapi", error="invalid_token"'
+            raise Fault(401, self._reason("invalidToken", "tokenExpired"), challenge)
+        return user
+
+    def _sessions(self, method: str, parts: list[str], fields: dict[str, Any]) -> web.Response:
+        """Create, maintain and delete sessions."""
+        if method == "POST" and not parts:
+            station = str(fields.get("stationID", "")).strip()
+            timeout = _number(fields.get("timeout"), 3_600_000)
+            if not station:
+                raise Fault(400, "invalidStationID")
+            session_id = self.access.open(station, timeout)
+            return self._json({"sessionID": session_id}, status=201)
+        if parts and method in ("POST", "PUT"):
+            self._keep_session(parts[0])
+            return self._json({"sessionID": parts[0]})
+        if parts and method == "DELETE":
+            self.access.sessions.pop(parts[0], None)
+            return web.Response(status=204)
+        raise Fault(400, "invalidRequest")
+
+    def _keep_session(self, session_id: Any) -> None:
+        """Keep a named session alive; one that is gone answers 410 (notes 3a, Sessions)."""
+        if session_id and not self.access.touch(str(session_id)):
+            raise Fault(410, self._reason("invalidSessionID", "sessionTimedOut"))
+
+    # -- variables and groups --------------------------------------------------------------
+
+    def _resolve(self, prefix: str, paths: list[str]) -> list[tuple[str, Variable, Any] | None]:
+        """Return (full path, variable, node) of each path; None for an unknown one."""
+        found: list[tuple[str, Variable, Any] | None] = []
+        for path in paths:
+            full = prefix + path.strip()
+            hit = self.program.find(full)
+            found.append(None if hit is None else (full, hit[0], hit[1]))
+        return found
+
+    def _read(self, fields: dict[str, Any]) -> web.Response:
+        """GET or POST /variables: values in request order, paths in full."""
+        prefix, paths = str(fields.get("pathPrefix") or ""), _paths(fields.get("paths"))
+        if not paths:
+            raise Fault(400, "invalidPaths")
+        entries: list[dict[str, Any]] = []
+        for path, hit in zip(paths, self._resolve(prefix, paths), strict=True):
+            if hit is None:
+                if not self.unknown_entries:
+                    raise Fault(404, self._reason("invalidNames", "unknownVariables"))
+                reason = self._reason("invalidName", "noSuchVariable")
+                entries.append({"path": prefix + path, "error": {"reason": reason}})
+                continue
+            entries.append({"path": hit[0], "value": as_json(hit[2], self.text_values)})
+        return self._json({"variables": entries})
+
+    def _write(self, fields: dict[str, Any], user: str | None) -> web.Response:
+        """PUT /variables: every variable checked, then stored; per-variable results."""
+        if self.auth and "EHmiChanger" not in self.access.roles(user):
+            raise Fault(403, self._reason("accessDenied", "notPermitted"))
+        prefix, items = str(fields.get("pathPrefix") or ""), fields.get("variables")
+        if not isinstance(items, list) or not items:
+            raise Fault(400, "invalidVariables")
+        paths = [str(item.get("path", "")) if isinstance(item, dict) else "" for item in items]
+        hits = self._resolve(prefix, paths)
+        if any(hit is None for hit in hits):
+            raise Fault(404, self._reason("invalidNames", "unknownVariables"))
+        entries: list[dict[str, Any]] = []
+        for item, path, hit in zip(items, paths, hits, strict=True):
+            assert hit is not None
+            full, variable, node = hit
+            entry: dict[str, Any] = {"path": path, "uri": f"/_pxc_api/api/variables/{full}"}
+            entries.append(entry)
+            if variable.read_only:
+                if self.foreign:
+                    raise Fault(403, "writeProtected")
+                entry["error"] = {"details": [{"reason": "readOnly"}]}
+                continue
+            try:
+                raw = item.get("value")
+                if item.get("valueType") == "Variable":
+                    source = self.program.find(prefix + str(raw))
+                    raw = source[1].value if source and isinstance(source[1], Leaf) else None
+                if not isinstance(node, Leaf):
+                    raise Refused
+                node.value = node.convert(raw)
+                entry["value"] = node.json(self.text_values)
+            except Refused:
+                if self.foreign:
+                    entry["value"] = None  # PyREST's reading: a null value is a failed write
+                else:
+                    entry["error"] = {"details": [{"reason": "invalidValue"}]}
+        return self._json({"variables": entries})
+
+    def _groups(
+        self,
+        method: str,
+        parts: list[str],
+        fields: dict[str, Any],
+        body: bytes,
+        query: dict[str, Any],
+    ) -> web.Response:
+        """Report, register, read and unregister groups (the Groups page)."""
+        self._expire_groups()
+        if method == "POST" and not parts:
+            is_json = body.lstrip().startswith(b"{")
+            if (self.bodies == "json" and not is_json) or (self.bodies == "form" and is_json):
+                raise Fault(400, self._reason("invalidBody", "unsupportedFormat"))
+            return self._register(fields)
+        if method == "GET" and not parts:
+            listing = [
+                {"id": gid, "variableCount": str(len(paths)), "uri": f"/groups/{gid}"}
+                for gid, (_prefix, paths, _used) in self.groups.items()
+            ]
+            return self._json({"groups": listing, "next": None})
+        group = self.groups.get(parts[0]) if parts else None
+        if group is None:
+            raise Fault(404, self._reason("invalidGroupID", "groupUnknown"))
+        if method == "DELETE":
+            del self.groups[parts[0]]
+            return web.Response(status=204)
+        prefix, paths, _used = group
+        self.groups[parts[0]] = (prefix, paths, time.monotonic())
+        entries: list[dict[str, Any]] = []
+        for path, hit in zip(paths, self._resolve(prefix, paths), strict=True):
+            if hit is None:
+                entries.append({"path": path, "error": {"reason": "invalidName"}})
+            else:
+                entries.append({"path": path, "value": as_json(hit[2], self.text_values)})
+        if str(query.get("summary", "0")) == "1":
+            return web.json_response(
+                {
+                    "apiVersion": API_VERSION,
+                    "variables": [{"value": e.get("value")} for e in entries],
+                }
+            )
+        return self._json(
+            {"id": parts[0], "variablePathPrefix": prefix or None, "variables": entries}
+        )
+
+    def _register(self, fields: dict[str, Any]) -> web.Response:
+        """POST /groups: 404 when a name is unknown, 200 for an identical group, else 201."""
+        prefix, paths = str(fields.get("pathPrefix") or ""), _paths(fields.get("paths"))
+        if not paths:
+            raise Fault(400, "invalidPaths")
+        hits = self._resolve(prefix, paths)
+        if any(hit is None for hit in hits):
+            raise Fault(404, self._reason("invalidNames", "unknownVariables"))
+        for gid, (known_prefix, known_paths, _used) in self.groups.items():
+            if (known_prefix, known_paths) == (prefix, paths):
+                status, group_id = 200, gid
+                break
+        else:
+            status, group_id = 201, f"g{secrets.randbelow(9 * 10**9) + 10**9}"
+        self.groups[group_id] = (prefix, paths, time.monotonic())
+        variables = [
+            {"path": path, "type": _type_of(hit)} for path, hit in zip(paths, hits, strict=True)
+        ]
+        answer = {"id": group_id, "variablePathPrefix": prefix or None, "variables": variables}
+        location = f"{self.host}:{self.port}/_pxc_api/api/groups/{group_id}"
+        return self._json(answer, status=status, Location=location)
+
+    def _expire_groups(self) -> None:
+        """Drop the groups idle for longer than the timeout."""
+        now = time.monotonic()
+        for gid in [
+            g for g, (_p, _v, used) in self.groups.items() if now - used > self.group_timeout
+        ]:
+            del self.groups[gid]
+
+    # -- dictionaries ----------------------------------------------------------------------
+
+    async def _ehmi(self, request: web.Request) -> web.Response:
+        """The variable and type dictionaries of the eHMI (the variable browser)."""
+        try:
+            self._user(request)
+        except Fault as fault:
+            return self._error(fault)
+        name = request.match_info["name"]
+        if name == "data.dictionary.json":
+            table = {
+                path: {"Type": variable.type, "InitValue": "", "ReadOnly": variable.read_only}
+                for path, variable in self.program.variables.items()
+            }
+            return web.json_response({"HmiVariables2": table})
+        if name == "type.dictionary.json":
+            listing = [
+                {
+                    "Name": variable.type,
+                    "Kind": "Array" if variable.element else "Struct",
+                    "ElementType": variable.element or None,
+                    "Dimensions": f"[{variable.first}..{variable.first + len(variable.node) - 1}]"
+                    if isinstance(variable.node, list)
+                    else None,
+                }
+                for variable in self.program.variables.values()
+                if not isinstance(variable.node, Leaf)
+            ]
+            return web.json_response({"Types": listing})
+        return web.json_response({"error": {"details": [{"reason": "notFound"}]}}, status=404)
+
+
+def _type_of(hit: tuple[str, Variable, Any] | None) -> str:
+    """Return the type a register answer names: the leaf's, else the variable's."""
+    if hit is None:
+        return ""
+    return hit[2].type if isinstance(hit[2], Leaf) else hit[1].type
+
+
+def _fields(body: bytes) -> dict[str, Any]:
+    """Return a body's parameters: JSON (sniffed, whatever the content type) or a form."""
+    text = body.decode("utf-8", "replace").strip()
+    if text.startswith("{"):
+        try:
+            data = json.loads(text)
+        except ValueError:
+            raise Fault(400, "invalidJson") from None
+        return data if isinstance(data, dict) else {}
+    return {key: values[-1] for key, values in parse_qs(text).items()}
+
+
+def _query(request: web.Request) -> dict[str, Any]:
+    """Return the query's parameters (a trailing `&`, as pyPLCn sends, is harmless)."""
+    return {key: request.query.getone(key) for key in request.query}
+
+
+def _paths(raw: Any) -> list[str]:
+    """Return the `paths` parameter: a JSON list, or a comma-separated text."""
+    if isinstance(raw, list):
+        return [str(path) for path in raw]
+    if isinstance(raw, str):
+        return [path for path in raw.split(",") if path.strip()]
+    return []
+
+
+def _number(raw: Any, default: float) -> float:
+    """Return a number parameter sent as text or JSON."""
+    try:
+        return float(raw)
+    except (TypeError, ValueError):
+        return default

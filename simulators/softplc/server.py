@@ -1,0 +1,368 @@
+"""A SoftPLC runtime with WEB.TLM (../shared/specs/softplc-web-tlm-rest.txt).
+
+GET /dt (file listing), GET /dt/all, GET /dt/<file>:<element>[?count=], POST /dt and PUT /dt
+with XML bodies, tags of a descriptor table, `normalize_response_addr`, and PUT authentication
+by SSL client certificate (`enable_put_auth`). What the manual leaves open has switches, and its
+answers are the simulator's own inventions, not the client's guesses:
+
+- `bad_item`: "request" fails the whole request for one bad item; "item" fails that item only
+  (`item_error` "attribute" or "child" says how);
+- `error_status` and `error_style` ("xml", "html", "text"): the failed request's answer;
+- `past_end`: "truncate" answers a count past the end of a file with what exists; "error"
+  treats it as a bad item;
+- `foreign_codes`: errors carry invented codes and another shape (status 500, HTML, child);
+- `cert_check`: "request" accepts any certificate in the handshake and refuses a PUT with 403;
+  "handshake" refuses an untrusted certificate in the TLS handshake.
+"""
+
+from __future__ import annotations
+
+from collections import deque
+import datetime as dt
+import math
+import ssl
+from typing import Any
+from urllib.parse import unquote
+from xml.etree import ElementTree as ET  # the simulator parses the client's own requests
+
+from aiohttp import web
+from cryptography import x509
+from cryptography.hazmat.primitives import hashes, serialization
+from cryptography.hazmat.primitives.asymmetric import ec
+from cryptography.x509.oid import NameOID
+
+from ..base import HttpSimulator
+from .datatable import Bad, File, Target, default_files, normalised, resolve
+
+HISTORY = 200
+DEFAULT_TAGS = {"timer1": "T4:0", "important_int": "N7:10", "setpoint": "F8:1"}
+
+
+type Pair = tuple[x509.Certificate, ec.EllipticCurvePrivateKey]
+
+
+def issue(common_name: str, issuer: Pair | None) -> Pair:
+    """Return (certificate, key) signed by issuer, or a self-signed CA when issuer is None."""
+    now = dt.datetime.now(dt.UTC)
+    key = ec.generate_private_key(ec.SECP256R1())
+    name = x509.Name([x509.NameAttribute(NameOID.COMMON_NAME, common_name)])
+    builder = (
+        x509.CertificateBuilder()
+        .subject_name(name)
+        .issuer_name(name if issuer is None else issuer[0].subject)
+        .public_key(key.public_key())
+        .serial_number(x509.random_serial_number())
+        .not_valid_before(now - dt.timedelta(days=1))
+        .not_valid_after(now + dt.timedelta(days=3650))
+        .add_extension(x509.BasicConstraints(ca=issuer is None, path_length=None), critical=True)
+        .add_extension(x509.SubjectKeyIdentifier.from_public_key(key.public_key()), critical=False)
+        .add_extension(
+            x509.AuthorityKeyIdentifier.from_issuer_public_key(
+                (key if issuer is None else issuer[1]).public_key()
+            ),
+            critical=False,
+        )
+        .add_extension(
+            x509.KeyUsage(
+                digital_signature=issuer is not None,
+                content_commitment=False,
+                key_encipherment=False,
+                data_encipherment=False,
+                key_agreement=False,
+                key_cert_sign=issuer is None,
+                crl_sign=issuer is None,
+                encipher_only=False,
+                decipher_only=False,
+            ),
+            critical=True,
+        )
+    )
+    if issuer is not None:
+        builder = builder.add_extension(
+            x509.ExtendedKeyUsage([x509.oid.ExtendedKeyUsageOID.CLIENT_AUTH]), critical=False
+        )
+    return builder.sign(key if issuer is None else issuer[1], hashes.SHA256()), key
+
+
+def pem(certificate: x509.Certificate, key: ec.EllipticCurvePrivateKey) -> tuple[str, str]:
+    """Return (certificate PEM, unencrypted PKCS8 key PEM) as text."""
+    return (
+        certificate.public_bytes(serialization.Encoding.PEM).decode(),
+        key.private_bytes(
+            serialization.Encoding.PEM,
+            serialization.PrivateFormat.PKCS8,
+            serialization.NoEncryption(),
+        ).decode(),
+    )
+
+
+class SoftplcSimulator(HttpSimulator):
+    """A SoftPLC with WEB.TLM; knobs are attributes (see the module's docstring)."""
+
+    common_name = "softplc"
+
+    def __init__(
+        self,
+        *,
+        tls: bool = False,
+        put_auth: bool = False,
+        normalize: bool = False,
+        bench: int = 1000,
+    ) -> None:
+        super().__init__()
+        self.tls = tls
+        self.put_auth = put_auth
+        self.normalize = normalize
+        self.files: dict[tuple[str, int], File] = default_files(bench)
+        self.tags = dict(DEFAULT_TAGS)
+        self.bad_item = "request"
+        self.item_error = "attribute"
+        self.error_status = 400
+        self.error_style = "xml"
+        self.past_end = "truncate"
+        self.foreign_codes = False
+        self.cert_check = "request"
+        self.bodies: deque[bytes] = deque(maxlen=HISTORY)
+        self.items: deque[int] = deque(maxlen=HISTORY)  # <data> items of each POST
+        self.rewrite: Any = None  # bytes -> bytes applied to every 2xx answer (hostile replies)
+        self._client_ca = issue("softplc-clients", None)
+        self._stranger_ca = issue("someone-else", None)
+
+    # -- certificates -------------------------------------------------------------------
+
+    def client_certificate(self, *, trusted: bool = True) -> tuple[str, str]:
+        """Return (PEM certificate, PEM key) of a client certificate the PLC trusts (or not)."""
+        issuer = self._client_ca if trusted else self._stranger_ca
+        return pem(*issue("home-assistant", issuer))
+
+    def use_certificate(self, chain: bytes, key: bytes) -> None:
+        """Serve the certificate, and ask clients for theirs (optional: reads need none)."""
+        super().use_certificate(chain, key)
+        assert self._ssl is not None
+        authorities = [self._client_ca[0]]
+        if self.cert_check == "request":
+            authorities.append(self._stranger_ca[0])  # any certificate passes the handshake
+        for authority in authorities:
+            self._ssl.load_verify_locations(
+                cadata=authority.public_bytes(serialization.Encoding.PEM).decode()
+            )
+        self._ssl.verify_mode = ssl.CERT_OPTIONAL
+
+    async def start(self, host: str = "127.0.0.1", port: int = 0) -> None:
+        """Listen; a TLS simulator gets its certificate (and client check) now."""
+        if self.tls:
+            self.new_certificate()
+        await super().start(host, port)
+
+    def animate(self, elapsed: float) -> None:
+        """Let F8:0 (a temperature) drift and the timer T4:0 count."""
+        self.files["F", 8].words[0] = round(21.5 + 1.5 * math.sin(2 * math.pi * elapsed / 900), 1)
+        self.files["T", 4].words[2] = int(elapsed * 10) % 4000
+
+    # -- HTTP -------------------------------------------------------------------------
+
+    def build_app(self, app: web.Application) -> None:
+        app.router.add_get("/dt", self._listing)
+        app.router.add_get("/dt/all", self._all)
+        app.router.add_get("/dt/{ad}", self._get)
+        app.router.add_post("/dt", self._post)
+        app.router.add_put("/dt", self._put)
+
+    async def _listing(self, request: web.Request) -> web.Response:
+        links = "".join(
+            f'<li><a href="/dt/{f.type if f.type in "OIS" else f"{f.type}{f.number}"}:0">'
+            f"{f.type}{f.number}</a> ({f.elements} elements)</li>"
+            for f in self.files.values()
+        )
+        return web.Response(
+            text=f"<html><body><ul>{links}</ul></body></html>", content_type="text/html"
+        )
+
+    async def _all(self, request: web.Request) -> web.Response:
+        items = [(f"{f.type}{f.number}:0", None) for f in self.files.values() if f.type != "PD"]
+        return self._answer(self._read_items(items))
+
+    async def _get(self, request: web.Request) -> web.Response:
+        count = request.query.get("count")
+        return self._answer(self._read_items([(unquote(request.match_info["ad"]), count)]))
+
+    async def _post(self, request: web.Request) -> web.Response:
+        body = await request.read()
+        self.bodies.append(body)
+        try:
+            items = [(d.get("ad", ""), d.get("count")) for d in self._data(body)]
+        except Bad as err:
+            return self._failure(str(err), 400)
+        self.items.append(len(items))
+        return self._answer(self._read_items(items))
+
+    async def _put(self, request: web.Request) -> web.Response:
+        body = await request.read()
+        self.bodies.append(body)
+        if self.put_auth and not self._trusted(request):
+            return self._failure("client certificate required for PUT", 403)
+        try:
+            data = self._data(body)
+        except Bad as err:
+            return self._failure(str(err), 400)
+        written: list[ET.Element | Bad] = []
+        for element in data:
+            try:
+                written.append(self._write(element))
+            except Bad as err:
+                if self.bad_item == "request":
+                    return self._failure(str(err), self.error_status)
+                written.append(Bad(str(err), element.get("ad", "")))
+        return self._answer(self._document(written))
+
+    # -- what the handlers share -----------------------------------------------------
+
+    def _trusted(self, request: web.Request) -> bool:
+        """True when the request came with a client certificate issued by the PLC's CA."""
+        if request.transport is None:
+            return False
+        peer = request.transport.get_extra_info("peercert")
+        if not peer:
+            return False
+        issuer = {key: value for part in peer.get("issuer", ()) for key, value in part}
+        return issuer.get("commonName") == "softplc-clients"
+
+    def _data(self, body: bytes) -> list[ET.Element]:
+        try:
+            root = ET.fromstring(body)
+        except ET.ParseError as err:
+            raise Bad(f"malformed XML: {err}") from None
+        if root.tag != "files":
+            raise Bad("the body is not a <files> element")
+        return [child for child in root if child.tag == "data"]
+
+    def _read_items(self, items: list[tuple[str, str | None]]) -> web.Response | ET.Element:
+        answers: list[ET.Element | Bad] = []
+        for ad, count in items:
+            try:
+                answers.append(self._read(ad, count))
+            except Bad as err:
+                if self.bad_item == "request":
+                    return self._failure(str(err), self.error_status)
+                answers.append(Bad(str(err), ad))
+        return self._document(answers)
+
+    def _target(self, ad: str) -> tuple[Target, str]:
+        """Return the target of an ad or tag, and the ad the answer carries."""
+        tag = next((name for name in self.tags if name.lower() == ad.strip().lower()), None)
+        target = resolve(self.files, self.tags[tag] if tag else ad)
+        if tag:
+            return target, tag  # "addresses will be switched out with tags"
+        return target, normalised(target) if self.normalize else ad
+
+    def _read(self, ad: str, count_text: str | None) -> ET.Element:
+        target, shown = self._target(ad)
+        file = target.file
+        if target.pid or target.word is not None:
+            value = (
+                file.pids[target.element][target.pid]
+                if target.pid
+                else file.words[
+                    target.element * file.width + target.word  # type: ignore[operator]
+                ]
+            )
+            return self._element(shown, None, [value], file)
+        try:
+            count = -1 if count_text is None else int(count_text)
+        except ValueError:
+            raise Bad(f"invalid count '{count_text}'") from None
+        room = file.elements - target.element
+        if count < 0 or count > room:
+            if count > room and self.past_end == "error":
+                raise Bad(f"count {count} runs past the end of {file.type}{file.number}")
+            count = room
+        start = target.element * file.width
+        return self._element(shown, count, file.words[start : start + count * file.width], file)
+
+    def _write(self, data: ET.Element) -> ET.Element:
+        ad = data.get("ad", "")
+        target, _shown = self._target(ad)
+        file = target.file
+        values = (data.text or "").split()
+        if target.pid or target.word is not None:
+            if len(values) != 1:
+                raise Bad(f"a word write takes one value, not {len(values)}")
+            if target.pid:
+                file.pids[target.element][target.pid] = self._number(values[0], file)
+            else:
+                file.words[target.element * file.width + target.word] = self._number(
+                    values[0], file
+                )
+            return self._read(ad, None)
+        count = data.get("count")
+        if count is None or not count.lstrip("-").isdigit() or int(count) != len(values):
+            raise Bad(f"count {count} does not match the {len(values)} values")
+        if file.width != 1 or target.element + len(values) > file.elements:
+            raise Bad(f"cannot write {len(values)} elements at {ad}")
+        for offset, text in enumerate(values):
+            file.words[target.element + offset] = self._number(text, file)
+        return self._read(ad, count)
+
+    def _number(self, text: str, file: File) -> int | float:
+        try:
+            if file.type in ("F", "PD"):
+                return float(int(text, 16)) if text.lower().startswith("0x") else float(text)
+            value = int(text, 0) if text.lower().startswith("0x") else int(text)
+        except ValueError:
+            raise Bad(f"invalid value '{text}'") from None
+        if not -0x8000 <= value <= 0xFFFF:
+            raise Bad(f"value {text} does not fit a word")
+        return value & 0xFFFF
+
+    def _element(self, ad: str, count: int | None, values: list[Any], file: File) -> ET.Element:
+        element = ET.Element("data", ad=ad)
+        if count is not None:
+            element.set("count", str(count))
+        if file.type in ("F", "PD"):
+            texts = [f"{float(v):.7g}" for v in values]
+        elif file.type in ("O", "I"):
+            texts = [f"0x{int(v):04x}" for v in values]
+        else:
+            texts = [str(int(v)) for v in values]
+        element.text = "\n" + " ".join(texts) + "\n"
+        return element
+
+    def _document(self, answers: list[ET.Element | Bad]) -> ET.Element:
+        root = ET.Element("files")
+        for answer in answers:
+            if isinstance(answer, Bad):
+                root.append(self._bad_element(answer))
+            else:
+                root.append(answer)
+        return root
+
+    def _bad_element(self, bad: Bad) -> ET.Element:
+        text, ad = str(bad.args[0]), str(bad.args[1]) if len(bad.args) > 1 else ""
+        element = ET.Element("data", ad=ad)
+        if self.foreign_codes or self.item_error == "child":
+            error = ET.SubElement(element, "fault" if self.foreign_codes else "error")
+            error.text = f"WT-{len(text) * 37 % 900 + 100}: {text}" if self.foreign_codes else text
+        else:
+            element.set("error", text)
+        return element
+
+    def _answer(self, document: web.Response | ET.Element) -> web.Response:
+        if isinstance(document, web.Response):
+            return document
+        body = b'<?xml version="1.0" encoding="utf-8" ?>\n' + ET.tostring(document)
+        if self.rewrite is not None:
+            body = self.rewrite(body)
+        return web.Response(body=body, content_type="text/xml", charset="utf-8")
+
+    def _failure(self, text: str, status: int) -> web.Response:
+        if self.foreign_codes:
+            status = 500 if status not in (401, 403) else status
+            text = f"WT-E{status * 7 % 97:02d} {text}"
+        style = "html" if self.foreign_codes else self.error_style
+        if style == "html":
+            body = f"<html><body><h1>Error</h1><p>{text}</p></body></html>"
+            return web.Response(status=status, text=body, content_type="text/html")
+        if style == "text":
+            return web.Response(status=status, text=text)
+        body = f'<?xml version="1.0"?><files><error code="{status}">{text}</error></files>'
+        return web.Response(status=status, text=body, content_type="text/xml")

@@ -1,0 +1,98 @@
+"""Home Assistant fixtures for the PLCnext vendor: its simulator and an entry of it."""
+
+from __future__ import annotations
+
+from collections.abc import AsyncGenerator, Iterable
+from typing import Any
+
+from freezegun.api import FrozenDateTimeFactory
+from homeassistant.const import CONF_HOST, CONF_PASSWORD, CONF_PORT, CONF_USERNAME
+from homeassistant.core import HomeAssistant
+import pytest
+from pytest_homeassistant_custom_component.common import MockConfigEntry
+
+from custom_components.plc_bridge.const import (
+    CONF_FINGERPRINT,
+    CONF_OPTIONS,
+    CONF_TLS,
+    CONF_VENDOR,
+)
+from simulators.plcnext import DEFAULT_PASSWORD, DEFAULT_USER, PlcnextSimulator
+from tests.ha_fixtures import PointData, add_entry, point, unload_all
+
+PLCNEXT_ENTRY_ID = "01JPLCBR1DGE00000000PLCNEXT"
+
+PLCNEXT_POINTS = [
+    point(
+        "temperature",
+        "Temperature",
+        "sensor",
+        "MainInstance.Temperature",
+        "REAL",
+        unit_of_measurement="°C",
+        device_class="temperature",
+        state_class="measurement",
+        read_only=True,
+    ),
+    point("setpoint", "Setpoint", "number", "MainInstance.Setpoint", "REAL", min=10.0, max=30.0),
+    point("pump", "Pump", "switch", "MainInstance.Pump", "BOOL"),
+    point("alarm", "Alarm", "binary_sensor", "MainInstance.Alarm", "BOOL"),
+    point("level", "Level 2", "sensor", "MainInstance.Levels[2]", "INT"),
+    point("message", "Message", "text", "MainInstance.Message", "STRING"),
+]
+
+
+def plcnext_data(sim: PlcnextSimulator, **changes: Any) -> dict[str, Any]:
+    """Return entry data for the simulator: pinned certificate, default user, a clock variable."""
+    data = {
+        CONF_VENDOR: "plcnext",
+        CONF_HOST: sim.host,
+        CONF_PORT: sim.port,
+        CONF_USERNAME: DEFAULT_USER,
+        CONF_PASSWORD: DEFAULT_PASSWORD,
+        CONF_TLS: "pin",
+        CONF_FINGERPRINT: sim.fingerprint,
+        CONF_OPTIONS: {"clock_variable": "Arp.Plc.Eclr/MainInstance.Clock"},
+    }
+    return data | changes
+
+
+def make_plcnext_entry(
+    hass: HomeAssistant,
+    sim: PlcnextSimulator,
+    points: Iterable[PointData] = PLCNEXT_POINTS,
+    **changes: Any,
+) -> MockConfigEntry:
+    """Add an entry of the simulator with the given points (not set up yet)."""
+    return add_entry(
+        hass,
+        title="PLCnext",
+        entry_id=PLCNEXT_ENTRY_ID,
+        unique_id=f"{sim.host}:{sim.port}",
+        data=plcnext_data(sim, **changes),
+        points=points,
+    )
+
+
+@pytest.fixture
+async def plcnext_sim(
+    hass: HomeAssistant, freezer: FrozenDateTimeFactory
+) -> AsyncGenerator[PlcnextSimulator]:
+    """A started PLCnext simulator (HTTPS, user authentication on); time frozen meanwhile."""
+    sim = PlcnextSimulator()
+    await sim.start()
+    yield sim
+    await unload_all(hass)
+    await sim.stop()
+
+
+@pytest.fixture
+async def plcnext_entry(
+    hass: HomeAssistant, plcnext_sim: PlcnextSimulator
+) -> AsyncGenerator[MockConfigEntry]:
+    """The simulator's entry with PLCNEXT_POINTS, set up (unloaded afterwards)."""
+    entry = make_plcnext_entry(hass, plcnext_sim)
+    assert await hass.config_entries.async_setup(entry.entry_id)
+    await hass.async_block_till_done()
+    yield entry
+    await unload_all(hass)
