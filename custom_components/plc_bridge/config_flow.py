@@ -271,7 +271,8 @@ class PlcBridgeConfigFlow(ConfigFlow, domain=DOMAIN):
             return self._connection_form({})
         self._enter(self._connection_schema(), user_input)
         client = client_class(self._vendor)
-        self._data.update(connection_data(client, self._vendor, user_input))
+        stored = self._data.get(CONF_OPTIONS)
+        self._data.update(connection_data(client, self._vendor, user_input, stored))
         if self._vendor in SECOND_PAGES:
             return self._second_form({})
         return await self._check_and_connect()

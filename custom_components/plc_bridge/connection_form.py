@@ -45,6 +45,7 @@ class VendorField:
     key: str
     selector: Selector[Any]
     default: str | int | bool | None = None  # None: an optional field
+    credential: bool = False  # a secret: never suggested again, kept when left empty
 
 
 @dataclass(frozen=True, slots=True)
@@ -76,8 +77,14 @@ VENDOR_FIELDS: dict[str, tuple[VendorField, ...]] = {
     ),
     "plcnext": (VendorField("clock_variable", TextSelector()),),
     "softplc": (
-        VendorField("client_certificate", TextSelector(TextSelectorConfig(multiline=True))),
-        VendorField("client_key", TextSelector(TextSelectorConfig(multiline=True))),
+        VendorField(
+            "client_certificate",
+            TextSelector(TextSelectorConfig(multiline=True)),
+            credential=True,
+        ),
+        VendorField(
+            "client_key", TextSelector(TextSelectorConfig(multiline=True)), credential=True
+        ),
     ),
     "s7": (
         VendorField("family", _choice("family", ["s7_300_1500", "s7_200"]), "s7_300_1500"),
@@ -167,10 +174,9 @@ def connection_schema(client: type[PlcClient], vendor: str, *, credentials: bool
             )
         )
     if credentials and client.needs_credentials:
-        optional = getattr(client, "credentials_optional", False)  # PLCnext: auth may be off
         fields.update(
             {vol.Optional(str(key)): value for key, value in CREDENTIALS_SCHEMA.schema.items()}
-            if optional
+            if client.credentials_optional
             else CREDENTIALS_SCHEMA.schema
         )
     fields.update(fields_schema(VENDOR_FIELDS.get(vendor, ())))
@@ -178,14 +184,26 @@ def connection_schema(client: type[PlcClient], vendor: str, *, credentials: bool
 
 
 def connection_data(
-    client: type[PlcClient], vendor: str, user_input: Mapping[str, Any]
+    client: type[PlcClient],
+    vendor: str,
+    user_input: Mapping[str, Any],
+    stored: Mapping[str, Any] | None = None,
 ) -> dict[str, Any]:
-    """Return the entry data a submitted connection page sets (not the fingerprint)."""
+    """Return the entry data a submitted connection page sets (not the fingerprint).
+
+    Vendor fields that are secrets, left empty, keep their `stored` values (a reconfigured
+    SoftPLC keeps its client certificate and key unless new ones are pasted).
+    """
+    kept = {
+        field.key: (stored or {})[field.key]
+        for field in VENDOR_FIELDS.get(vendor, ())
+        if field.credential and field.key not in user_input and field.key in (stored or {})
+    }
     data: dict[str, Any] = {
         CONF_HOST: str(user_input[CONF_HOST]).strip(),
         CONF_PORT: int(user_input[CONF_PORT]),
         CONF_TLS: TlsMode(user_input.get(CONF_TLS, client.default_tls)).value,
-        CONF_OPTIONS: vendor_options(VENDOR_FIELDS.get(vendor, ()), user_input),
+        CONF_OPTIONS: kept | vendor_options(VENDOR_FIELDS.get(vendor, ()), user_input),
     }
     if CONF_USERNAME in user_input:
         data[CONF_USERNAME] = user_input[CONF_USERNAME]
@@ -204,8 +222,12 @@ def _plain(value: Any) -> Any:
 
 
 def form_values(data: Mapping[str, Any]) -> dict[str, Any]:
-    """Return entry data flattened into the connection forms' suggested values."""
-    return {**data, **data.get(CONF_OPTIONS, {})}
+    """Return entry data flattened into the connection forms' suggested values (no secrets)."""
+    secret = {
+        field.key for fields in VENDOR_FIELDS.values() for field in fields if field.credential
+    }
+    options = {key: value for key, value in data.get(CONF_OPTIONS, {}).items() if key not in secret}
+    return {**data, **options}
 
 
 def on_form(errors: dict[str, str], schema: vol.Schema) -> dict[str, str]:

@@ -23,6 +23,9 @@ TO_REDACT = {
     "mac",
     "token",
     "cookie",
+    # A SoftPLC's client certificate and its private key (the key alone would let anyone write).
+    "client_certificate",
+    "client_key",
     # Titles are "<model> (<host>)" unless the user renamed the entry.
     "title",
 }

@@ -5,6 +5,7 @@ from __future__ import annotations
 import asyncio
 from collections.abc import AsyncGenerator
 import socket
+import ssl
 import time
 
 import aiohttp
@@ -15,6 +16,7 @@ from custom_components.plc_bridge.plc import (
     ClientMetrics,
     ConnectionConfig,
     PlcConnectionError,
+    PlcProtocolError,
     PlcTimeoutError,
     PlcTlsError,
     TlsMode,
@@ -40,8 +42,21 @@ class EchoSimulator(HttpSimulator):
             await asyncio.sleep(1)
             return web.Response(text="late")
 
+        async def big(request: web.Request) -> web.StreamResponse:
+            size = int(request.query["size"])
+            if request.query.get("chunked"):  # no Content-Length: only the read can stop it
+                response = web.StreamResponse()
+                response.enable_chunked_encoding()
+                await response.prepare(request)
+                for _ in range(size // 1000):
+                    await response.write(b"x" * 1000)
+                await response.write_eof()
+                return response
+            return web.Response(body=b"x" * size)
+
         app.router.add_post("/echo", echo)
         app.router.add_get("/slow", slow)
+        app.router.add_get("/big", big)
 
 
 class TlsEchoSimulator(EchoSimulator):
@@ -184,3 +199,31 @@ async def test_own_session_keeps_connection_for_poll_interval(
         now[0] += 60.0
         await transport.request("POST", "/echo", data="2")
     assert len(tls_sim.peers) == connections
+
+
+@pytest.mark.parametrize("chunked", ["", "1"])
+async def test_reply_body_capped(session: aiohttp.ClientSession, chunked: str) -> None:
+    """A reply past the cap is a protocol error, with or without a Content-Length."""
+    sim = EchoSimulator()
+    await sim.start()
+    try:
+        transport, _metrics = _transport(session, sim.port, TlsMode.NONE, max_body=10_000)
+        status, _headers, body = await transport.request(
+            "GET", f"/big?size=10000&chunked={chunked}"
+        )
+        assert (status, len(body)) == (200, 10_000)
+        with pytest.raises(PlcProtocolError, match=r"10000 bytes|too large"):
+            await transport.request("GET", f"/big?size=20000&chunked={chunked}")
+    finally:
+        await sim.stop()
+
+
+async def test_own_ssl_context_replaces_tls_mode(
+    session: aiohttp.ClientSession, tls_sim: TlsEchoSimulator
+) -> None:
+    """A vendor's own SSL context decides the check: one trusting nothing refuses the PLC."""
+    context = ssl.SSLContext(ssl.PROTOCOL_TLS_CLIENT)  # no CA loaded: nothing is trusted
+    config = ConnectionConfig(host="127.0.0.1", port=tls_sim.port, tls=TlsMode.OFF, timeout=5)
+    transport = HttpTransport(config, session, ClientMetrics(), ssl_context=context)
+    with pytest.raises(PlcTlsError):
+        await transport.request("POST", "/echo", data="1")

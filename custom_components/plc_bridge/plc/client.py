@@ -42,6 +42,7 @@ class PlcClient(ABC):
     default_tls: ClassVar[TlsMode] = TlsMode.NONE
     tls_modes: ClassVar[tuple[TlsMode, ...]] = (TlsMode.NONE,)
     needs_credentials: ClassVar[bool] = False
+    credentials_optional: ClassVar[bool] = False  # asked, but may stay empty (auth may be off)
     data_types: ClassVar[tuple[str, ...]]
     default_scan_interval: ClassVar[float] = 5.0
     max_points_per_request: ClassVar[int] = 0  # 0: the vendor packs by size, not count

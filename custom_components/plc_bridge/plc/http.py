@@ -123,6 +123,24 @@ def shown(body: str | bytes | None) -> str:
     return text if len(text) <= SHOWN else f"{text[:SHOWN]}… ({len(text)} characters)"
 
 
+MAX_BODY = 16 * 1024 * 1024
+"""The largest reply body read (a PLC's largest real answer is far below a megabyte)."""
+
+
+async def _read_capped(response: aiohttp.ClientResponse, limit: int) -> bytes:
+    """Return the body, refusing it as soon as it grows past `limit` bytes (never buffered)."""
+    if response.content_length is not None and response.content_length > limit:
+        raise PlcProtocolError(f"the PLC's reply of {response.content_length} bytes is too large")
+    chunks: list[bytes] = []
+    size = 0
+    async for chunk in response.content.iter_chunked(64 * 1024):
+        size += len(chunk)
+        if size > limit:
+            raise PlcProtocolError(f"the PLC's reply is larger than {limit} bytes: refused")
+        chunks.append(chunk)
+    return b"".join(chunks)
+
+
 class HttpTransport:
     """Sends every request of one client: one lock, one timeout, pacing and error mapping."""
 
@@ -133,12 +151,22 @@ class HttpTransport:
         metrics: ClientMetrics,
         *,
         request_interval: float = 0.0,
+        ssl_context: ssl.SSLContext | None = None,
+        max_body: int = MAX_BODY,
     ) -> None:
-        """Bind the transport to a PLC, an aiohttp session and the client's metrics."""
+        """Bind the transport to a PLC, an aiohttp session and the client's metrics.
+
+        `ssl_context` replaces the TLS mode's check (a vendor that presents a client
+        certificate builds one, and checks the PLC's certificate in it); `max_body` caps a
+        reply's body while it is read (PlcProtocolError beyond it).
+        """
         self._config = config
         self._session = session
         self._metrics = metrics
-        self._ssl = ssl_option(config)
+        self._ssl: aiohttp.Fingerprint | ssl.SSLContext | bool | None = (
+            ssl_context if ssl_context is not None else ssl_option(config)
+        )
+        self._max_body = max_body
         self._url = base_url(config)
         self._lock = asyncio.Lock()
         self._interval = request_interval
@@ -176,7 +204,7 @@ class HttpTransport:
                     timeout=aiohttp.ClientTimeout(total=self._config.timeout),
                     **kwargs,
                 ) as response:
-                    body = await response.read()
+                    body = await _read_capped(response, self._max_body)
                     # Headers are never logged: they carry the Authorization and the Cookie.
                     _LOGGER.debug(
                         "%s %s %s %s -> %s in %.0f ms: %s",

@@ -35,7 +35,7 @@ from ...types import (
 )
 from .address import Address, parse_address
 from .codec import KINDS, TYPES, check_value, data_type, decode, parse_token
-from .document import Item
+from .document import MAX_REPLY, Item
 from .exchange import Answers, Refused, exchange, send
 from .planner import ReadItem, item_of, plan
 from .tls import client_context, has_certificate, pem_options
@@ -138,12 +138,10 @@ class SoftplcClient(PlcClient):
     async def _transport(self) -> HttpTransport:
         """Return the transport; with a client certificate, over an SSL context presenting it."""
         if self._http is None:
-            transport = HttpTransport(self.config, self.session, self.metrics)
-            if self._certificate:
-                # HttpTransport takes no SSL context of its own yet: its `ssl` is replaced here
-                # (passing ssl= through request() would repeat the keyword).
-                transport._ssl = await client_context(self.config)  # type: ignore[assignment]
-            self._http = transport
+            context = await client_context(self.config) if self._certificate else None
+            self._http = HttpTransport(
+                self.config, self.session, self.metrics, ssl_context=context, max_body=MAX_REPLY
+            )
         return self._http
 
     async def _send(self, method: str, items: Sequence[ReadItem], answers: Answers) -> None:
