@@ -102,6 +102,11 @@ def softplc_points(count: int) -> list[Point]:
     return points
 
 
+def plcnext_points(count: int) -> list[Point]:
+    """The DINT variables the PLCnext simulator's bench option publishes (Bench.Value<i>)."""
+    return [Point(f"Bench.Value{index}", "DINT") for index in range(count)]
+
+
 @dataclass(frozen=True, slots=True)
 class Vendor:
     """How to benchmark one vendor: its points and the request count its planner promises."""
@@ -116,6 +121,7 @@ VENDORS: dict[str, Vendor] = {
     "s7_smart": Vendor(s7_smart_points, lambda n: math.ceil(n / 32), "ceil(N/32)"),
     "tecomat": Vendor(tecomat_points, None, "URI <= 256 chars"),
     "s7": Vendor(s7_points, None, "PDU-packed"),
+    "plcnext": Vendor(plcnext_points, lambda n: 1 if n else 0, "1 group read"),
     "softplc": Vendor(
         softplc_points,
         lambda n: 1 if n else 0,

@@ -14,6 +14,9 @@ from simulators.__main__ import run
 
 OPTIONS: dict[str, dict[str, Any]] = {
     "s7": {"dbs": {1: 8192}},  # the default DB1 of 1 KB holds fewer than 1,000 points
+    "plcnext": {"bench": 1000},  # Bench.Value0 .. Bench.Value999 (none by default)
+    # Files N10, F11, B12 and T13 of 1,000 elements: the 1,000-point mix reads up to T13:999.
+    "softplc": {"bench": 1000, "tls": False, "put_auth": False},
 }
 
 

@@ -108,7 +108,8 @@ def describe(entry: Entry, module: Any, simulator: Any) -> dict[str, Any]:
             key: getattr(simulator, key)
             for key in ("rack", "slot")
             if isinstance(getattr(simulator, key, None), int)
-        },
+        }
+        | getattr(simulator, "form_fields", {}),
     }
 
 
@@ -204,9 +205,12 @@ async def run(
         loop.add_signal_handler(signum, stop.set)
     try:
         for entry, module, cls in found:
-            simulator = cls(**(options or {}).get(entry.vendor, {}))
+            default = getattr(cls, "DEMO_OPTIONS", {}) if demo else {}
+            simulator = cls(**(options or {}).get(entry.vendor, default))
             if certificates is not None and getattr(simulator, "tls", False):
                 keep_certificate(simulator, certificates, entry.vendor)
+                if callable(getattr(simulator, "keep_client_certificate", None)):
+                    simulator.keep_client_certificate(certificates)
             await _maybe_await(simulator.start("127.0.0.1", entry.port if port is None else port))
             running.append((entry, simulator))
             info = describe(entry, module, simulator)

@@ -22,23 +22,31 @@ from tests.ha_fixtures import PointData, add_entry, point, unload_all
 
 PLCNEXT_ENTRY_ID = "01JPLCBR1DGE00000000PLCNEXT"
 
-PLCNEXT_POINTS = [
+PLCNEXT_POINTS = [  # full paths, as the point form stores them
     point(
         "temperature",
         "Temperature",
         "sensor",
-        "MainInstance.Temperature",
+        "Arp.Plc.Eclr/MainInstance.Temperature",
         "REAL",
         unit_of_measurement="°C",
         device_class="temperature",
         state_class="measurement",
         read_only=True,
     ),
-    point("setpoint", "Setpoint", "number", "MainInstance.Setpoint", "REAL", min=10.0, max=30.0),
-    point("pump", "Pump", "switch", "MainInstance.Pump", "BOOL"),
-    point("alarm", "Alarm", "binary_sensor", "MainInstance.Alarm", "BOOL"),
-    point("level", "Level 2", "sensor", "MainInstance.Levels[2]", "INT"),
-    point("message", "Message", "text", "MainInstance.Message", "STRING"),
+    point(
+        "setpoint",
+        "Setpoint",
+        "number",
+        "Arp.Plc.Eclr/MainInstance.Setpoint",
+        "REAL",
+        min=10.0,
+        max=30.0,
+    ),
+    point("pump", "Pump", "switch", "Arp.Plc.Eclr/MainInstance.Pump", "BOOL"),
+    point("alarm", "Alarm", "binary_sensor", "Arp.Plc.Eclr/MainInstance.Alarm", "BOOL"),
+    point("level", "Level 2", "sensor", "Arp.Plc.Eclr/MainInstance.Levels[2]", "INT"),
+    point("message", "Message", "text", "Arp.Plc.Eclr/MainInstance.Message", "STRING"),
 ]
 
 

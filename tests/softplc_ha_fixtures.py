@@ -71,3 +71,19 @@ async def softplc_sim(
     yield sim
     await unload_all(hass)
     await sim.stop()
+
+
+@pytest.fixture
+async def softplc_http_sim(hass: HomeAssistant) -> AsyncGenerator[SoftplcSimulator]:
+    """A started SoftPLC simulator over plain HTTP, without PUT authentication."""
+    sim = SoftplcSimulator(bench=0)
+    await sim.start()
+    yield sim
+    await unload_all(hass)
+    await sim.stop()
+
+
+def pem_pair(sim: SoftplcSimulator, *, trusted: bool = True) -> dict[str, str]:
+    """Return the vendor options (as a form takes them) of a client certificate and its key."""
+    certificate, key = sim.client_certificate(trusted=trusted)
+    return {"client_certificate": certificate, "client_key": key}

@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 from collections.abc import Mapping
-from pathlib import Path
 from typing import Any
 
 from homeassistant.config_entries import (
@@ -49,6 +48,8 @@ from .options_flow import PlcBridgeOptionsFlow
 from .plc import DeviceInfo, PlcError, PlcValueError, TlsMode
 from .plc.http import fetch_fingerprint, format_fingerprint
 from .plc.vendors import client_class
+from .plc.vendors.softplc import MaterialError, SoftplcClient, resolve_material
+from .plc.vendors.softplc.tls import CERTIFICATE
 from .subentry_flow import DeviceSubentryFlowHandler
 
 type Input = dict[str, Any] | None
@@ -67,20 +68,9 @@ def device_unique_id(device: DeviceInfo, data: Mapping[str, Any]) -> str:
     return f"{data[CONF_HOST]}:{data[CONF_PORT]}"
 
 
-def pem_paths(config_dir: str, user_input: Mapping[str, Any]) -> dict[str, Any]:
-    """Return SoftPLC input with PEM paths resolved in the config folder (blocking).
-
-    Pasted PEM passes as it is; a path outside the folder stays relative, so that the
-    client's option check refuses it.
-    """
-    changed = dict(user_input)
-    folder = Path(config_dir).resolve()
-    for key in ("client_certificate", "client_key"):
-        value = str(changed.get(key) or "").strip()
-        if value and not value.startswith("-----BEGIN"):
-            path = Path(folder, value).resolve()
-            changed[key] = str(path) if path.is_relative_to(folder) else value.lstrip("/")
-    return changed
+def pem_error(err: MaterialError) -> dict[str, str]:
+    """Return the form error of a SoftPLC client certificate or key, on its own field."""
+    return {err.option: "pem_outside_config" if err.outside else "invalid_pem"}
 
 
 class PlcBridgeConfigFlow(ConfigFlow, domain=DOMAIN):
@@ -137,7 +127,7 @@ class PlcBridgeConfigFlow(ConfigFlow, domain=DOMAIN):
 
     async def async_step_connection_softplc(self, user_input: Input = None) -> ConfigFlowResult:
         """Take the SoftPLC's address, certificate check and client certificate for writes."""
-        return await self._connection_step(await self._pem_paths(user_input))
+        return await self._softplc_step(user_input)
 
     async def async_step_connection_s7(self, user_input: Input = None) -> ConfigFlowResult:
         """Take the S7 CPU's address, family and way to connect (rack/slot or TSAPs)."""
@@ -157,7 +147,7 @@ class PlcBridgeConfigFlow(ConfigFlow, domain=DOMAIN):
 
     async def async_step_reconfigure_softplc(self, user_input: Input = None) -> ConfigFlowResult:
         """Take a configured SoftPLC's new address, certificate check or client certificate."""
-        return await self._connection_step(await self._pem_paths(user_input))
+        return await self._softplc_step(user_input)
 
     async def async_step_reconfigure_s7(self, user_input: Input = None) -> ConfigFlowResult:
         """Take a configured S7 CPU's new address, family or way to connect."""
@@ -219,14 +209,12 @@ class PlcBridgeConfigFlow(ConfigFlow, domain=DOMAIN):
         schema = vol.Schema(fields_schema(VENDOR_FIELDS["softplc"]))
         errors: dict[str, str] = {}
         if user_input is not None:
-            submitted = await self._pem_paths(user_input) or {}
+            stored = entry.data.get(CONF_OPTIONS, {})
             try:
-                submitted = vendor_options(VENDOR_FIELDS["softplc"], submitted)
-                options = client_class("softplc").validate_options(
-                    entry.data.get(CONF_OPTIONS, {}) | submitted
-                )
-            except PlcValueError as err:
-                self._problem, errors = str(err), {"base": "invalid_options"}
+                submitted = await self._pem_paths(user_input, stored)
+                options = client_class("softplc").validate_options(stored | submitted)
+            except MaterialError as err:
+                self._problem, errors = str(err), pem_error(err)
             else:
                 data = {**entry.data, CONF_OPTIONS: options}
                 device, errors = await self._connect(data)
@@ -239,12 +227,24 @@ class PlcBridgeConfigFlow(ConfigFlow, domain=DOMAIN):
             description_placeholders={"name": entry.title, "problem": self._problem},
         )
 
-    async def _pem_paths(self, user_input: Input) -> Input:
-        """Return the input with certificate and key paths made absolute in the config folder."""
-        if user_input is None:
-            return None
+    async def _softplc_step(self, user_input: Input) -> ConfigFlowResult:
+        """Take a SoftPLC's connection page; refuse an unusable certificate or key on its field."""
+        if user_input is not None:
+            try:
+                pem = await self._pem_paths(user_input, self._data.get(CONF_OPTIONS, {}))
+            except MaterialError as err:
+                self._enter(self._connection_schema(), user_input)
+                self._problem = str(err)
+                return self._connection_form(pem_error(err))
+            user_input = {**user_input, **pem}
+        return await self._connection_step(user_input)
+
+    async def _pem_paths(
+        self, user_input: Mapping[str, Any], stored: Mapping[str, Any]
+    ) -> dict[str, str]:
+        """Return the submitted certificate and key, paths made absolute in the config folder."""
         return await self.hass.async_add_executor_job(
-            pem_paths, self.hass.config.config_dir, user_input
+            resolve_material, self.hass.config.config_dir, user_input, stored
         )
 
     async def async_step_reauth_confirm(self, user_input: Input = None) -> ConfigFlowResult:
@@ -287,10 +287,11 @@ class PlcBridgeConfigFlow(ConfigFlow, domain=DOMAIN):
         return await self._check_and_connect()
 
     def _enter(self, schema: vol.Schema, user_input: Mapping[str, Any]) -> None:
-        """Remember a page's values; a field left empty (so not sent) forgets the older one."""
+        """Remember a page's values but secrets; a field left empty (not sent) forgets the older."""
         for marker in schema.schema:
             self._entered.pop(str(marker), None)
-        self._entered.update(user_input)
+        secrets = {field.key for field in VENDOR_FIELDS.get(self._vendor, ()) if field.credential}
+        self._entered.update({k: v for k, v in user_input.items() if k not in secrets})
 
     async def _check_and_connect(self) -> ConfigFlowResult:
         """Check the vendor options, fetch the certificate in pin mode, then connect."""
@@ -357,11 +358,17 @@ class PlcBridgeConfigFlow(ConfigFlow, domain=DOMAIN):
         client = create_client(self.hass, data)
         self._problem = ""
         try:
-            return await client.connect(), {}
+            device = await client.connect()
+            if isinstance(client, SoftplcClient):
+                await client.check_certificate()  # writes need it: refused here, on the form
+            return device, {}
         except PlcError as err:
             LOGGER.debug("Cannot connect to %s: %s", data[CONF_HOST], err)
             self._problem = str(err)
-            return None, error_for(err)
+            errors = error_for(err)
+            if data[CONF_VENDOR] == "softplc" and CONF_PASSWORD in errors:
+                errors = {CERTIFICATE: errors[CONF_PASSWORD]}  # its only credential
+            return None, errors
         except Exception:
             LOGGER.exception("Unexpected error connecting to %s", data[CONF_HOST])
             return None, {"base": "unknown"}

@@ -205,9 +205,10 @@ def connection_data(
         CONF_TLS: TlsMode(user_input.get(CONF_TLS, client.default_tls)).value,
         CONF_OPTIONS: kept | vendor_options(VENDOR_FIELDS.get(vendor, ()), user_input),
     }
-    if CONF_USERNAME in user_input:
-        data[CONF_USERNAME] = user_input[CONF_USERNAME]
-        data[CONF_PASSWORD] = user_input[CONF_PASSWORD]
+    if CONF_USERNAME in user_input or CONF_PASSWORD in user_input:
+        # Optional credentials (PLCnext): a field left empty is not sent at all.
+        data[CONF_USERNAME] = user_input.get(CONF_USERNAME, "")
+        data[CONF_PASSWORD] = user_input.get(CONF_PASSWORD, "")
     return data
 
 

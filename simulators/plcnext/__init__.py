@@ -1,5 +1,17 @@
 """A Phoenix Contact PLCnext REST data interface simulator."""
 
-from .server import DEFAULT_PASSWORD, DEFAULT_USER, VIEWER_USER, PlcnextSimulator
+from .server import (
+    DEFAULT_PASSWORD,
+    DEFAULT_USER,
+    NO_ROLE_USER,
+    VIEWER_USER,
+    PlcnextSimulator,
+)
 
-__all__ = ["DEFAULT_PASSWORD", "DEFAULT_USER", "VIEWER_USER", "PlcnextSimulator"]
+__all__ = [
+    "DEFAULT_PASSWORD",
+    "DEFAULT_USER",
+    "NO_ROLE_USER",
+    "VIEWER_USER",
+    "PlcnextSimulator",
+]

@@ -128,10 +128,24 @@ class Program:
     """The HMI variables of one project download, by full path."""
 
     variables: dict[str, Variable] = field(default_factory=dict)
+    _names: dict[str, str] = field(default_factory=dict, init=False, repr=False)
+
+    def __post_init__(self) -> None:
+        """Index the names case-insensitively (a 1,000-variable group resolves in one pass)."""
+        self._names = {name.lower(): name for name in self.variables}
+
+    def rename(self, old: str, new: str) -> None:
+        """Rename a variable (a download of a changed project)."""
+        self.variables[new] = self.variables.pop(old)
+        del self._names[old.lower()]
+        self._names[new.lower()] = new
 
     def find(self, path: str) -> tuple[Variable, Node] | None:
         """Return the variable and node a full path names (members, `[i]` elements)."""
         lowered = path.strip().lower()
+        if (exact := self._names.get(lowered)) is not None:
+            variable = self.variables[exact]
+            return variable, variable.node
         for name, variable in self.variables.items():
             key = name.lower()
             if lowered == key:
@@ -140,6 +154,30 @@ class Program:
                 node = _walk(variable, path.strip()[len(name) :])
                 return None if node is None else (variable, node)
         return None
+
+    def data_dictionary(self) -> dict[str, Any]:
+        """Return `/ehmi/data.dictionary.json`: every HMI variable's type and read-only flag."""
+        table = {
+            path: {"Type": variable.type, "InitValue": "", "ReadOnly": variable.read_only}
+            for path, variable in self.variables.items()
+        }
+        return {"HmiVariables2": table}
+
+    def type_dictionary(self) -> dict[str, Any]:
+        """Return `/ehmi/type.dictionary.json`: the structure and array types."""
+        listing = [
+            {
+                "Name": variable.type,
+                "Kind": "Array" if variable.element else "Struct",
+                "ElementType": variable.element or None,
+                "Dimensions": f"[{variable.first}..{variable.first + len(variable.node) - 1}]"
+                if isinstance(variable.node, list)
+                else None,
+            }
+            for variable in self.variables.values()
+            if not isinstance(variable.node, Leaf)
+        ]
+        return {"Types": listing}
 
 
 def _walk(variable: Variable, rest: str) -> Node | None:

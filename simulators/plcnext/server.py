@@ -3,40 +3,33 @@
 Service description, two-step authentication, sessions, variables, groups and the eHMI
 dictionaries, over HTTPS with a self-signed certificate. Where the sources disagree, switches
 choose: `bodies` ("both", "json", "form" group registrations), `text_values` (values sent as
-text), `trailing_slashes`, `group_timeout`, `auth` (user authentication on or off),
-`unknown_entries` (unknown names in a variable read fail their entry, not the request).
+text), `trailing_slashes`, `groups.timeout`, `auth` (user authentication on or off),
+`unknown_entries` (unknown names in a variable read fail their entry, not the request),
+`groups_served` (False: an interface without groups).
 `foreign` answers the cases the sources leave open with other reasons and error shapes than
 the client's tests assume, so the client is tested on structure.
 """
 
 from __future__ import annotations
 
-import json
 import math
 import secrets
-import time
 from typing import Any
-from urllib.parse import parse_qs
 
 from aiohttp import web
 
 from ..base import HttpSimulator
 from .access import Access
+from .groups import Groups
+from .parameters import Fault, body_fields, number, paths_of, query_fields
 from .program import PREFIX, Leaf, Program, Refused, Variable, as_json, default_program
 
 DEFAULT_USER = "admin"
 DEFAULT_PASSWORD = "PLCnext-1"
 VIEWER_USER = "viewer"  # EHmiViewer only: may read, not write
+NO_ROLE_USER = "guest"  # no EHmi role: may log in, not read (accessDenied)
 API_VERSION = "1.8.0.0"
 VERSIONS = ("api", "v1.0", "v1.1", "v1.2", "v1.3", "v1.4", "v1.5", "v1.6", "v1.7", "v1.8")
-
-
-class Fault(Exception):
-    """An error answer: status, reason, and the WWW-Authenticate of a token refusal."""
-
-    def __init__(self, status: int, reason: str, challenge: str = "") -> None:
-        super().__init__(status, reason)
-        self.status, self.reason, self.challenge = status, reason, challenge
 
 
 class PlcnextSimulator(HttpSimulator):
@@ -53,6 +46,7 @@ class PlcnextSimulator(HttpSimulator):
             {
                 DEFAULT_USER: (DEFAULT_PASSWORD, ["EHmiViewer", "EHmiChanger"]),
                 VIEWER_USER: (DEFAULT_PASSWORD, ["EHmiViewer"]),
+                NO_ROLE_USER: (DEFAULT_PASSWORD, []),
             }
         )
         self.program: Program = default_program(bench)
@@ -62,8 +56,8 @@ class PlcnextSimulator(HttpSimulator):
         self.trailing_slashes = True
         self.unknown_entries = False
         self.keep_groups = False  # groups survive a download (then stale names fail per entry)
-        self.group_timeout = 120.0
-        self.groups: dict[str, tuple[str, list[str], float]] = {}  # id -> prefix, paths, used
+        self.groups_served = True  # False: an interface without groups (405 on /groups)
+        self.groups = Groups()  # `groups.timeout`: 120 s idle
         self.calls: dict[str, int] = {}
 
     def build_app(self, app: web.Application) -> None:
@@ -94,7 +88,7 @@ class PlcnextSimulator(HttpSimulator):
     def download(self, renames: dict[str, str] | None = None) -> None:
         """Download the project again: a new projectCRC, renamed variables, groups dropped."""
         for old, new in (renames or {}).items():
-            self.program.variables[new] = self.program.variables.pop(old)
+            self.program.rename(old, new)
         self.crc = (self.crc * 1103515245 + 12345) % 2**32
         if not self.keep_groups:
             self.groups.clear()
@@ -127,18 +121,22 @@ class PlcnextSimulator(HttpSimulator):
         if not parts and method == "GET":
             return self._json({"version": "v1.8"}, status=200)
         if head == "auth" and method == "POST" and len(parts) == 2:
-            return self._auth(parts[1], _fields(body))
+            return self._auth(parts[1], body_fields(body))
         if head == "sessions":
-            return self._sessions(method, parts[1:], _fields(body))
+            return self._sessions(method, parts[1:], body_fields(body))
         user = self._user(request)
-        fields = {**_query(request), **_fields(body)}
+        if self.auth and not self.access.roles(user):
+            raise Fault(403, self._reason("accessDenied", "noHmiLevel"))
+        fields = {**query_fields(request), **body_fields(body)}
         self._keep_session(fields.get("sessionID"))
+        if head == "groups" and not self.groups_served:
+            raise Fault(405, "methodNotAllowed")
         if head == "variables" and method in ("GET", "POST") and len(parts) == 1:
             return self._read(fields)
         if head == "variables" and method == "PUT":
             return self._write(fields, user)
         if head == "groups":
-            return self._groups(method, parts[1:], fields, body, _query(request))
+            return self._groups(method, parts[1:], fields, body, query_fields(request))
         raise Fault(404, "invalidPath")
 
     def _json(self, data: dict[str, Any], status: int = 200, **headers: str) -> web.Response:
@@ -200,7 +198,7 @@ class PlcnextSimulator(HttpSimulator):
         """Create, maintain and delete sessions."""
         if method == "POST" and not parts:
             station = str(fields.get("stationID", "")).strip()
-            timeout = _number(fields.get("timeout"), 3_600_000)
+            timeout = number(fields.get("timeout"), 3_600_000)
             if not station:
                 raise Fault(400, "invalidStationID")
             session_id = self.access.open(station, timeout)
@@ -231,7 +229,7 @@ class PlcnextSimulator(HttpSimulator):
 
     def _read(self, fields: dict[str, Any]) -> web.Response:
         """GET or POST /variables: values in request order, paths in full."""
-        prefix, paths = str(fields.get("pathPrefix") or ""), _paths(fields.get("paths"))
+        prefix, paths = str(fields.get("pathPrefix") or ""), paths_of(fields.get("paths"))
         if not paths:
             raise Fault(400, "invalidPaths")
         entries: list[dict[str, Any]] = []
@@ -292,58 +290,41 @@ class PlcnextSimulator(HttpSimulator):
         query: dict[str, Any],
     ) -> web.Response:
         """Report, register, read and unregister groups (the Groups page)."""
-        self._expire_groups()
+        self.groups.expire()
         if method == "POST" and not parts:
             is_json = body.lstrip().startswith(b"{")
             if (self.bodies == "json" and not is_json) or (self.bodies == "form" and is_json):
                 raise Fault(400, self._reason("invalidBody", "unsupportedFormat"))
             return self._register(fields)
         if method == "GET" and not parts:
-            listing = [
-                {"id": gid, "variableCount": str(len(paths)), "uri": f"/groups/{gid}"}
-                for gid, (_prefix, paths, _used) in self.groups.items()
-            ]
-            return self._json({"groups": listing, "next": None})
-        group = self.groups.get(parts[0]) if parts else None
+            return self._json({"groups": self.groups.report(), "next": None})
+        group = self.groups.use(parts[0]) if parts else None
         if group is None:
             raise Fault(404, self._reason("invalidGroupID", "groupUnknown"))
         if method == "DELETE":
-            del self.groups[parts[0]]
+            self.groups.delete(parts[0])
             return web.Response(status=204)
-        prefix, paths, _used = group
-        self.groups[parts[0]] = (prefix, paths, time.monotonic())
         entries: list[dict[str, Any]] = []
-        for path, hit in zip(paths, self._resolve(prefix, paths), strict=True):
+        for path, hit in zip(group.paths, self._resolve(group.prefix, group.paths), strict=True):
             if hit is None:
                 entries.append({"path": path, "error": {"reason": "invalidName"}})
             else:
                 entries.append({"path": path, "value": as_json(hit[2], self.text_values)})
         if str(query.get("summary", "0")) == "1":
-            return web.json_response(
-                {
-                    "apiVersion": API_VERSION,
-                    "variables": [{"value": e.get("value")} for e in entries],
-                }
-            )
-        return self._json(
-            {"id": parts[0], "variablePathPrefix": prefix or None, "variables": entries}
-        )
+            summary = [{"value": entry.get("value")} for entry in entries]
+            return web.json_response({"apiVersion": API_VERSION, "variables": summary})
+        prefix = group.prefix or None
+        return self._json({"id": parts[0], "variablePathPrefix": prefix, "variables": entries})
 
     def _register(self, fields: dict[str, Any]) -> web.Response:
         """POST /groups: 404 when a name is unknown, 200 for an identical group, else 201."""
-        prefix, paths = str(fields.get("pathPrefix") or ""), _paths(fields.get("paths"))
+        prefix, paths = str(fields.get("pathPrefix") or ""), paths_of(fields.get("paths"))
         if not paths:
             raise Fault(400, "invalidPaths")
         hits = self._resolve(prefix, paths)
         if any(hit is None for hit in hits):
             raise Fault(404, self._reason("invalidNames", "unknownVariables"))
-        for gid, (known_prefix, known_paths, _used) in self.groups.items():
-            if (known_prefix, known_paths) == (prefix, paths):
-                status, group_id = 200, gid
-                break
-        else:
-            status, group_id = 201, f"g{secrets.randbelow(9 * 10**9) + 10**9}"
-        self.groups[group_id] = (prefix, paths, time.monotonic())
+        status, group_id = self.groups.register(prefix, paths)
         variables = [
             {"path": path, "type": _type_of(hit)} for path, hit in zip(paths, hits, strict=True)
         ]
@@ -351,43 +332,21 @@ class PlcnextSimulator(HttpSimulator):
         location = f"{self.host}:{self.port}/_pxc_api/api/groups/{group_id}"
         return self._json(answer, status=status, Location=location)
 
-    def _expire_groups(self) -> None:
-        """Drop the groups idle for longer than the timeout."""
-        now = time.monotonic()
-        for gid in [
-            g for g, (_p, _v, used) in self.groups.items() if now - used > self.group_timeout
-        ]:
-            del self.groups[gid]
-
     # -- dictionaries ----------------------------------------------------------------------
 
     async def _ehmi(self, request: web.Request) -> web.Response:
         """The variable and type dictionaries of the eHMI (the variable browser)."""
         try:
-            self._user(request)
+            user = self._user(request)
+            if self.auth and not self.access.roles(user):
+                raise Fault(403, self._reason("accessDenied", "noHmiLevel"))
         except Fault as fault:
             return self._error(fault)
         name = request.match_info["name"]
         if name == "data.dictionary.json":
-            table = {
-                path: {"Type": variable.type, "InitValue": "", "ReadOnly": variable.read_only}
-                for path, variable in self.program.variables.items()
-            }
-            return web.json_response({"HmiVariables2": table})
+            return web.json_response(self.program.data_dictionary())
         if name == "type.dictionary.json":
-            listing = [
-                {
-                    "Name": variable.type,
-                    "Kind": "Array" if variable.element else "Struct",
-                    "ElementType": variable.element or None,
-                    "Dimensions": f"[{variable.first}..{variable.first + len(variable.node) - 1}]"
-                    if isinstance(variable.node, list)
-                    else None,
-                }
-                for variable in self.program.variables.values()
-                if not isinstance(variable.node, Leaf)
-            ]
-            return web.json_response({"Types": listing})
+            return web.json_response(self.program.type_dictionary())
         return web.json_response({"error": {"details": [{"reason": "notFound"}]}}, status=404)
 
 
@@ -396,37 +355,3 @@ def _type_of(hit: tuple[str, Variable, Any] | None) -> str:
     if hit is None:
         return ""
     return hit[2].type if isinstance(hit[2], Leaf) else hit[1].type
-
-
-def _fields(body: bytes) -> dict[str, Any]:
-    """Return a body's parameters: JSON (sniffed, whatever the content type) or a form."""
-    text = body.decode("utf-8", "replace").strip()
-    if text.startswith("{"):
-        try:
-            data = json.loads(text)
-        except ValueError:
-            raise Fault(400, "invalidJson") from None
-        return data if isinstance(data, dict) else {}
-    return {key: values[-1] for key, values in parse_qs(text).items()}
-
-
-def _query(request: web.Request) -> dict[str, Any]:
-    """Return the query's parameters (a trailing `&`, as pyPLCn sends, is harmless)."""
-    return {key: request.query.getone(key) for key in request.query}
-
-
-def _paths(raw: Any) -> list[str]:
-    """Return the `paths` parameter: a JSON list, or a comma-separated text."""
-    if isinstance(raw, list):
-        return [str(path) for path in raw]
-    if isinstance(raw, str):
-        return [path for path in raw.split(",") if path.strip()]
-    return []
-
-
-def _number(raw: Any, default: float) -> float:
-    """Return a number parameter sent as text or JSON."""
-    try:
-        return float(raw)
-    except (TypeError, ValueError):
-        return default

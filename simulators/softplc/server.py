@@ -13,6 +13,10 @@ answers are the simulator's own inventions, not the client's guesses:
 - `foreign_codes`: errors carry invented codes and another shape (status 500, HTML, child);
 - `cert_check`: "request" accepts any certificate in the handshake and refuses a PUT with 403;
   "handshake" refuses an untrusted certificate in the TLS handshake.
+
+The demo (`python -m simulators --demo --certs DIR`) runs it as `DEMO_OPTIONS` say: HTTPS with
+PUT authentication on, and a client certificate the PLC trusts written into DIR at every start
+(`keep_client_certificate`); scripts/develop prints the paths to give in the connection form.
 """
 
 from __future__ import annotations
@@ -20,8 +24,9 @@ from __future__ import annotations
 from collections import deque
 import datetime as dt
 import math
+from pathlib import Path
 import ssl
-from typing import Any
+from typing import Any, ClassVar
 from urllib.parse import unquote
 from xml.etree import ElementTree as ET  # the simulator parses the client's own requests
 
@@ -100,6 +105,7 @@ class SoftplcSimulator(HttpSimulator):
     """A SoftPLC with WEB.TLM; knobs are attributes (see the module's docstring)."""
 
     common_name = "softplc"
+    DEMO_OPTIONS: ClassVar[dict[str, Any]] = {"tls": True, "put_auth": True, "bench": 0}
 
     def __init__(
         self,
@@ -127,6 +133,7 @@ class SoftplcSimulator(HttpSimulator):
         self.rewrite: Any = None  # bytes -> bytes applied to every 2xx answer (hostile replies)
         self._client_ca = issue("softplc-clients", None)
         self._stranger_ca = issue("someone-else", None)
+        self.form_fields: dict[str, str] = {}  # what the demo prints for the connection form
 
     # -- certificates -------------------------------------------------------------------
 
@@ -134,6 +141,21 @@ class SoftplcSimulator(HttpSimulator):
         """Return (PEM certificate, PEM key) of a client certificate the PLC trusts (or not)."""
         issuer = self._client_ca if trusted else self._stranger_ca
         return pem(*issue("home-assistant", issuer))
+
+    def keep_client_certificate(self, folder: Path) -> None:
+        """Write a client certificate this PLC trusts, and its key, into folder (the demo's).
+
+        Issued anew at every start (the PLC's client CA lives as long as the process); the
+        paths stay the same, so an entry that stored them keeps writing after a restart.
+        """
+        certificate, key = self.client_certificate()
+        folder.mkdir(parents=True, exist_ok=True)
+        files = {"Client certificate": folder / "softplc-client.pem"}
+        files["Client key"] = folder / "softplc-client.key"
+        files["Client key"].touch(mode=0o600)
+        files["Client key"].write_text(key)
+        files["Client certificate"].write_text(certificate)
+        self.form_fields = {label: str(path.resolve()) for label, path in files.items()}
 
     def use_certificate(self, chain: bytes, key: bytes) -> None:
         """Serve the certificate, and ask clients for theirs (optional: reads need none)."""
@@ -147,12 +169,6 @@ class SoftplcSimulator(HttpSimulator):
                 cadata=authority.public_bytes(serialization.Encoding.PEM).decode()
             )
         self._ssl.verify_mode = ssl.CERT_OPTIONAL
-
-    async def start(self, host: str = "127.0.0.1", port: int = 0) -> None:
-        """Listen; a TLS simulator gets its certificate (and client check) now."""
-        if self.tls:
-            self.new_certificate()
-        await super().start(host, port)
 
     def animate(self, elapsed: float) -> None:
         """Let F8:0 (a temperature) drift and the timer T4:0 count."""

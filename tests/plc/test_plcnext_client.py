@@ -145,7 +145,7 @@ async def test_on_demand_read(
     plcnext_sim.unknown_entries = entries
     result = await plcnext_client.read([*POINTS, UNKNOWN], poll=False)
     assert values(result) == EXPECTED | {UNKNOWN.address: "PlcAddressError"}
-    assert plcnext_sim.groups == {}
+    assert not plcnext_sim.groups
 
 
 @pytest.mark.parametrize("bodies", ["json", "form"])
@@ -244,11 +244,12 @@ async def test_without_user_authentication(plcnext_config: ConfigFactory) -> Non
 
 
 async def test_missing_user(plcnext_config: ConfigFactory) -> None:
-    """A PLC that asks for a user, with none configured: an authentication error."""
+    """A PLC that asks for a user, with none configured: connecting fails (reauth, form)."""
     client = PlcnextClient(plcnext_config(username="", password=""))
     try:
-        await client.connect()
-        with pytest.raises(PlcAuthenticationError):
+        with pytest.raises(PlcAuthenticationError, match="user authentication on"):
+            await client.connect()
+        with pytest.raises(PlcAuthenticationError, match="asks for a user"):
             await client.read(POINTS)
     finally:
         await client.close()
@@ -286,3 +287,43 @@ def test_paths() -> None:
             PlcnextClient.validate_point(Point(bad, "INT"))
     with pytest.raises(PlcAddressError):
         PlcnextClient.validate_point(Point("Main.x", "STRUCT"))
+
+
+async def test_every_name_unknown_watches_the_program(
+    plcnext_sim: PlcnextSimulator, plcnext_config: ConfigFactory
+) -> None:
+    """With no name known there is no group: a groups report (one request) sees a download."""
+    client = PlcnextClient(plcnext_config(options={}))  # no clock variable in the group either
+    points = [UNKNOWN, Point("MainInstance.Later", "REAL")]
+    try:
+        await client.connect()
+        result = await client.read(points)
+        assert set(values(result).values()) == {"PlcAddressError"}
+        for _ in range(2):
+            await client.read(points)
+            assert client.metrics.last_poll_requests == 1
+        assert plcnext_sim.calls["GET groups"] == 3  # the report, not a group read
+        assert not plcnext_sim.groups
+        renamed = {"Arp.Plc.Eclr/MainInstance.Speed": "Arp.Plc.Eclr/MainInstance.Later"}
+        plcnext_sim.download(renamed)
+        result = await client.read(points)
+        assert values(result) == {UNKNOWN.address: "PlcAddressError", "MainInstance.Later": -1200.0}
+        await client.read(points)
+        assert client.metrics.last_poll_requests == 1
+    finally:
+        await client.close()
+
+
+async def test_clock_rides_in_the_group(
+    plcnext_sim: PlcnextSimulator, plcnext_client: PlcnextClient
+) -> None:
+    """The clock variable is read with the poll's group (status.clock), at no extra request."""
+    result = await plcnext_client.read(POINTS)
+    assert result.status.clock == datetime(2026, 11, 26, 9, 0, tzinfo=PRAGUE)
+    result = await plcnext_client.read(POINTS)
+    assert plcnext_client.metrics.last_poll_requests == 1
+    assert plcnext_client.can_set_clock
+    when = datetime(2026, 11, 26, 14, 0, tzinfo=PRAGUE)
+    await plcnext_client.set_clock(when)
+    assert (await plcnext_client.read(POINTS)).status.clock == when
+    assert await plcnext_client.read_clock() == when

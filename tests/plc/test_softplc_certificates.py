@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from pathlib import Path
 from typing import TYPE_CHECKING
 
 import pytest
@@ -13,6 +14,7 @@ from custom_components.plc_bridge.plc import (
     TlsMode,
 )
 from custom_components.plc_bridge.plc.vendors.softplc import SoftplcClient
+from simulators.__main__ import keep_certificate
 from simulators.softplc import SoftplcSimulator
 
 if TYPE_CHECKING:
@@ -125,3 +127,33 @@ async def test_unusable_key_is_authentication_error(
         assert "PRIVATE" not in str(raised.value)
     finally:
         await client.close()
+
+
+async def test_demo_client_certificate(tmp_path: Path, softplc_settings: ConfigFactory) -> None:
+    """The demo's simulator: HTTPS, PUT authentication, a client certificate written into the
+    demo folder; an entry storing those paths still writes after the simulator restarts."""
+    fingerprints = []
+    for _start in range(2):
+        sim = SoftplcSimulator(**SoftplcSimulator.DEMO_OPTIONS)
+        keep_certificate(sim, tmp_path, "softplc")
+        sim.keep_client_certificate(tmp_path)
+        assert (tmp_path / "softplc-client.key").stat().st_mode & 0o077 == 0
+        assert set(sim.form_fields) == {"Client certificate", "Client key"}
+        await sim.start()
+        fingerprints.append(sim.fingerprint)
+        options = SoftplcClient.validate_options(
+            {
+                "client_certificate": sim.form_fields["Client certificate"],
+                "client_key": sim.form_fields["Client key"],
+            }
+        )
+        client = SoftplcClient(softplc_settings(sim, options=options))
+        try:
+            await client.connect()
+            await client.check_certificate()
+            results = await client.write({Point("N7:0", "INT"): 5})
+            assert results[Point("N7:0", "INT")].value == 5
+        finally:
+            await client.close()
+            await sim.stop()
+    assert fingerprints[0] == fingerprints[1]

@@ -120,9 +120,10 @@ def guess(value: Any) -> str | None:
 
 
 def item(path: VariablePath, kind: str, read_only: bool) -> BrowseItem:
-    """Return the browse item of one leaf, with the platform that suits it."""
+    """Return the browse item of one leaf: named by its path in its component, with a platform."""
     return BrowseItem(
         address=path.text,
+        name=path.text.partition("/")[2],
         data_type=kind,
         read_only=read_only,
         platform=platform(kind, read_only),

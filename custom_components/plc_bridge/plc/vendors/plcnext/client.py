@@ -5,7 +5,6 @@ from __future__ import annotations
 import asyncio
 from collections.abc import Mapping, Sequence
 from datetime import datetime
-import json
 import logging
 from typing import Any, ClassVar
 from zoneinfo import ZoneInfo
@@ -15,6 +14,7 @@ import aiohttp
 from ...client import PlcClient
 from ...errors import (
     PlcAddressError,
+    PlcAuthenticationError,
     PlcError,
     PlcProtocolError,
     PlcValueError,
@@ -24,7 +24,6 @@ from ...types import (
     BrowseItem,
     ConnectionConfig,
     DeviceInfo,
-    PlcStatus,
     Point,
     PointResult,
     ReadResult,
@@ -38,7 +37,8 @@ from .codec import KINDS, TYPES, check_value, data_type, decode, encode
 from .errors import ApiError, request_error
 from .info import device_info, plc_status
 from .paths import VariablePath, parse_path
-from .reading import JSON, Reader, Reading, place
+from .reading import Reader, Reading
+from .writing import put
 
 _LOGGER = logging.getLogger(__name__)
 CLOSE_TIMEOUT = 2.0
@@ -77,7 +77,6 @@ class PlcnextClient(PlcClient):
         self._api: PlcnextApi | None = None
         self._reader: Reader | None = None
         self._zone = ZoneInfo(config.time_zone)
-        self._description: Any = None
 
     @classmethod
     def validate_options(cls, options: Mapping[str, object]) -> dict[str, str | int | bool]:
@@ -133,11 +132,15 @@ class PlcnextClient(PlcClient):
     async def connect(self) -> DeviceInfo:
         """Read the service description, log in where the PLC asks, open a session."""
         api = self._rest()
-        self._description = await api.describe()
+        description = await api.describe()
         if api.can_login and api.auth_required is not False:
             await api.login()
         await api.open_session(timeout=4 * self.config.poll_interval)
-        return device_info(self._description, api)
+        if api.auth_required and not api.can_login:
+            raise PlcAuthenticationError(
+                "the PLC has user authentication on: enter a PLCnext user and password"
+            )
+        return device_info(description, api)
 
     async def _read(self, points: Sequence[Point], *, poll: bool) -> ReadResult:
         """Read every distinct path once: the poll's group, or variables for an on-demand read."""
@@ -152,14 +155,28 @@ class PlcnextClient(PlcClient):
                 continue
             paths.setdefault(wanted[-1][1].key, wanted[-1][1])
         reader = self._poller()
-        if poll:
-            reading = await reader.poll(paths) if paths else Reading()
-        else:
+        if not poll:
             reading = await reader.variables(list(paths.values()), {})
+            return ReadResult(values=self._place(reading, wanted, values))
+        clock = self._clock_point()
+        clock_path = parse_path(clock.address) if clock else None
+        if clock_path is not None:  # in the poll's group: the clock costs no request
+            paths.setdefault(clock_path.key, clock_path)
+        reading = await reader.poll(paths) if paths else Reading()
+        when = self._outcome(reading, clock_path, "DT").value if clock_path else None
+        status = plc_status(reader.crc, reader.regroups, when)
+        return ReadResult(values=self._place(reading, wanted, values), status=status)
+
+    def _place(
+        self,
+        reading: Reading,
+        wanted: list[tuple[Point, VariablePath, str]],
+        values: dict[Point, PointResult],
+    ) -> dict[Point, PointResult]:
+        """Return the results of the wanted points from a reading, with those failed before."""
         for point, path, kind in wanted:
             values[point] = self._outcome(reading, path, kind)
-        status = plc_status(reader.crc, reader.regroups) if poll else PlcStatus()
-        return ReadResult(values=values, status=status)
+        return values
 
     def _outcome(self, reading: Reading, path: VariablePath, kind: str) -> PointResult:
         """Return one point's result from a reading."""
@@ -175,88 +192,15 @@ class PlcnextClient(PlcClient):
     async def _write(self, values: Mapping[Point, Value]) -> dict[Point, PointResult]:
         """Write every value with one PUT /variables; a refused variable fails alone."""
         items = [
-            (
-                point,
-                parse_path(point.address),
-                encode(data_type(point.data_type), value, self._zone),
-            )
-            for point, value in values.items()
+            (point, parse_path(point.address), encode(data_type(point.data_type), v, self._zone))
+            for point, v in values.items()
         ]
         results: dict[Point, PointResult] = {}
-        await self._put(items, results)
-        for point, value in values.items():
-            result = results[point]
-            results[point] = PointResult(value=value) if result.ok else result
-        return results
-
-    def _encoded(self, point: Point, value: Value) -> Any:
-        """Return a checked value as the JSON the PUT carries."""
-        return encode(data_type(point.data_type), value, self._zone)
-
-    async def _put(
-        self, items: list[tuple[Point, VariablePath, Any]], results: dict[Point, PointResult]
-    ) -> None:
-        """PUT the items; a whole refusal (403, 404) of several is sent again by halves."""
-        if not items:
-            return
-        base = self._rest().base
-
-        def make(session: str | None) -> tuple[str, bytes, str]:
-            variables = [
-                {"path": path.text, "value": value, "valueType": "Constant"}
-                for _point, path, value in items
-            ]
-            body: dict[str, Any] = {"variables": variables}
-            if session:
-                body = {"sessionID": session, **body}
-            return f"{base}/variables", json.dumps(body).encode(), JSON
-
-        try:
-            answer = await self._rest().call("PUT", make)
-        except ApiError as err:
-            if err.status in (403, 404) and len(items) > 1:
-                half = len(items) // 2
-                await self._put(items[:half], results)
-                await self._put(items[half:], results)
-                return
-            if err.status == 404:
-                error: PlcError = PlcAddressError(
-                    f"{items[0][1].text}: the PLC does not know this variable ({err.words})"
-                )
-            else:
-                error = request_error(err, write=True)
-            if len(items) > 1 or err.status not in (403, 404):
-                raise error from None
-            results[items[0][0]] = PointResult(error=error)
-            return
-        self._taken(answer, items, results)
-
-    def _taken(
-        self,
-        answer: Any,
-        items: list[tuple[Point, VariablePath, Any]],
-        results: dict[Point, PointResult],
-    ) -> None:
-        """Read a PUT's per-variable results: an error or a null value is a refused write."""
-        reading = Reading()
-        entries = answer.get("variables") if isinstance(answer, dict) else None
-        if not isinstance(entries, list):  # an answer without results: taken as written
-            for point, _path, _value in items:
-                results[point] = PointResult()
-            return
-        place(answer, [path for _point, path, _value in items], reading)
-        for point, path, _value in items:
-            if path.key in reading.failed:
-                said = reading.failed[path.key]
-                results[point] = PointResult(
-                    error=PlcWriteRefusedError(f"the PLC refused the write: {said}")
-                )
-            elif reading.found.get(path.key) is None:
-                results[point] = PointResult(
-                    error=PlcWriteRefusedError(f"{path.text}: the PLC did not take the value")
-                )
-            else:
-                results[point] = PointResult()
+        await put(self._rest(), items, results)
+        return {
+            point: PointResult(value=value) if results[point].ok else results[point]
+            for point, value in values.items()
+        }
 
     async def browse(self) -> list[BrowseItem]:
         """List the HMI variables of the dictionary; expand structures and arrays to leaves."""
@@ -333,8 +277,3 @@ class PlcnextClient(PlcClient):
         self._api = None
         self._reader = None
         await self._close_own_session()
-
-    @property
-    def roles(self) -> list[str]:
-        """The EHmi roles the PLC gave the user at login (empty without a login)."""
-        return list(self._api.roles) if self._api is not None else []

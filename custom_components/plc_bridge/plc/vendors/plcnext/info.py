@@ -8,6 +8,7 @@ are shown where present; none is ever required.
 
 from __future__ import annotations
 
+from datetime import datetime
 from typing import Any
 
 from ...types import DeviceInfo, PlcStatus
@@ -53,11 +54,11 @@ def device_info(description: Any, api: PlcnextApi) -> DeviceInfo:
     )
 
 
-def plc_status(crc: Any, regroups: int) -> PlcStatus:
-    """Return the poll's status: the HMI project's checksum (a download changes it)."""
+def plc_status(crc: Any, regroups: int, clock: Any = None) -> PlcStatus:
+    """Return the poll's status: the HMI project's checksum (a download changes it), the clock."""
     extra: dict[str, str] = {}
     if isinstance(crc, int | str) and not isinstance(crc, bool):
         extra["project_crc"] = str(crc)
     if regroups:
         extra["groups_registered_again"] = str(regroups)
-    return PlcStatus(extra=extra)
+    return PlcStatus(clock=clock if isinstance(clock, datetime) else None, extra=extra)

@@ -2,7 +2,8 @@
 
 Unknown names are found by registering halves (a register naming one answers 404 as a whole,
 PyREST's real-device log: `invalidNames`) and left out of the group; they are tried again when
-the program changes (`projectCRC`) or the points do.
+the program changes (`projectCRC`) or the points do. Where every name is unknown, a groups
+report (one request that carries `projectCRC`) watches the program instead of a group read.
 """
 
 from __future__ import annotations
@@ -130,6 +131,8 @@ class Reader:
             reading = await self._group_read(wanted)
         else:
             reading = await self.variables(wanted, self.unknown)
+        if self.unknown and reading.crc is None:  # nothing read: watch the program for them
+            reading.crc = await self._project_crc()
         changed = reading.crc is not None and self.crc is not None and reading.crc != self.crc
         if reading.crc is not None:
             self.crc = reading.crc
@@ -169,6 +172,16 @@ class Reader:
             raise PlcProtocolError(f"the PLC answered group {answer.get('id')!r}, not {group.id}")
         place(answer, group.paths, reading)
         return reading
+
+    async def _project_crc(self) -> Any:
+        """Return the projectCRC of a groups report (Groups page); None where it has none."""
+        try:
+            answer = await self._api.call(
+                "GET", lambda _session: (f"{self._api.base}/groups", None, None)
+            )
+        except ApiError:
+            return None
+        return answer.get("projectCRC") if isinstance(answer, dict) else None
 
     def _group_uri(self, group: Group) -> Callable[[str | None], Request]:
         """Return the request maker of a group read (its session id keeps the session alive)."""

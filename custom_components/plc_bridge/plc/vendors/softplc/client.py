@@ -35,7 +35,7 @@ from ...types import (
 )
 from .address import Address, parse_address
 from .codec import KINDS, TYPES, check_value, data_type, decode, parse_token
-from .document import MAX_REPLY, Item
+from .document import MAX_REPLY, Item, request_body
 from .exchange import Answers, Refused, exchange, send
 from .planner import ReadItem, item_of, plan
 from .tls import client_context, has_certificate, pem_options
@@ -173,7 +173,7 @@ class SoftplcClient(PlcClient):
         ) from None
 
     async def connect(self) -> DeviceInfo:
-        """Ask for the file listing (GET /dt): the PLC answers, and the certificate is usable."""
+        """Ask for the file listing (GET /dt): the PLC answers (reads need no certificate)."""
         transport = await self._transport()
         try:
             status, _body = await send(transport, "GET", "/dt", None, certificate=self._certificate)
@@ -186,8 +186,23 @@ class SoftplcClient(PlcClient):
             vendor=self.vendor,
             model="SoftPLC WEB.TLM",
             name="SoftPLC",
-            extra={"client_certificate": "yes" if self._certificate else "no"},
+            extra={"writes_with_certificate": "yes" if self._certificate else "no"},
         )
+
+    async def check_certificate(self) -> None:
+        """PUT nothing (`<files/>`: no item, nothing written) to see the certificate taken.
+
+        A PLC with enable_put_auth refuses an untrusted certificate here, so a form finds out
+        before the first write; any answer but 401/403 lets it pass. Not part of connect: a
+        refused certificate must not stop the reads.
+        """
+        if not self._certificate:
+            return
+        try:
+            await send(await self._transport(), "PUT", "/dt", request_body(()), certificate=True)
+        except PlcConnectionError as err:
+            await self._refused_certificate(err)
+            raise
 
     async def _read(self, points: Sequence[Point], *, poll: bool) -> ReadResult:
         """Read every point with one POST; refused addresses are asked again once a minute."""

@@ -2,7 +2,7 @@
 
 The certificate and key come as pasted PEM or as absolute file paths (options
 `client_certificate` and `client_key`); an encrypted key is not supported. Nothing here logs or
-quotes either of them.
+quotes either of them (nor what was given as a path: it may be PEM without its first line).
 """
 
 from __future__ import annotations
@@ -40,20 +40,90 @@ _REFUSALS = (
     "DECRYPT_ERROR",
 )
 """TLS alerts a server sends about the client's certificate (RFC 8446 6.2)."""
+_WHAT = {CERTIFICATE: ("client certificate", "CERTIFICATE"), KEY: ("client key", "PRIVATE KEY")}
 
 
-def check_material(value: object, what: str, marker: str) -> str:
-    """Return pasted PEM or an absolute path, stripped; raise PlcValueError (never quoting it)."""
+class MaterialError(PlcValueError):
+    """A client certificate or key that cannot be used, found before anything is sent."""
+
+    def __init__(self, message: str, option: str, *, outside: bool = False) -> None:
+        """Keep which option is at fault, and whether it is a path outside the allowed folder."""
+        super().__init__(message)
+        self.option = option
+        self.outside = outside
+
+
+def check_material(value: object, option: str) -> str:
+    """Return pasted PEM or an absolute path, stripped; raise MaterialError (never quoting it)."""
+    what, marker = _WHAT[option]
     if not isinstance(value, str):
-        raise PlcValueError(f"the {what} is PEM text or a file path")
+        raise MaterialError(f"the {what} is PEM text or a file path", option)
     text = value.strip()
     if text.startswith("-----BEGIN"):
         if marker not in text or "-----END" not in text:
-            raise PlcValueError(f"the {what} is not a PEM {marker.lower()}")
+            raise MaterialError(f"the {what} is not a PEM {marker.lower()}", option)
         return text + "\n"
     if not text or "\n" in text or not os.path.isabs(text):
-        raise PlcValueError(f"the {what} is pasted PEM text or an absolute file path")
+        raise MaterialError(f"the {what} is pasted PEM text or an absolute file path", option)
     return text
+
+
+def resolve_material(
+    folder: str, submitted: Mapping[str, object], stored: Mapping[str, object]
+) -> dict[str, str]:
+    """Return the submitted certificate and key, paths made absolute in `folder` (blocking).
+
+    Each is checked by loading it with its partner (the stored one when only one is given):
+    a path outside the folder, a file that is missing, a certificate that does not parse, or a
+    key that is not the certificate's raise MaterialError on the option at fault.
+    """
+    root = Path(folder).resolve()
+    resolved: dict[str, str] = {}
+    for option, (what, _marker) in _WHAT.items():
+        value = str(submitted.get(option) or "").strip()
+        if not value or value.startswith("-----BEGIN"):
+            if value:
+                resolved[option] = value
+            continue
+        path = Path(root, value).resolve()
+        if not path.is_relative_to(root):
+            raise MaterialError(
+                f"the {what} file is outside the configuration folder", option, outside=True
+            )
+        if not path.is_file():
+            raise MaterialError(f"the {what} file is not in the configuration folder", option)
+        resolved[option] = str(path)
+    if resolved:
+        pair = pem_options({**stored, **resolved})
+        try:
+            check_pair(pair[CERTIFICATE], pair[KEY])
+        except MaterialError as err:
+            if err.option in resolved:
+                raise
+            (given,) = resolved  # the stored partner loaded before: the new one does not fit it
+            mismatch = f"the {_WHAT[given][0]} does not fit the stored {_WHAT[err.option][0]}"
+            raise MaterialError(mismatch, given) from None
+    return resolved
+
+
+def check_pair(certificate: str, key: str) -> None:
+    """Load a certificate and its key as a connection would (blocking); blame the one at fault."""
+    context = ssl.SSLContext(ssl.PROTOCOL_TLS_CLIENT)
+    try:
+        text = certificate
+        if not certificate.startswith("-----BEGIN"):
+            text = Path(certificate).read_text(encoding="ascii", errors="replace")
+        context.load_verify_locations(cadata=text)
+    except (ssl.SSLError, OSError, ValueError):
+        raise MaterialError(
+            "the client certificate is not a readable PEM certificate", CERTIFICATE
+        ) from None
+    try:
+        _load(context, certificate, key)
+    except PlcAuthenticationError:
+        raise MaterialError(
+            "the client key is not the unencrypted PEM private key of that certificate", KEY
+        ) from None
 
 
 def has_certificate(config: ConnectionConfig) -> bool:
@@ -137,8 +207,8 @@ def refused_certificate(err: PlcError) -> bool:
     """True when a link error is the PLC's TLS alert about our client certificate."""
     seen: BaseException | None = err
     while seen is not None:
-        if isinstance(seen, ssl.SSLError):
-            text = f"{seen.reason or ''} {seen}".upper()
+        if isinstance(seen, ssl.SSLError):  # aiohttp's subclasses may carry no reason
+            text = f"{getattr(seen, 'reason', None) or ''} {seen}".upper()
             if "ALERT" in text and any(name in text for name in _REFUSALS):
                 return True
         seen = seen.__cause__ or seen.__context__
@@ -150,9 +220,8 @@ def pem_options(options: Mapping[str, object]) -> dict[str, str]:
     certificate, key = options.get(CERTIFICATE) or "", options.get(KEY) or ""
     if not certificate and not key:
         return {}
-    if not certificate or not key:
-        raise PlcValueError("a client certificate needs its key, and a key its certificate")
-    return {
-        CERTIFICATE: check_material(certificate, "client certificate", "CERTIFICATE"),
-        KEY: check_material(key, "client key", "PRIVATE KEY"),
-    }
+    if not certificate:
+        raise MaterialError("a client key needs its certificate", CERTIFICATE)
+    if not key:
+        raise MaterialError("a client certificate needs its key", KEY)
+    return {CERTIFICATE: check_material(certificate, CERTIFICATE), KEY: check_material(key, KEY)}
