@@ -261,3 +261,29 @@ async def test_newer_version_is_refused(
     hass.config_entries.async_update_entry(entry, version=3)
     assert not await hass.config_entries.async_setup(entry.entry_id)
     assert entry.state is ConfigEntryState.MIGRATION_ERROR
+
+
+async def test_edited_area_moves_the_device(
+    hass: HomeAssistant,
+    setup_integration: MockConfigEntry,
+    device_registry: dr.DeviceRegistry,
+    area_registry: ar.AreaRegistry,
+) -> None:
+    """The device flow's new area moves the device; an area set in the registry stays else."""
+    entry = setup_integration
+    cellar, attic = area_registry.async_create("Cellar"), area_registry.async_create("Attic")
+    subentry = entry.subentries[DEVICE_ID]
+    (boiler,) = [
+        d for d in entry_devices(device_registry, entry) if (DOMAIN, DEVICE_ID) in d.identifiers
+    ]
+    assert boiler.area_id is None
+    hass.config_entries.async_update_subentry(
+        entry, subentry, data={**subentry.data, CONF_AREA: cellar.id}
+    )
+    await hass.async_block_till_done()
+    assert device_registry.async_get(boiler.id).area_id == cellar.id
+    # The user moves it in the device registry; an edit of its points leaves it there.
+    device_registry.async_update_device(boiler.id, area_id=attic.id)
+    edit_point(hass, entry, "pump", name="Boiler pump")
+    await hass.async_block_till_done()
+    assert device_registry.async_get(boiler.id).area_id == attic.id

@@ -77,11 +77,19 @@ type PointFactory = Callable[[PlcBridgeConfigEntry, PointConfig], Entity]
 
 
 @callback
-def async_register_devices(hass: HomeAssistant, entry: PlcBridgeConfigEntry, plc: str) -> None:
+def async_register_devices(
+    hass: HomeAssistant,
+    entry: PlcBridgeConfigEntry,
+    plc: str,
+    areas: dict[str, str | None] | None = None,
+) -> None:
     """Create or update the device of every device subentry, hanging off the PLC's device.
 
     The link and the area are set through the registry itself, which both the oldest and the
     current supported Home Assistant take the same way; entities then name only identifiers.
+    A device gets its subentry's area when it is made, and again when the device flow changes
+    that area (`areas`: the area each subentry had when last seen); an area chosen in the
+    device registry is kept otherwise.
     """
     registry = dr.async_get(hass)
     known = {
@@ -103,8 +111,12 @@ def async_register_devices(hass: HomeAssistant, entry: PlcBridgeConfigEntry, plc
         changes: dict[str, Any] = {}
         if device.via_device_id != plc:
             changes["via_device_id"] = plc
-        if new and subentry.data.get(CONF_AREA):
-            changes["area_id"] = subentry.data[CONF_AREA]
+        area, moved = subentry.data.get(CONF_AREA), False
+        if areas is not None:
+            moved = subentry.subentry_id in areas and areas[subentry.subentry_id] != area
+            areas[subentry.subentry_id] = area
+        if area and (new or moved):
+            changes["area_id"] = area
         if not new and device.name != subentry.title:
             changes["name"] = subentry.title
         if changes:
@@ -121,6 +133,7 @@ class PointEntities:
         self._platforms: dict[str, tuple[PointFactory, AddConfigEntryEntitiesCallback]] = {}
         self._entities: dict[str, Entity] = {}
         self._lock = asyncio.Lock()
+        self.areas: dict[str, str | None] = {}  # each device subentry's area, as last seen
 
     @callback
     def async_setup_platform(
@@ -160,6 +173,6 @@ class PointEntities:
                 elif same_place:
                     await entity.async_remove()  # keeps its registry entry: same id, history
             self.configs = new
-            async_register_devices(hass, entry, plc_device)
+            async_register_devices(hass, entry, plc_device, self.areas)
             await entry.runtime_data.coordinator.async_set_points(new)
             self._add([config for pid, config in new.items() if old.get(pid) != config])
