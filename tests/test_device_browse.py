@@ -16,6 +16,7 @@ from pytest_homeassistant_custom_component.common import MockConfigEntry
 from custom_components.plc_bridge.const import CONF_POINTS, SUBENTRY_DEVICE
 from custom_components.plc_bridge.plc import BrowseItem, PlcConnectionError
 from simulators.tecomat import TecomatSimulator
+from simulators.tecomat.values import Var
 
 from .flow_fixtures import error_message, translated
 from .tecomat_ha_fixtures import make_tecomat_entry
@@ -55,15 +56,16 @@ async def test_pick_published_variables(
     result = await browse(hass, tecomat_entry, "TEMPERATURE")
     assert result["step_id"] == "pick"
     # inside and requested temperature are points of the entry already
-    assert listed(result) == {"outside temperature – Main.myObject1.value (REAL)": "0"}
+    # TecoApi declares no type: each offered one is guessed, and marked so
+    assert listed(result) == {"outside temperature – Main.myObject1.value (REAL?)": "0"}
     result = await step(hass, result, {"variables": ["0"]})
     assert result["type"] is FlowResultType.MENU
     result = await step(hass, result, {"next_step_id": "browse"})
     result = await step(hass, result, {"filter": "plcData.varB"})
     labels = listed(result)
-    assert "plcData.varBool0 (BOOL)" in labels
-    assert "plcData.varBool1 (BOOL)" not in labels  # configured
-    result = await step(hass, result, {"variables": [labels["plcData.varBool0 (BOOL)"]]})
+    assert "plcData.varBool0 (BOOL?)" in labels
+    assert "plcData.varBool1 (BOOL?)" not in labels  # configured
+    result = await step(hass, result, {"variables": [labels["plcData.varBool0 (BOOL?)"]]})
     result = await step(hass, result, {"next_step_id": "save"})
     assert result["type"] is FlowResultType.CREATE_ENTRY
     (new,) = [s for s in tecomat_entry.subentries.values() if s.title == "Heating"]
@@ -142,3 +144,17 @@ async def test_no_pick_list_while_not_loaded(
     menu = await step(hass, result, {"name": "Heating"})
     assert "browse" not in menu["menu_options"]
     assert "import_points" in menu["menu_options"]
+
+
+async def test_variables_too_big_to_list_are_named(
+    hass: HomeAssistant, tecomat_sim: TecomatSimulator, tecomat_entry: MockConfigEntry
+) -> None:
+    """A structure the PLC cannot answer whole is said on the pick form; arrays are listed."""
+    tecomat_sim.variables["recipe"] = {f"step{i}": Var("INT", i) for i in range(200)}
+    tecomat_sim.variables["big"] = [Var("INT", i) for i in range(200)]
+    result = await browse(hass, tecomat_entry, "big[19")
+    assert result["errors"] == {"base": "browse_unlisted"}
+    assert error_message(result, "base", *DEVICE).startswith(
+        "The PLC cannot list these variables here: recipe. "
+    )
+    assert set(listed(result)) == {"big[19] (DINT?)", *(f"big[19{i}] (DINT?)" for i in range(10))}

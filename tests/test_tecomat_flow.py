@@ -191,19 +191,19 @@ async def test_browse_lists_leaves_and_picks(
     result = await open_pick(hass, entry)
     labels = labels_of(result)
     for label in (
-        "myObject.favorites.color (STRING)",
-        "myObject.interests[2] (STRING)",
-        "arr2[2][3] (REAL)",
-        "arr3[1][2][3] (DINT)",  # TecoApi sends no types: JSON integers are guessed DINT
-        "myObject.married (BOOL)",
-        "plcData.varStringArray[5] (STRING)",
-        "plcData.varDT (DT)",
-        "requested temperature – Main.myObject3.value (REAL)",
-        "circulation pump – Main.pump.value (BOOL)",
+        "myObject.favorites.color (STRING?)",
+        "myObject.interests[2] (STRING?)",
+        "arr2[2][3] (REAL?)",
+        "arr3[1][2][3] (DINT?)",  # TecoApi sends no types: JSON integers are guessed DINT
+        "myObject.married (BOOL?)",
+        "plcData.varStringArray[5] (STRING?)",
+        "plcData.varDT (DT?)",
+        "requested temperature – Main.myObject3.value (REAL?)",
+        "circulation pump – Main.pump.value (BOOL?)",
     ):
         assert label in labels, label
-    assert "plcData.varDint (DINT)" not in labels  # configured already
-    assert "setTime (DT)" in labels
+    assert "plcData.varDint (DINT?)" not in labels  # configured already
+    assert "setTime (DT?)" in labels
 
     result = await open_pick(hass, entry, "main.myobject")
     labels = labels_of(result)
@@ -212,8 +212,8 @@ async def test_browse_lists_leaves_and_picks(
         result["flow_id"],
         {
             "variables": [
-                labels["requested temperature – Main.myObject3.value (REAL)"],
-                labels["outside temperature – Main.myObject1.value (REAL)"],
+                labels["requested temperature – Main.myObject3.value (REAL?)"],
+                labels["outside temperature – Main.myObject1.value (REAL?)"],
             ]
         },
     )

@@ -50,9 +50,9 @@ def point_choice(points: Mapping[str, Mapping[str, Any]], *, multiple: bool) -> 
 
 
 def variable_label(item: BrowseItem) -> str:
-    """Return how a published variable is listed: its name, address and type."""
+    """Return how a published variable is listed: its name, address and type (`?`: guessed)."""
     name = f"{item.name} – " if item.name and item.name != item.address else ""
-    return f"{name}{item.address} ({item.data_type})"
+    return f"{name}{item.address} ({item.data_type}{'?' if item.guessed else ''})"
 
 
 def matching(

@@ -249,6 +249,9 @@ class DeviceSubentryFlowHandler(ConfigSubentryFlow):
         except PlcError as err:
             return self._pick_form({"base": "browse_failed"}, {"error": str(err)})
         self._items = matching(self._published, str(user_input.get(CONF_FILTER, "")), self._taken())
+        unlisted = entry.runtime_data.client.unlisted
+        if unlisted:  # said on the form, not left out in silence
+            return self._pick_form({"base": "browse_unlisted"}, {"error": ", ".join(unlisted)})
         return self._pick_form()
 
     def _pick_form(

@@ -267,7 +267,8 @@ async def test_browse(tecomat_sim: TecomatSimulator, tecomat_client: TecomatClie
         )
 
 
-async def test_browse_skips_a_variable_too_big_to_read(tecomat_config: ConfigFactory) -> None:
+async def test_browse_reports_a_structure_too_big_to_read(tecomat_config: ConfigFactory) -> None:
+    """BENCH (129 INTs) cannot be read at once, nor its members named: listed as unlisted."""
     sim = TecomatSimulator(bench=129)
     await sim.start()
     client = TecomatClient(tecomat_config(port=sim.port))
@@ -275,6 +276,7 @@ async def test_browse_skips_a_variable_too_big_to_read(tecomat_config: ConfigFac
         items = await client.browse()
         assert not any(item.address.startswith("BENCH") for item in items)
         assert "plcName" in {item.address for item in items}
+        assert client.unlisted == ["BENCH"]
     finally:
         await client.close()
         await sim.stop()

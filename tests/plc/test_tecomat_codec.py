@@ -268,6 +268,11 @@ def test_decode_refused(kind: str, raw: Any, message: str) -> None:
         (-5, "DINT"),
         (2**31, "UDINT"),
         (1.0, "REAL"),
+        (1000.099976, "REAL"),  # 1000.1 as a REAL prints (six decimals, chapter 4)
+        (12345.678711, "REAL"),
+        (12345.678901, "LREAL"),  # no single prints so: an LREAL (issue 10)
+        (1e300, "LREAL"),  # beyond a REAL's range
+        (float("nan"), "REAL"),
         ("2018-05-11T11:22:33.456Z", "DT"),
         ("2015-06-17", "DATE"),
         ("01:02:03.450", "TIME"),

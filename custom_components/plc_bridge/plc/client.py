@@ -58,6 +58,7 @@ class PlcClient(ABC):
         self.metrics = ClientMetrics()
         self._session = session
         self._own_session = session is None
+        self.unlisted: list[str] = []  # what the last browse could not list
 
     @property
     def session(self) -> aiohttp.ClientSession:
@@ -163,7 +164,10 @@ class PlcClient(ABC):
         """Vendor part of `write`; values are already validated."""
 
     async def browse(self) -> list[BrowseItem]:
-        """List the variables the PLC publishes (empty where the vendor cannot)."""
+        """List the variables the PLC publishes (empty where the vendor cannot).
+
+        A vendor that cannot list some of them sets `unlisted` to their addresses.
+        """
         return []
 
     @property

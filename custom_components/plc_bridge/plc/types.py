@@ -114,6 +114,7 @@ class BrowseItem:
     maximum: float | None = None
     read_only: bool = False
     platform: str | None = None  # suggested Home Assistant platform, when the PLC says
+    guessed: bool = False  # the PLC does not declare the type: it is guessed from the value
 
 
 @dataclass(slots=True)

@@ -43,12 +43,14 @@ class Reading:
     found: dict[str, Any] = field(default_factory=dict)
     failed: dict[str, PlcError] = field(default_factory=dict)
     unknown: set[str] = field(default_factory=set)  # the paths answered with 400.005
+    too_big: set[str] = field(default_factory=set)  # alone, more items than one answer holds
 
     def merge(self, other: Reading) -> None:
         """Take in another reading's results."""
         self.found.update(other.found)
         self.failed.update(other.failed)
         self.unknown |= other.unknown
+        self.too_big |= other.too_big
 
 
 _STRINGS_OR_NON_FINITE = re.compile(
@@ -219,6 +221,7 @@ class TecoApi:
                     await self._get(pending[half:], reading)
                     return
                 if err.code == TOO_MANY_ITEMS:
+                    reading.too_big.add(pending[0].key)
                     reading.failed[pending[0].key] = PlcAddressError(
                         f"{pending[0].text} holds more items than the PLC answers at once"
                     )
@@ -233,6 +236,18 @@ class TecoApi:
                         f"{path.text} is missing from the answer, or cannot be told apart in it"
                     )
             return
+
+    async def exists(self, path: VariablePath) -> bool:
+        """Return whether the PLC knows a path (one GetObject of it alone; 413.004 is known)."""
+        try:
+            await self.send("GET", get_uri([path.text]))
+        except TecoError as err:
+            if missing_variable(err) is not None:
+                return False
+            if err.code in (TOO_MANY_REQUESTED, TOO_MANY_ITEMS):
+                return True
+            raise request_error(err, self.auth) from None
+        return True
 
     async def _unknown_ancestor(
         self, path: VariablePath, pending: Sequence[VariablePath]

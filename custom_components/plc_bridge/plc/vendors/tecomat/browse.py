@@ -1,13 +1,79 @@
-"""TecoApi browsing: the names GetList publishes (3.3), expanded into leaves with a type guess."""
+"""TecoApi browsing: the names GetList publishes (3.3), expanded into leaves with a type guess.
+
+TecoApi tells no declared type: GetList lists names only (3.3), GetObject values as JSON (4),
+where a BYTE, an INT and a DINT look the same. Every type offered is a guess (`guessed`).
+"""
 
 from __future__ import annotations
 
 from collections.abc import Iterator
+from dataclasses import dataclass, field
 from typing import Any
 
 from ...types import BrowseItem
+from .api import TecoApi
 from .codec import KINDS, guess_type
-from .paths import MISSING, VariablePath, member
+from .paths import MISSING, VariablePath, member, plan
+
+FIRST_INDICES = (0, 1)
+"""Where an IEC array may start (ARRAY[0..n] or ARRAY[1..n]): the indices tried first."""
+
+
+@dataclass(slots=True)
+class Listing:
+    """What a browse found: the leaves, and the variables it could not list (by path)."""
+
+    items: list[BrowseItem] = field(default_factory=list)
+    unlisted: list[str] = field(default_factory=list)
+
+
+async def expand(api: TecoApi, paths: list[VariablePath], listing: Listing) -> None:
+    """Read the paths and add their leaves to the listing; expand any one too big to answer.
+
+    A variable with more items than one answer holds (413.004) is read element by element when
+    it is an array; TecoApi cannot name a structure's members without reading it whole, so such
+    a structure is reported as unlisted, never left out in silence.
+    """
+    reading = await api.get(plan(paths))
+    for path in paths:
+        if path.key in reading.found:
+            listing.items.extend(browse_items(path, reading.found[path.key]))
+        elif path.key in reading.too_big:
+            elements = await array_elements(api, path)
+            if elements:
+                await expand(api, elements, listing)
+            else:
+                listing.unlisted.append(path.text)
+
+
+async def array_elements(api: TecoApi, path: VariablePath) -> list[VariablePath]:
+    """Return the element paths of an array variable; [] when it is no array.
+
+    The length is found by probing single elements: doubling, then halving, so an array of N
+    elements costs about 2·log2(N) small requests (a browse is rare; a poll never does this).
+    """
+
+    def element(index: int) -> VariablePath:
+        return VariablePath((*path.segments, index))
+
+    for first in FIRST_INDICES:
+        if await api.exists(element(first)):
+            break
+    else:
+        return []
+    known, step = first, 1  # known: an index that exists
+    while await api.exists(element(known + step)):
+        known += step
+        step *= 2
+    low, high = known, known + step  # low exists, high does not
+    while high - low > 1:
+        middle = (low + high) // 2
+        if await api.exists(element(middle)):
+            low = middle
+        else:
+            high = middle
+    return [element(index) for index in range(first, low + 1)]
+
 
 LIST_URI = "/TecoApi/GetList"
 
@@ -51,7 +117,7 @@ def browse_items(path: VariablePath, raw: Any) -> Iterator[BrowseItem]:
         for index, value in enumerate(raw):
             yield from browse_items(VariablePath((*path.segments, index)), value)
     elif (kind := guess_type(raw)) is not None:
-        yield BrowseItem(address=path.text, data_type=kind)
+        yield BrowseItem(address=path.text, data_type=kind, guessed=True)
 
 
 def api_object(path: VariablePath, raw: dict[str, Any]) -> BrowseItem | None:
@@ -76,6 +142,7 @@ def api_object(path: VariablePath, raw: dict[str, Any]) -> BrowseItem | None:
         maximum=high,
         read_only=read_only,
         platform=suggested_platform(kind, read_only),
+        guessed=True,
     )
 
 

@@ -33,7 +33,7 @@ from ...types import (
     ValueKind,
 )
 from .api import AUTH_METHODS, Reading, TecoApi
-from .browse import LIST_URI, browse_items, listed_names
+from .browse import LIST_URI, Listing, expand, listed_names
 from .codec import KINDS, TYPES, check_value, data_type, decode, encode
 from .info import device_info, plc_status
 from .paths import (
@@ -275,12 +275,10 @@ class TecomatClient(PlcClient):
             except PlcAddressError:
                 continue
             paths.setdefault(path.key, path)
-        found = (await self._teco().get(plan(paths.values()))).found
-        items: list[BrowseItem] = []
-        for key, path in paths.items():
-            if key in found:
-                items.extend(browse_items(path, found[key]))
-        return items
+        listing = Listing()
+        await expand(self._teco(), list(paths.values()), listing)
+        self.unlisted = listing.unlisted
+        return listing.items
 
     @property
     def can_set_clock(self) -> bool:

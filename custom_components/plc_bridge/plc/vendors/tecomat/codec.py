@@ -6,6 +6,7 @@ from datetime import datetime, tzinfo
 import json
 import math
 import re
+import struct
 from typing import Any
 
 from ...codec import (
@@ -191,6 +192,21 @@ def parse_datetime(kind: str, text: str, zone: tzinfo) -> datetime | None:
         return None
 
 
+def _fits_real(value: float) -> bool:
+    """True when a REAL could have printed this value (the PLC prints six decimals, 4).
+
+    12345.678901 cannot come from a REAL (its nearest single is 12345.678711): an LREAL, then.
+    A value a single holds exactly may still be an LREAL: the guess is marked as one.
+    """
+    if not math.isfinite(value):
+        return True
+    try:
+        single = struct.unpack("<f", struct.pack("<f", value))[0]
+    except OverflowError:
+        return False
+    return f"{single:.6f}" == f"{value:.6f}"
+
+
 def guess_type(raw: Any) -> str | None:
     """Guess the IEC type of a value the PLC published (JSON does not say); None: not a leaf."""
     if isinstance(raw, bool):
@@ -198,7 +214,7 @@ def guess_type(raw: Any) -> str | None:
     if isinstance(raw, int):
         return "UDINT" if raw > INTEGER_RANGES["DINT"][1] else "DINT"
     if isinstance(raw, float):
-        return "REAL"
+        return "REAL" if _fits_real(raw) else "LREAL"
     if not isinstance(raw, str):
         return None
     text = raw.strip()
