@@ -41,7 +41,9 @@ from simulators.s7_smart import DEFAULT_PASSWORD, DEFAULT_USER, S7SmartSimulator
 STRINGS = json.loads(
     (Path(__file__).parents[1] / "custom_components/plc_bridge/strings.json").read_text()
 )
-FAKE_VENDOR = "plcnext"  # registered as a fake client for the test that asks for it
+FAKE_VENDOR = "plcnext"
+"""The vendor key FakeClient stands in for, in the tests that ask for it: a real key, so that its
+connection forms have their strings; the real PLCnext client is tested on its own simulator."""
 
 
 def smart_data(sim: S7SmartSimulator, **changes: Any) -> dict[str, Any]:

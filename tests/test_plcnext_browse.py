@@ -15,7 +15,7 @@ from pytest_homeassistant_custom_component.common import MockConfigEntry
 from custom_components.plc_bridge.const import CONF_POINTS, SUBENTRY_DEVICE
 from simulators.plcnext import PlcnextSimulator
 from tests.flow_fixtures import error_message, translated
-from tests.ha_fixtures import poll
+from tests.ha_fixtures import point, poll
 from tests.plcnext_ha_fixtures import PLCNEXT_POINTS, make_plcnext_entry
 
 DEVICE = ("config_subentries", SUBENTRY_DEVICE)
@@ -66,8 +66,9 @@ async def test_pick_list_from_the_dictionary(
         label(MAIN + "Uptime", "LTIME"),
         label(MAIN + "Clock", "DT"),
         label(MAIN + "Today", "DATE"),
-        label(MAIN + "Recipe.Name", "STRING"),
-        label(MAIN + "Recipe.Weight", "LREAL"),  # a member: JSON says only "a number"
+        # A structure's members: the dictionary declares none, JSON says only "a number"
+        label(MAIN + "Recipe.Name", "STRING?"),
+        label(MAIN + "Recipe.Weight", "LREAL?"),
         label(MAIN + "Levels[1]", "INT"),  # the type dictionary's element type and first index
         label(MAIN + "Levels[4]", "INT"),
         label("Arp.Plc.Eclr/GlobalFlag", "BOOL"),
@@ -143,3 +144,15 @@ async def test_dictionary_refused(
     assert "refused the user or password" in error_message(result, "base", *DEVICE)
     menu = await step(hass, result, {})
     assert menu["type"] is FlowResultType.MENU
+
+
+async def test_points_stored_with_a_short_path_are_not_offered_again(
+    hass: HomeAssistant, plcnext_sim: PlcnextSimulator
+) -> None:
+    """A point kept as `MainInstance.Counter` is the dictionary's full path: not listed twice."""
+    entry = make_plcnext_entry(
+        hass, plcnext_sim, [point("counter", "Counter", "sensor", "MainInstance.Counter", "DINT")]
+    )
+    assert await hass.config_entries.async_setup(entry.entry_id)
+    labels = listed(await browse(hass, entry, "Counter"))
+    assert label(MAIN + "Counter", "DINT") not in labels

@@ -86,13 +86,19 @@ async def test_renamed_variable_raises_an_issue(
     freezer: FrozenDateTimeFactory,
     issue_registry: ir.IssueRegistry,
 ) -> None:
-    """A download that renames a variable: its point alone goes, with an issue naming it."""
+    """A download that renames a variable: its point alone goes, with an issue naming it.
+
+    The project checksum (a diagnostic sensor, on by default) shows the download.
+    """
+    checksum = "sensor.plcnext_project_checksum"
+    assert hass.states.get(checksum).state == str(plcnext_sim.crc)
     plcnext_sim.download({"Arp.Plc.Eclr/MainInstance.Pump": "Arp.Plc.Eclr/MainInstance.PumpOn"})
     plcnext_sim.set("MainInstance.Temperature", 19.5)
     await poll(hass, freezer)
     unavailable = [s.entity_id for s in hass.states.async_all() if s.state == STATE_UNAVAILABLE]
     assert unavailable == ["switch.plcnext_pump"]
     assert hass.states.get(TEMPERATURE).state == "19.5"
+    assert hass.states.get(checksum).state == str(plcnext_sim.crc)
     issue = issue_registry.async_get_issue(DOMAIN, issue_of(plcnext_entry, "pump"))
     assert issue is not None
     assert issue.translation_key == "unknown_address"

@@ -35,9 +35,17 @@ PARALLEL_UPDATES = 0
 
 OPERATING_MODES = ["run", "stop", "startup", "halt", "hold", "error"]
 """The operating modes PLCs report, lower case (anything else shows as unknown)."""
-KNOWN_EXTRA = ("cycle_time", "cpu_load", "last_error", "program", "program_stamp")
+KNOWN_EXTRA = (
+    "cycle_time",
+    "cpu_load",
+    "last_error",
+    "program",
+    "program_stamp",
+    "project_crc",
+    "groups_registered_again",
+)
 """PlcStatus.extra keys with translated names; other keys are shown under their own name."""
-SHOWN_EXTRA = ("program", "program_compiled")
+SHOWN_EXTRA = ("program", "program_compiled", "project_crc")
 """Extra keys whose sensors are enabled by default (the others are there, disabled)."""
 NUMERIC = (ValueKind.INTEGER, ValueKind.FLOAT, ValueKind.BOOL)
 

@@ -84,7 +84,14 @@ class DeviceSubentryFlowHandler(ConfigSubentryFlow):
             for data in subentry.data.get(CONF_POINTS, {}).values()
         }
         taken |= {point_key(data) for pid, data in self._points.items() if pid != self._editing}
-        return taken
+        return {self._normal(point) for point in taken}
+
+    def _normal(self, point: Point) -> Point:
+        """Return a stored point as the vendor spells it (a PLCnext path with its component)."""
+        try:
+            return self._client.validate_point(point)
+        except PlcError:
+            return point
 
     async def async_step_user(self, user_input: dict[str, Any] | None = None) -> SubentryFlowResult:
         """Ask the device's name and area."""

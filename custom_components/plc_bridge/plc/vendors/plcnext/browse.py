@@ -102,8 +102,10 @@ def _expand(
     elif isinstance(value, list):
         for index, member in enumerate(value):
             yield from _expand(path.child(first + index), member, element, 0, read_only)
-    elif (kind := element or guess(value)) is not None:
-        yield item(path, kind, read_only)
+    elif element is not None:
+        yield item(path, element, read_only)
+    elif (kind := guess(value)) is not None:
+        yield item(path, kind, read_only, guessed=True)
 
 
 def guess(value: Any) -> str | None:
@@ -119,14 +121,19 @@ def guess(value: Any) -> str | None:
     return None
 
 
-def item(path: VariablePath, kind: str, read_only: bool) -> BrowseItem:
-    """Return the browse item of one leaf: named by its path in its component, with a platform."""
+def item(path: VariablePath, kind: str, read_only: bool, *, guessed: bool = False) -> BrowseItem:
+    """Return the browse item of one leaf: named by its path in its component, with a platform.
+
+    `guessed`: the dictionary does not declare the leaf's type (a structure's member): it comes
+    from the JSON value, and the pick list marks it so.
+    """
     return BrowseItem(
         address=path.text,
         name=path.text.partition("/")[2],
         data_type=kind,
         read_only=read_only,
         platform=platform(kind, read_only),
+        guessed=guessed,
     )
 
 
