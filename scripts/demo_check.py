@@ -3,10 +3,11 @@
 Starts scripts/develop on a throwaway configuration (inside the work tree, where the demo's
 Python can see it) and free ports, completes onboarding through the HTTP and websocket calls
 the frontend makes, waits for Home Assistant to finish starting, loads what the frontend loads
-first and the integrations page, adds the S7 simulator as a PLC through the config flow API,
-and fails on any integration onboarding set up that did not load, and on any missing module or
-failed setup in the log. Always stops what it started, within a bounded time. Standard library
-only: it runs with the machine's own python3.
+first and the integrations page, then takes each simulator through a new user's first steps
+(scripts/demo_plcs.py: add the PLC, add a device with a point, read it, write it), and fails on
+any of those steps, on any integration onboarding set up that did not load, and on any missing
+module or failed setup in the log. Always stops what it started, within a bounded time.
+Standard library only: it runs with the machine's own python3.
 
     python3 scripts/demo_check.py
 """
@@ -28,6 +29,7 @@ import time
 from typing import Any
 import urllib.error
 
+from demo_plcs import JOURNEYS, journey
 from hass_client import CLIENT_ID, Hass, Socket
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -89,26 +91,6 @@ def wait_for(ready: Callable[[], bool], timeout: float) -> bool:
     return answer
 
 
-def add_s7_plc(hass: Hass) -> str:
-    """Add the S7 simulator through the config flow API, as the dialog would; return its id."""
-    simulators = [
-        json.loads(line)
-        for line in (CONFIG / ".simulators.json").read_text().splitlines()
-        if line.strip()
-    ]
-    s7 = next(sim for sim in simulators if sim["vendor"] == "s7")
-    flow = hass.call("POST", "/api/config/config_entries/flow", {"handler": "plc_bridge"})
-    step = f"/api/config/config_entries/flow/{flow['flow_id']}"
-    flow = hass.call("POST", step, {"vendor": "s7"})
-    flow = hass.call("POST", step, {"host": s7["host"], "port": s7["port"]})
-    if flow.get("step_id") == "s7_rack_slot":  # the second page: how the CPU is addressed
-        flow = hass.call("POST", step, s7.get("options", {}))
-    if flow.get("step_id") == "name":
-        flow = hass.call("POST", step, {"name": "Demo S7"})
-    assert flow.get("type") == "create_entry", flow
-    return str(flow["result"]["entry_id"])
-
-
 def frontend(hass: Hass, ws: Socket) -> list[str]:
     """Return what keeps the frontend from loading: its first calls and the integrations page."""
     problems = []
@@ -123,7 +105,7 @@ def frontend(hass: Hass, ws: Socket) -> list[str]:
 
 
 def integrations(hass: Hass, ws: Socket) -> list[str]:
-    """Return the integrations onboarding added, and the S7 PLC added now, that did not load."""
+    """Return what failed: integrations onboarding added, and each simulator's first steps."""
 
     def settled() -> bool:
         """Tell whether every onboarded integration has an entry that is not starting."""
@@ -140,10 +122,15 @@ def integrations(hass: Hass, ws: Socket) -> list[str]:
         for entry in entries
         if entry["state"] in FAILED
     ]
-    added = add_s7_plc(hass)
-    wait_for(lambda: entry_states(ws)[added]["state"] not in STARTING, 30)
-    if (entry := entry_states(ws)[added])["state"] != "loaded":
-        problems.append(f"the S7 PLC is {entry['state']}: {entry.get('reason')}")
+    simulators = [
+        json.loads(line)
+        for line in (CONFIG / ".simulators.json").read_text().splitlines()
+        if line.strip()
+    ]
+    if len(simulators) < len(JOURNEYS):
+        problems.append(f"the demo started {len(simulators)} simulators, not {len(JOURNEYS)}")
+    for sim in simulators:
+        problems += journey(hass, ws, sim)
     return problems
 
 

@@ -1,0 +1,162 @@
+"""A new user's first steps with each simulator of the demo, through Home Assistant's APIs.
+
+For every PLC family `scripts/develop` starts: add the PLC in the config flow (pinning its
+certificate where it has one), add a device with points (picked from the PLC's variables
+where it publishes them, else pasted as a table), wait until its entity shows the simulator's
+value, write a new value through the entity's action and see it come back. Standard library
+only, as scripts/demo_check.py that calls it.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass
+import time
+from typing import Any
+
+from hass_client import Hass, Socket
+
+FLOW = "/api/config/config_entries/flow"
+SUBENTRY_FLOW = "/api/config/config_entries/subentries/flow"
+
+
+@dataclass(frozen=True, slots=True)
+class Journey:
+    """How a user adds one simulator's points, and the writable one that is checked."""
+
+    table: str = ""  # pasted points (CSV with a header), when not picked
+    pick: str = ""  # the browse filter whose first listed variable becomes the point
+
+
+HEADER = "name,address,data_type,platform,min,max\n"
+JOURNEYS = {
+    "s7_smart": Journey(table=HEADER + "Setpoint,VD104,float,number,0,100"),
+    "tecomat": Journey(pick="Main.myObject3"),
+    "plcnext": Journey(pick="MainInstance.Setpoint"),
+    "softplc": Journey(table=HEADER + "Preset,T4:0.PRE,INT,number,0,30000"),
+    "s7": Journey(table=HEADER + "Setpoint,DB1.DBW6,INT,number,0,1000"),
+}
+"""What each family's simulator offers a first user (see scripts/develop's hints)."""
+WRITTEN = 21.0
+"""The value every journey writes: inside each point's range."""
+
+
+def add_plc(hass: Hass, sim: dict[str, Any]) -> str:
+    """Add a simulator through the config flow as the dialog would; return the entry id."""
+    flow = hass.call("POST", FLOW, {"handler": "plc_bridge"})
+    step = f"{FLOW}/{flow['flow_id']}"
+    flow = hass.call("POST", step, {"vendor": sim["vendor"]})
+    values: dict[str, Any] = {"host": sim["host"], "port": sim["port"]}
+    names = {field["name"] for field in flow.get("data_schema", [])}
+    if "tls" in names:
+        values["tls"] = "pin" if sim["tls"] else "none"
+    if sim["username"] is not None and "username" in names:
+        values |= {"username": sim["username"], "password": sim["password"]}
+    # The simulator names its fields as scripts/develop prints them ("Client certificate").
+    options = {key.lower().replace(" ", "_"): value for key, value in sim["options"].items()}
+    values |= {key: value for key, value in options.items() if key in names}
+    flow = hass.call("POST", step, values)
+    for _ in range(4):  # the pages that may follow: rack and slot, the certificate, the name
+        if flow.get("type") != "form":
+            break
+        if flow.get("errors"):
+            raise RuntimeError(f"{sim['vendor']}: {flow['step_id']} refused: {flow['errors']}")
+        answer: dict[str, Any] = {}
+        if flow["step_id"] == "s7_rack_slot":
+            answer = sim.get("options", {})
+        elif flow["step_id"] == "name":
+            answer = {"name": f"Demo {sim['vendor']}"}
+        flow = hass.call("POST", step, answer)
+    if flow.get("type") != "create_entry":
+        raise RuntimeError(f"{sim['vendor']}: the config flow ended with {flow}")
+    return str(flow["result"]["entry_id"])
+
+
+def add_device(hass: Hass, entry_id: str, journey: Journey) -> None:
+    """Add a device with the journey's point, picked from the PLC's variables or pasted."""
+    flow = hass.call("POST", SUBENTRY_FLOW, {"handler": [entry_id, "device"]})
+    step = f"{SUBENTRY_FLOW}/{flow['flow_id']}"
+    flow = hass.call("POST", step, {"name": "Demo device"})
+    if journey.pick:
+        flow = hass.call("POST", step, {"next_step_id": "browse"})
+        flow = hass.call("POST", step, {"filter": journey.pick})
+        (field,) = flow["data_schema"]
+        options = field["selector"]["select"]["options"]
+        if flow.get("errors") and flow["errors"].get("base") != "browse_unlisted":
+            raise RuntimeError(f"the pick list failed: {flow['errors']}")
+        if not options:
+            raise RuntimeError(f"no variable matches {journey.pick!r}")
+        flow = hass.call("POST", step, {"variables": [options[0]["value"]]})
+    else:
+        flow = hass.call("POST", step, {"next_step_id": "import_points"})
+        flow = hass.call("POST", step, {"table": journey.table})
+    if flow.get("type") != "menu":
+        raise RuntimeError(f"adding the point ended with {flow.get('errors') or flow}")
+    flow = hass.call("POST", step, {"next_step_id": "save"})
+    if flow.get("type") != "create_entry":
+        raise RuntimeError(f"saving the device ended with {flow}")
+
+
+def wait_for(ready: Callable[[], Any], timeout: float) -> Any:
+    """Return the first true answer of `ready` within `timeout` seconds (else the last one)."""
+    deadline = time.monotonic() + timeout
+    while not (answer := ready()) and time.monotonic() < deadline:
+        time.sleep(0.5)
+    return answer
+
+
+def number_of(ws: Socket, entry_id: str) -> str | None:
+    """Return the entity id of the entry's number entity (the journey's point)."""
+    entities = ws.call("config/entity_registry/list")
+    found = [
+        entity["entity_id"]
+        for entity in entities
+        if entity["config_entry_id"] == entry_id and entity["entity_id"].startswith("number.")
+    ]
+    return found[0] if found else None
+
+
+def journey(hass: Hass, ws: Socket, sim: dict[str, Any]) -> list[str]:
+    """Run one family's journey; return what went wrong (nothing when all is well)."""
+    vendor = sim["vendor"]
+    plan = JOURNEYS.get(vendor)
+    if plan is None:
+        return [f"{vendor}: the demo check has no journey for this simulator"]
+    try:
+        entry_id = add_plc(hass, sim)
+        loaded = wait_for(
+            lambda: (
+                {e["entry_id"]: e for e in ws.call("config_entries/get")}[entry_id]["state"]
+                == "loaded"
+            ),
+            30,
+        )
+        if not loaded:
+            return [f"{vendor}: the PLC did not load"]
+        add_device(hass, entry_id, plan)
+        entity = wait_for(lambda: number_of(ws, entry_id), 30)
+        if entity is None:
+            return [f"{vendor}: the point's number entity did not appear"]
+        state = wait_for(lambda: _state(hass, entity) not in (None, "unavailable", "unknown"), 30)
+        if not state:
+            return [f"{vendor}: {entity} shows no value: {_state(hass, entity)}"]
+        hass.call("POST", "/api/services/number/set_value", {"entity_id": entity, "value": WRITTEN})
+        if not wait_for(lambda: _number(_state(hass, entity)) == WRITTEN, 30):
+            return [f"{vendor}: {entity} shows {_state(hass, entity)} after writing {WRITTEN}"]
+    except Exception as err:  # any step of a journey that fails is one problem of its family
+        return [f"{vendor}: {type(err).__name__}: {err}"]
+    return []
+
+
+def _state(hass: Hass, entity: str) -> str | None:
+    """Return an entity's state, None while it has none."""
+    answer = hass.call("GET", f"/api/states/{entity}")
+    return answer.get("state") if isinstance(answer, dict) else None
+
+
+def _number(state: str | None) -> float | None:
+    """Return a state as a number, None when it is none."""
+    try:
+        return float(state) if state is not None else None
+    except ValueError:
+        return None
