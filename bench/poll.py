@@ -312,6 +312,8 @@ def table(rows: list[dict[str, Any]], command: str) -> str:
         line = f"{row['vendor']:<9}{row['points']:>7}{row['requests_per_poll']:>15}{target:>8}"
         line += f"{row['naive_requests']:>7}{row['poll_ms']:>9.2f}{row['cpu_ms_per_poll']:>13.2f}"
         line += f"{row['protocol_cpu_ms_per_poll']:>17.2f}"
+        if row.get("data_items") is not None:
+            line += f"   ({row['data_items']} <data> items for {row['points']} points)"
         if row["failed_points"]:
             line += f"   ({row['failed_points']} points failed)"
         lines.append(line)

@@ -31,6 +31,7 @@ from .connection_form import (
     fields_schema,
     form_values,
     on_form,
+    option_error,
     second_page,
     vendor_options,
     vendor_schema,
@@ -45,15 +46,11 @@ from .const import (
     SUBENTRY_DEVICE,
 )
 from .options_flow import PlcBridgeOptionsFlow
-from .plc import DeviceInfo, PlcError, PlcValueError, TlsMode
+from .plc import DeviceInfo, PlcError, PlcOptionError, PlcValueError, TlsMode
 from .plc.http import fetch_fingerprint, format_fingerprint
 from .plc.vendors import client_class
-from .plc.vendors.softplc import MaterialError, SoftplcClient, resolve_material
-from .plc.vendors.softplc.tls import CERTIFICATE
 from .subentry_flow import DeviceSubentryFlowHandler
-
-type Input = dict[str, Any] | None
-"""What a form step receives: the submitted values, or None to show the form."""
+from .vendor_steps import Input, VendorSteps
 
 CERTIFICATE_TIMEOUT = 10.0
 """Seconds to wait for the PLC's TLS handshake when fetching its certificate."""
@@ -68,12 +65,7 @@ def device_unique_id(device: DeviceInfo, data: Mapping[str, Any]) -> str:
     return f"{data[CONF_HOST]}:{data[CONF_PORT]}"
 
 
-def pem_error(err: MaterialError) -> dict[str, str]:
-    """Return the form error of a SoftPLC client certificate or key, on its own field."""
-    return {err.option: "pem_outside_config" if err.outside else "invalid_pem"}
-
-
-class PlcBridgeConfigFlow(ConfigFlow, domain=DOMAIN):
+class PlcBridgeConfigFlow(VendorSteps, ConfigFlow, domain=DOMAIN):
     """Add a PLC: vendor, connection, certificate, name; reauth and reconfigure reuse the checks.
 
     Each vendor's connection pages have step ids of their own, worded for its PLC family in
@@ -113,54 +105,6 @@ class PlcBridgeConfigFlow(ConfigFlow, domain=DOMAIN):
             return self._connection_form({})
         return self.async_show_form(step_id="user", data_schema=vendor_schema())
 
-    async def async_step_connection_s7_smart(self, user_input: Input = None) -> ConfigFlowResult:
-        """Take the S7-200 SMART's address, certificate check and Web server user."""
-        return await self._connection_step(user_input)
-
-    async def async_step_connection_tecomat(self, user_input: Input = None) -> ConfigFlowResult:
-        """Take the Tecomat's address, certificate check, TecoApi user and clock variable."""
-        return await self._connection_step(user_input)
-
-    async def async_step_connection_plcnext(self, user_input: Input = None) -> ConfigFlowResult:
-        """Take the PLCnext Control's address, certificate check, user and clock variable."""
-        return await self._connection_step(user_input)
-
-    async def async_step_connection_softplc(self, user_input: Input = None) -> ConfigFlowResult:
-        """Take the SoftPLC's address, certificate check and client certificate for writes."""
-        return await self._softplc_step(user_input)
-
-    async def async_step_connection_s7(self, user_input: Input = None) -> ConfigFlowResult:
-        """Take the S7 CPU's address, family and way to connect (rack/slot or TSAPs)."""
-        return await self._connection_step(user_input)
-
-    async def async_step_reconfigure_s7_smart(self, user_input: Input = None) -> ConfigFlowResult:
-        """Take a configured S7-200 SMART's new address or certificate check."""
-        return await self._connection_step(user_input)
-
-    async def async_step_reconfigure_tecomat(self, user_input: Input = None) -> ConfigFlowResult:
-        """Take a configured Tecomat's new address, certificate check or TecoApi settings."""
-        return await self._connection_step(user_input)
-
-    async def async_step_reconfigure_plcnext(self, user_input: Input = None) -> ConfigFlowResult:
-        """Take a configured PLCnext Control's new address, certificate check or clock variable."""
-        return await self._connection_step(user_input)
-
-    async def async_step_reconfigure_softplc(self, user_input: Input = None) -> ConfigFlowResult:
-        """Take a configured SoftPLC's new address, certificate check or client certificate."""
-        return await self._softplc_step(user_input)
-
-    async def async_step_reconfigure_s7(self, user_input: Input = None) -> ConfigFlowResult:
-        """Take a configured S7 CPU's new address, family or way to connect."""
-        return await self._connection_step(user_input)
-
-    async def async_step_s7_rack_slot(self, user_input: Input = None) -> ConfigFlowResult:
-        """Take the S7 CPU's rack and slot."""
-        return await self._second_page_step(user_input)
-
-    async def async_step_s7_tsap(self, user_input: Input = None) -> ConfigFlowResult:
-        """Take the TSAPs of the S7 connection (S7-200 with a CP 243-1, LOGO!)."""
-        return await self._second_page_step(user_input)
-
     async def async_step_name(self, user_input: Input = None) -> ConfigFlowResult:
         """Name the PLC (prefilled from what it reports): its device and entity ids take it."""
         if user_input is not None and str(user_input.get(CONF_NAME, "")).strip():
@@ -199,52 +143,45 @@ class PlcBridgeConfigFlow(ConfigFlow, domain=DOMAIN):
 
     async def async_step_reauth(self, entry_data: Mapping[str, Any]) -> ConfigFlowResult:
         """Start re-authentication after the PLC refused the stored credentials."""
-        if entry_data.get(CONF_VENDOR) == "softplc":
-            return await self.async_step_reauth_softplc()
+        if client_class(entry_data[CONF_VENDOR]).credential_option is not None:
+            return await self._reauth_options(None)
         return await self.async_step_reauth_confirm()
 
-    async def async_step_reauth_softplc(self, user_input: Input = None) -> ConfigFlowResult:
-        """Take the client certificate and key a SoftPLC trusts now; check them before storing."""
+    async def _reauth_options(self, user_input: Input) -> ConfigFlowResult:
+        """Ask again for the vendor fields that authenticate (not a user); check, then store."""
         entry = self._get_reauth_entry()
-        schema = vol.Schema(fields_schema(VENDOR_FIELDS["softplc"]))
+        vendor = entry.data[CONF_VENDOR]
+        fields = [field for field in VENDOR_FIELDS[vendor] if field.credential]
+        schema = vol.Schema(fields_schema(fields))
         errors: dict[str, str] = {}
         if user_input is not None:
             stored = entry.data.get(CONF_OPTIONS, {})
             try:
-                submitted = await self._pem_paths(user_input, stored)
-                options = client_class("softplc").validate_options(stored | submitted)
-            except MaterialError as err:
-                self._problem, errors = str(err), pem_error(err)
+                submitted = await self._resolved(vendor, user_input, stored)
+                options = client_class(vendor).validate_options(stored | submitted)
+            except PlcOptionError as err:
+                self._problem, errors = str(err), option_error(err)
             else:
                 data = {**entry.data, CONF_OPTIONS: options}
                 device, errors = await self._connect(data)
                 if device is not None:
                     return self._store(entry, "reauth_successful", data)
         return self.async_show_form(
-            step_id="reauth_softplc",
+            step_id=f"reauth_{vendor}",
             data_schema=schema,
             errors=on_form(errors, schema),
             description_placeholders={"name": entry.title, "problem": self._problem},
         )
 
-    async def _softplc_step(self, user_input: Input) -> ConfigFlowResult:
-        """Take a SoftPLC's connection page; refuse an unusable certificate or key on its field."""
-        if user_input is not None:
-            try:
-                pem = await self._pem_paths(user_input, self._data.get(CONF_OPTIONS, {}))
-            except MaterialError as err:
-                self._enter(self._connection_schema(), user_input)
-                self._problem = str(err)
-                return self._connection_form(pem_error(err))
-            user_input = {**user_input, **pem}
-        return await self._connection_step(user_input)
-
-    async def _pem_paths(
-        self, user_input: Mapping[str, Any], stored: Mapping[str, Any]
+    async def _resolved(
+        self, vendor: str, user_input: Mapping[str, Any], stored: Mapping[str, Any]
     ) -> dict[str, str]:
-        """Return the submitted certificate and key, paths made absolute in the config folder."""
+        """Return the submitted options that name files, resolved in the config folder."""
         return await self.hass.async_add_executor_job(
-            resolve_material, self.hass.config.config_dir, user_input, stored
+            client_class(vendor).resolve_options,
+            self.hass.config.config_dir,
+            user_input,
+            stored,
         )
 
     async def async_step_reauth_confirm(self, user_input: Input = None) -> ConfigFlowResult:
@@ -266,10 +203,20 @@ class PlcBridgeConfigFlow(ConfigFlow, domain=DOMAIN):
         )
 
     async def _connection_step(self, user_input: Input) -> ConfigFlowResult:
-        """Take a vendor's connection page; go on to its second page, if it has one."""
+        """Take a vendor's connection page; go on to its second page, if it has one.
+
+        Options that name files (SoftPLC's client certificate and key) are resolved in the
+        config folder first; one that cannot be used is refused on its field.
+        """
         if user_input is None:
             return self._connection_form({})
         self._enter(self._connection_schema(), user_input)
+        try:
+            files = await self._resolved(self._vendor, user_input, self._data.get(CONF_OPTIONS, {}))
+        except PlcOptionError as err:
+            self._problem = str(err)
+            return self._connection_form(option_error(err))
+        user_input = {**user_input, **files}
         client = client_class(self._vendor)
         stored = self._data.get(CONF_OPTIONS)
         self._data.update(connection_data(client, self._vendor, user_input, stored))
@@ -359,16 +306,12 @@ class PlcBridgeConfigFlow(ConfigFlow, domain=DOMAIN):
         self._problem = ""
         try:
             device = await client.connect()
-            if isinstance(client, SoftplcClient):
-                await client.check_certificate()  # writes need it: refused here, on the form
+            await client.check_access()  # what writes need is refused here, on the form
             return device, {}
         except PlcError as err:
             LOGGER.debug("Cannot connect to %s: %s", data[CONF_HOST], err)
             self._problem = str(err)
-            errors = error_for(err)
-            if data[CONF_VENDOR] == "softplc" and CONF_PASSWORD in errors:
-                errors = {CERTIFICATE: errors[CONF_PASSWORD]}  # its only credential
-            return None, errors
+            return None, error_for(err, type(client))
         except Exception:
             LOGGER.exception("Unexpected error connecting to %s", data[CONF_HOST])
             return None, {"base": "unknown"}

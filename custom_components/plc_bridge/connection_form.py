@@ -31,6 +31,7 @@ from .plc import (
     PlcClient,
     PlcConnectionError,
     PlcError,
+    PlcOptionError,
     PlcTimeoutError,
     PlcTlsError,
     TlsMode,
@@ -237,10 +238,15 @@ def on_form(errors: dict[str, str], schema: vol.Schema) -> dict[str, str]:
     return {(field if field in shown else "base"): key for field, key in errors.items()}
 
 
-def error_for(err: PlcError) -> dict[str, str]:
-    """Return the form error for a failure to reach or log in to the PLC, on its field."""
+def error_for(err: PlcError, client: type[PlcClient] | None = None) -> dict[str, str]:
+    """Return the form error for a failure to reach or log in to the PLC, on its field.
+
+    A refused login is shown on the password, or on the option that authenticates instead
+    (SoftPLC's client certificate).
+    """
     if isinstance(err, PlcAuthenticationError):
-        return {CONF_PASSWORD: "invalid_auth"}
+        field = client.credential_option if client is not None else None
+        return {field or CONF_PASSWORD: "invalid_auth"}
     if isinstance(err, PlcTlsError):
         return {CONF_TLS: "tls_failed"}
     if isinstance(err, PlcTimeoutError):
@@ -248,3 +254,8 @@ def error_for(err: PlcError) -> dict[str, str]:
     if isinstance(err, PlcConnectionError):
         return {CONF_HOST: "cannot_connect"}
     return {"base": "protocol_error"}
+
+
+def option_error(err: PlcOptionError) -> dict[str, str]:
+    """Return the form error of a vendor option that cannot be used, on its own field."""
+    return {err.option: "pem_outside_config" if err.outside else "invalid_pem"}

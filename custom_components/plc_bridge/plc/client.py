@@ -43,6 +43,7 @@ class PlcClient(ABC):
     tls_modes: ClassVar[tuple[TlsMode, ...]] = (TlsMode.NONE,)
     needs_credentials: ClassVar[bool] = False
     credentials_optional: ClassVar[bool] = False  # asked, but may stay empty (auth may be off)
+    credential_option: ClassVar[str | None] = None  # the option that authenticates, if not a user
     data_types: ClassVar[tuple[str, ...]]
     default_scan_interval: ClassVar[float] = 5.0
     max_points_per_request: ClassVar[int] = 0  # 0: the vendor packs by size, not count
@@ -91,6 +92,17 @@ class PlcClient(ABC):
         return {k: v for k, v in options.items() if isinstance(v, str | int | bool)}
 
     @classmethod
+    def resolve_options(
+        cls, folder: str, submitted: Mapping[str, object], stored: Mapping[str, object]
+    ) -> dict[str, str]:
+        """Return the submitted options that name files, resolved in `folder` (blocking I/O).
+
+        A vendor whose options may be files (SoftPLC's client certificate and key) checks them
+        here; raise PlcOptionError on the option at fault. Others have none.
+        """
+        return {}
+
+    @classmethod
     def validate_value(cls, point: Point, value: Value) -> Value:
         """Return the value coerced for the point; raise PlcValueError before anything is sent."""
         return value
@@ -125,6 +137,14 @@ class PlcClient(ABC):
     @abstractmethod
     async def connect(self) -> DeviceInfo:
         """Open the connection, log in and return what the PLC says about itself."""
+
+    async def check_access(self) -> None:
+        """After `connect`, check what only writes use (SoftPLC's client certificate).
+
+        Called where settings are entered, so that a refusal shows there; never by a setup,
+        whose reads must go on whatever writes would meet.
+        """
+        return  # most vendors check everything in `connect`
 
     async def read(self, points: Sequence[Point], *, poll: bool = True) -> ReadResult:
         """Read every point in the fewest requests the vendor allows.

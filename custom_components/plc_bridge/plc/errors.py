@@ -37,3 +37,17 @@ class PlcWriteRefusedError(PlcError):
 
 class PlcProtocolError(PlcError):
     """The PLC answered something the protocol does not allow (malformed or unexpected reply)."""
+
+
+class PlcOptionError(PlcValueError):
+    """A vendor option cannot be used (a client certificate, a key); nothing was sent.
+
+    `option` names the option at fault (the form field that shows it); `outside`: it names a
+    file outside the folder the caller allows.
+    """
+
+    def __init__(self, message: str, option: str, *, outside: bool = False) -> None:
+        """Keep which option is at fault, and whether it is a file outside the allowed folder."""
+        super().__init__(message)
+        self.option = option
+        self.outside = outside

@@ -38,7 +38,7 @@ from .codec import KINDS, TYPES, check_value, data_type, decode, parse_token
 from .document import MAX_REPLY, Item, request_body
 from .exchange import Answers, Refused, exchange, send
 from .planner import ReadItem, item_of, plan
-from .tls import client_context, has_certificate, pem_options
+from .tls import CERTIFICATE, client_context, has_certificate, pem_options, resolve_material
 from .writing import confirm, write_items
 
 type Key = tuple[str, int, int, str]
@@ -80,6 +80,7 @@ class SoftplcClient(PlcClient):
         TlsMode.OFF,
     )
     needs_credentials: ClassVar[bool] = False
+    credential_option: ClassVar[str | None] = CERTIFICATE  # PUTs authenticate by certificate
     data_types: ClassVar[tuple[str, ...]] = TYPES
     probe_interval: ClassVar[float] = 60.0  # refused addresses are asked again this often
 
@@ -188,6 +189,17 @@ class SoftplcClient(PlcClient):
             name="SoftPLC",
             extra={"writes_with_certificate": "yes" if self._certificate else "no"},
         )
+
+    @classmethod
+    def resolve_options(
+        cls, folder: str, submitted: Mapping[str, object], stored: Mapping[str, object]
+    ) -> dict[str, str]:
+        """Return the certificate and key, paths made absolute in `folder` (`resolve_material`)."""
+        return resolve_material(folder, submitted, stored)
+
+    async def check_access(self) -> None:
+        """Check the client certificate a write would present (`check_certificate`)."""
+        await self.check_certificate()
 
     async def check_certificate(self) -> None:
         """PUT nothing (`<files/>`: no item, nothing written) to see the certificate taken.

@@ -20,9 +20,9 @@ from ...errors import (
     PlcAuthenticationError,
     PlcConnectionError,
     PlcError,
+    PlcOptionError,
     PlcTimeoutError,
     PlcTlsError,
-    PlcValueError,
 )
 from ...types import ConnectionConfig, TlsMode
 
@@ -43,14 +43,8 @@ _REFUSALS = (
 _WHAT = {CERTIFICATE: ("client certificate", "CERTIFICATE"), KEY: ("client key", "PRIVATE KEY")}
 
 
-class MaterialError(PlcValueError):
+class MaterialError(PlcOptionError):
     """A client certificate or key that cannot be used, found before anything is sent."""
-
-    def __init__(self, message: str, option: str, *, outside: bool = False) -> None:
-        """Keep which option is at fault, and whether it is a path outside the allowed folder."""
-        super().__init__(message)
-        self.option = option
-        self.outside = outside
 
 
 def check_material(value: object, option: str) -> str:
