@@ -131,7 +131,7 @@ class S7SmartClient(PlcClient):
         self._login_lock = asyncio.Lock()
         self._logins = 0  # successful logins so far: concurrent callers share one
         self._mode: str | None = None  # the operating mode the last status block reported
-        self._can_write = True  # what get_permission said at connect (manual 6)
+        self._can_write = True  # what get_permission said at connect (manual 7)
         self._max_nodes = MAX_NODES  # lowered, and kept, when the PLC refuses as many
 
     @classmethod
@@ -328,12 +328,13 @@ class S7SmartClient(PlcClient):
         """Call a method that needs a login; after any refusal log in once and retry once.
 
         The manual defines no session error code (its error page is missing), only that a
-        request needs a valid token (6.1 a, 7.1 a, 8.1 a) and that a token ends with another
-        login or 30 minutes idle (5.1 b, 5.3.1): so a refusal is first taken as a lost session.
-        A refused write is first checked against the status an empty read returns (8.1 d): out
-        of RUN, it is the STOP refusal (writes only in RUN), with the PLC's own words; a write
-        refused again after a fresh login, by a user get_permission (6) said may not write, is
-        that. Known codes refine the message; they never decide the path.
+        request needs a login first (7.1 a, 8.1 a, 9.1 a) and that a token ends with another
+        login or half an hour idle (5.1 b, 5.1 c): so a refusal is first taken as a lost
+        session. A refused write is first checked against the status an empty read returns
+        (8.1 d): out of RUN, it is the STOP refusal ("You can ONLY write data while CPU in run",
+        9.1 d), with the PLC's own words; a write refused again after a fresh login, by a user
+        get_permission (7) said may not write, is that. Known codes refine the message; they
+        never decide the path.
         """
         if self._token is None:
             await self._login(self._logins)  # callers at once share the one login

@@ -98,8 +98,8 @@ def node_error(code: Any, var: str, message: Any = None, *, write: bool = False)
     """Return the exception for a node whose result code is not 0, with the PLC's own words.
 
     A code this table knows refines the kind; any other is, by structure, the PLC refusing that
-    node: a write it did not take, or a read it could not answer (manual 8.1 f, 9.1: "nodes
-    shall return the exact reason").
+    node: a write it did not take, or a read it could not answer (manual 8.3.1, 9.3.1: "If
+    errors exist, nodes shall return the exact reason").
     """
     words = f": {message}" if isinstance(message, str) and message.strip() else ""
     if code in _NODE_ERRORS:
