@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 import asyncio
-from collections.abc import Mapping
+from collections.abc import Iterable, Mapping
 import hashlib
 import logging
 import re
@@ -104,22 +104,37 @@ def format_fingerprint(fingerprint: str) -> str:
 
 
 _LOGGER = logging.getLogger(__name__)
-SECRET = re.compile(
-    r'("(?:password|passwd|token|access_token|auth_token|refresh_token|cookie|username|user)"'
-    r'\s*:\s*)"[^"]*"',
-    re.I,
+SECRET_FIELDS = (
+    "password",
+    "passwd",
+    "token",
+    "access_token",
+    "auth_token",
+    "refresh_token",
+    "cookie",
+    "username",
+    "user",
 )
 """JSON fields a request or reply may carry credentials or a session in: never logged."""
+
+
+def secret_fields(names: Iterable[str]) -> re.Pattern[str]:
+    """Return the pattern of JSON string fields whose values a debug line masks."""
+    alternatives = "|".join(re.escape(name) for name in names)
+    return re.compile(rf'("(?:{alternatives})"\s*:\s*)"[^"]*"', re.IGNORECASE)
+
+
+SECRET = secret_fields(SECRET_FIELDS)
 SHOWN = 500
 """Characters of a body a debug line shows."""
 
 
-def shown(body: str | bytes | None) -> str:
+def shown(body: str | bytes | None, secret: re.Pattern[str] = SECRET) -> str:
     """Return a body as the debug log shows it: credentials and tokens masked, cut short."""
     if body is None:
         return ""
     text = body.decode("utf-8", "replace") if isinstance(body, bytes) else body
-    text = SECRET.sub(r'\1"***"', text)
+    text = secret.sub(r'\1"***"', text)
     return text if len(text) <= SHOWN else f"{text[:SHOWN]}… ({len(text)} characters)"
 
 
@@ -153,12 +168,14 @@ class HttpTransport:
         request_interval: float = 0.0,
         ssl_context: ssl.SSLContext | None = None,
         max_body: int = MAX_BODY,
+        secrets: Iterable[str] = (),
     ) -> None:
         """Bind the transport to a PLC, an aiohttp session and the client's metrics.
 
         `ssl_context` replaces the TLS mode's check (a vendor that presents a client
         certificate builds one, and checks the PLC's certificate in it); `max_body` caps a
-        reply's body while it is read (PlcProtocolError beyond it).
+        reply's body while it is read (PlcProtocolError beyond it); `secrets` names more JSON
+        fields the debug log masks (a vendor's own token fields).
         """
         self._config = config
         self._session = session
@@ -167,6 +184,8 @@ class HttpTransport:
             ssl_context if ssl_context is not None else ssl_option(config)
         )
         self._max_body = max_body
+        extra = tuple(secrets)
+        self._secret = secret_fields((*SECRET_FIELDS, *extra)) if extra else SECRET
         self._url = base_url(config)
         self._lock = asyncio.Lock()
         self._interval = request_interval
@@ -211,10 +230,10 @@ class HttpTransport:
                         self._config.host,
                         method,
                         path,
-                        shown(data),
+                        shown(data, self._secret),
                         response.status,
                         (time.monotonic() - started) * 1000,
-                        shown(body),
+                        shown(body, self._secret),
                     )
                     return response.status, response.headers, body
             except aiohttp.ServerFingerprintMismatch as err:

@@ -5,7 +5,6 @@ from __future__ import annotations
 import asyncio
 from collections.abc import Callable
 import json
-import logging
 import re
 import secrets
 from typing import Any
@@ -22,30 +21,11 @@ ROOT = "/_pxc_api"
 LATEST = f"{ROOT}/api"
 _VERSION = re.compile(r"v?(\d+)\.(\d+)", re.ASCII)
 SESSION_MIN = 300.0  # seconds: a session outlives several polls and a slow write action
-_SECRETS = re.compile(r'("(?:access_token|code)"\s*:\s*)"[^"]*"')
+SECRETS = ("code",)
+"""The auth-token's field (notes 3a, Authentication), masked in the debug log with the rest."""
 
 type Request = tuple[str, bytes | None, str | None]
 """A request made for the current session id: path with query, body, content type."""
-
-
-class _MaskTokens(logging.Filter):
-    """Mask the access token and the auth code in the HTTP debug line of an auth request.
-
-    The transport masks `"token"` and `"password"` fields; PLCnext names its tokens
-    `access_token` and `code` (notes 3a, Authentication).
-    """
-
-    def filter(self, record: logging.LogRecord) -> bool:
-        """Rewrite the record's arguments when it shows a PLCnext auth request."""
-        args = record.args
-        if isinstance(args, tuple) and len(args) > 2 and f"{ROOT}/" in str(args[2]):
-            record.args = tuple(
-                _SECRETS.sub(r'\1"***"', item) if isinstance(item, str) else item for item in args
-            )
-        return True
-
-
-logging.getLogger(HttpTransport.__module__).addFilter(_MaskTokens())
 
 
 def pinned_base(description: Any) -> str:
@@ -82,7 +62,7 @@ class PlcnextApi:
         """Bind to a PLC; the version, token and session come with `describe` and use."""
         self._config = config
         self._metrics = metrics
-        self._transport = HttpTransport(config, session, metrics)
+        self._transport = HttpTransport(config, session, metrics, secrets=SECRETS)
         self.base = LATEST
         self.auth_required: bool | None = None  # None: the PLC has not said yet
         self._token: str | None = None
