@@ -2,13 +2,14 @@
 
 from __future__ import annotations
 
+from collections.abc import Collection, Mapping
 from datetime import datetime, tzinfo
 from decimal import Decimal
 import math
 import re
 import struct
 
-from .errors import PlcValueError
+from .errors import PlcAddressError, PlcValueError
 from .types import Value, ValueKind
 
 INTEGER_RANGES: dict[str, tuple[int, int]] = {
@@ -143,3 +144,12 @@ def local_time(value: datetime, zone: tzinfo) -> datetime:
         return value.astimezone(zone)
     except OverflowError as err:
         raise PlcValueError(f"{value.isoformat()} has no time in the PLC's time zone") from err
+
+
+def type_name(text: str, known: Collection[str], aliases: Mapping[str, str]) -> str:
+    """Return a vendor's canonical type name for a typed one; raise PlcAddressError if unknown."""
+    name = text.strip().upper()
+    name = aliases.get(name, name)
+    if name not in known:
+        raise PlcAddressError(f"unknown data type {text!r}; use one of {', '.join(known)}")
+    return name

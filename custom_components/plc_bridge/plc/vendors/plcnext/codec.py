@@ -20,8 +20,9 @@ from ...codec import (
     check_integer,
     local_time,
     shortest_real,
+    type_name,
 )
-from ...errors import PlcAddressError, PlcProtocolError, PlcValueError
+from ...errors import PlcProtocolError, PlcValueError
 from ...types import Value, ValueKind
 
 INTEGERS = tuple(INTEGER_RANGES)
@@ -48,11 +49,7 @@ _TRUE, _FALSE = ("true", "1"), ("false", "0")
 
 def data_type(text: str) -> str:
     """Return the canonical type name; raise PlcAddressError for a type the client lacks."""
-    name = text.strip().upper()
-    name = ALIASES.get(name, name)
-    if name not in KINDS:
-        raise PlcAddressError(f"unknown data type {text!r}; use one of {', '.join(TYPES)}")
-    return name
+    return type_name(text, TYPES, ALIASES)
 
 
 def check_value(kind: str, value: Value, what: str) -> Value:

@@ -17,8 +17,9 @@ from ...codec import (
     local_time,
     plain_decimal,
     shortest_real,
+    type_name,
 )
-from ...errors import PlcAddressError, PlcProtocolError, PlcValueError
+from ...errors import PlcProtocolError, PlcValueError
 from ...types import Value, ValueKind
 
 INTEGERS = ("BYTE", "WORD", "DWORD", "SINT", "INT", "DINT", "USINT", "UINT", "UDINT")
@@ -48,11 +49,7 @@ _DT = re.compile(r"(\d{4})-(\d\d)-(\d\d)[T ](\d\d):(\d\d):(\d\d)(?:\.(\d{1,3}))?
 
 def data_type(text: str) -> str:
     """Return the canonical type name; raise PlcAddressError for a type TecoApi lacks."""
-    name = text.strip().upper()
-    name = ALIASES.get(name, name)
-    if name not in TYPES:
-        raise PlcAddressError(f"unknown data type {text!r}; use one of {', '.join(TYPES)}")
-    return name
+    return type_name(text, TYPES, ALIASES)
 
 
 def check_value(kind: str, value: Value, what: str) -> Value:
