@@ -9,20 +9,13 @@ from homeassistant.helpers import config_validation as cv, device_registry as dr
 from homeassistant.helpers.typing import ConfigType
 
 from .connection import create_polling_client
-from .const import CONF_TLS, DOMAIN
+from .const import DOMAIN
 from .coordinator import PlcBridgeConfigEntry, PlcCoordinator, PlcRuntimeData, link_error
 from .entity import device_info
 from .migration import async_migrate_points
-from .plc import PlcError, TlsMode
+from .plc import PlcError
 from .points import PointEntities, async_register_devices
-from .repairs import (
-    CERTIFICATE_CHANGED,
-    ISSUES,
-    TLS_OFF,
-    async_clear_issue,
-    async_clear_point_issues,
-    async_raise_issue,
-)
+from .repairs import CERTIFICATE_CHANGED, async_check_tls, async_clear_all, async_clear_issue
 from .services import async_setup_services
 
 PLATFORMS = [
@@ -44,10 +37,7 @@ async def async_setup(hass: HomeAssistant, config: ConfigType) -> bool:
 
 async def async_setup_entry(hass: HomeAssistant, entry: PlcBridgeConfigEntry) -> bool:
     """Connect to the PLC, poll it once, then add its entities."""
-    if entry.data.get(CONF_TLS) == TlsMode.OFF:
-        async_raise_issue(hass, entry, TLS_OFF)
-    else:
-        async_clear_issue(hass, entry, TLS_OFF)
+    async_check_tls(hass, entry)
     client = create_polling_client(hass, entry.data, entry.options)
     entry.async_on_unload(client.close)  # also when the setup below fails
     try:
@@ -102,6 +92,4 @@ async def async_unload_entry(hass: HomeAssistant, entry: PlcBridgeConfigEntry) -
 
 async def async_remove_entry(hass: HomeAssistant, entry: ConfigEntry) -> None:
     """Delete the issues of a removed PLC."""
-    for key in ISSUES:
-        async_clear_issue(hass, entry, key)
-    async_clear_point_issues(hass, entry)
+    async_clear_all(hass, entry)

@@ -6,15 +6,15 @@ from collections.abc import Collection
 from typing import TYPE_CHECKING, Any
 
 from homeassistant.components.repairs import ConfirmRepairFlow, RepairsFlow
-from homeassistant.config_entries import ConfigEntryState
+from homeassistant.config_entries import ConfigEntry, ConfigEntryState
 from homeassistant.const import CONF_HOST, CONF_PORT
 from homeassistant.core import HomeAssistant, callback
 from homeassistant.helpers import issue_registry as ir
 import voluptuous as vol
 
-from .const import CONF_FINGERPRINT, DOMAIN
+from .const import CONF_FINGERPRINT, CONF_TLS, DOMAIN
 from .models import PlcBridgeConfigEntry
-from .plc import PlcError
+from .plc import PlcError, TlsMode
 from .plc.http import fetch_fingerprint, format_fingerprint
 
 if TYPE_CHECKING:  # named since Home Assistant 2026.10; only annotations use it
@@ -113,6 +113,23 @@ def async_clear_point_issues(
     """Delete the point issues of an entry, except those of the point ids in `keep`."""
     for point_id in async_point_issues(hass, entry) - set(keep):
         async_clear_point_issue(hass, entry, point_id)
+
+
+@callback
+def async_check_tls(hass: HomeAssistant, entry: PlcBridgeConfigEntry) -> None:
+    """Raise the issue of a PLC whose certificate is not checked at all; clear it otherwise."""
+    if entry.data.get(CONF_TLS) == TlsMode.OFF:
+        async_raise_issue(hass, entry, TLS_OFF)
+    else:
+        async_clear_issue(hass, entry, TLS_OFF)
+
+
+@callback
+def async_clear_all(hass: HomeAssistant, entry: ConfigEntry) -> None:
+    """Delete every issue of a removed PLC, its points' too."""
+    for key in ISSUES:
+        async_clear_issue(hass, entry, key)
+    async_clear_point_issues(hass, entry)
 
 
 class CertificateRepairFlow(RepairsFlow):
