@@ -13,8 +13,10 @@ import struct
 from typing import Any
 
 from awesomeversion import AwesomeVersion, AwesomeVersionStrategy
+import homeassistant.components
 from homeassistant.const import __version__ as HA_VERSION
 from homeassistant.util.yaml import load_yaml_dict
+from packaging.requirements import Requirement
 import pytest
 import voluptuous as vol
 
@@ -122,11 +124,19 @@ def version(value: str) -> str:
     return value
 
 
+SHARED_WITH_CORE = {"lxml"}
+"""Requirements Home Assistant's own integrations pin too (lxml: scrape). Ours takes a lower
+bound that every supported release's pin meets: an exact pin of another version would make Home
+Assistant reinstall the package for one integration, then for the other, at every start."""
+
+
 def pinned(value: str) -> str:
-    """Accept a requirement pinned to one version."""
-    if "==" not in value:
-        raise vol.Invalid(f"{value!r} is not pinned with ==")
-    return value
+    """Accept a requirement pinned to one version, or bounded below where core pins it too."""
+    requirement = Requirement(value)
+    operators = {spec.operator for spec in requirement.specifier}
+    if operators == {"=="} or (requirement.name in SHARED_WITH_CORE and operators == {">="}):
+        return value
+    raise vol.Invalid(f"{value!r} is not pinned with == (nor a lower bound of {SHARED_WITH_CORE})")
 
 
 def codeowner(value: str) -> str:
@@ -201,10 +211,37 @@ def test_manifest_key_order(manifest: dict[str, Any]) -> None:
 
 
 def test_requirements_match_tests(manifest: dict[str, Any]) -> None:
-    """The tests run against exactly the requirement versions Home Assistant will install."""
+    """The tests run against the requirement versions Home Assistant will install."""
     test_lines = (ROOT / "requirements_test.txt").read_text(encoding="utf-8").splitlines()
-    pins = {line.split("#")[0].strip() for line in test_lines}
-    assert set(manifest["requirements"]) <= pins
+    pins = {
+        Requirement(line).name: Requirement(line)
+        for line in (text.split("#")[0].strip() for text in test_lines)
+        if line
+    }
+    for text in manifest["requirements"]:
+        wanted = Requirement(text)
+        (tested,) = pins[wanted.name].specifier
+        assert tested.operator == "=="
+        assert wanted.specifier.contains(tested.version), (text, str(tested))
+
+
+def test_shared_requirements_fit_core(manifest: dict[str, Any]) -> None:
+    """Every pin this release's own integrations make of a shared requirement meets ours."""
+    components = Path(homeassistant.components.__file__).parent
+    ours = {
+        Requirement(text).name: Requirement(text)
+        for text in manifest["requirements"]
+        if Requirement(text).name in SHARED_WITH_CORE
+    }
+    checked = 0
+    for path in components.glob("*/manifest.json"):
+        for text in json.loads(path.read_text(encoding="utf-8")).get("requirements", []):
+            theirs = Requirement(text)
+            if theirs.name in ours and theirs.specifier:
+                (spec,) = theirs.specifier
+                assert ours[theirs.name].specifier.contains(spec.version), (path.parent.name, text)
+                checked += 1
+    assert checked, "no core integration pins lxml any more: pin it exactly again"
 
 
 def test_config_flow(manifest: dict[str, Any]) -> None:
