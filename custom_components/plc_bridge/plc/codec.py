@@ -153,3 +153,17 @@ def type_name(text: str, known: Collection[str], aliases: Mapping[str, str]) -> 
     if name not in known:
         raise PlcAddressError(f"unknown data type {text!r}; use one of {', '.join(known)}")
     return name
+
+
+def check_moment(kind: str, value: Value, what: str) -> datetime:
+    """Return a DATE or DT as a datetime (naive: the PLC's time) from 1970 on; ISO text accepted."""
+    if isinstance(value, str):
+        try:
+            value = datetime.fromisoformat(value.strip())
+        except ValueError:
+            raise PlcValueError(f"{what} takes a {kind} as an ISO date, not {value!r}") from None
+    if not isinstance(value, datetime):
+        raise PlcValueError(f"{what} takes a {kind} (a date and time), not {value!r}")
+    if value.year < 1970:
+        raise PlcValueError(f"{what}: a {kind} starts on 1970-01-01")
+    return value

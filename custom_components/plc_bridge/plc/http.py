@@ -74,6 +74,11 @@ def base_url(config: ConnectionConfig) -> str:
 
 async def fetch_fingerprint(host: str, port: int, timeout: float = 10.0) -> str:
     """Connect once without verification and return the SHA-256 hex of the server certificate."""
+    return hashlib.sha256(await fetch_certificate(host, port, timeout)).hexdigest()
+
+
+async def fetch_certificate(host: str, port: int, timeout: float = 10.0) -> bytes:
+    """Connect once without verification and return the server certificate (DER)."""
     # A bare context: create_default_context() would load the system CAs, a blocking read,
     # and this handshake trusts nothing anyway; it only looks at the certificate.
     context = ssl.SSLContext(ssl.PROTOCOL_TLS_CLIENT)
@@ -95,7 +100,7 @@ async def fetch_fingerprint(host: str, port: int, timeout: float = 10.0) -> str:
         writer.close()
     if not der:
         raise PlcTlsError(f"{host}:{port} presented no certificate")
-    return hashlib.sha256(der).hexdigest()
+    return bytes(der)
 
 
 def format_fingerprint(fingerprint: str) -> str:

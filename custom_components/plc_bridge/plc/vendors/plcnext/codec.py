@@ -18,6 +18,7 @@ from ...codec import (
     check_bool,
     check_float,
     check_integer,
+    check_moment,
     local_time,
     shortest_real,
     type_name,
@@ -63,7 +64,7 @@ def check_value(kind: str, value: Value, what: str) -> Value:
     if kind in ("REAL", "LREAL"):
         return check_float(value, single=kind == "REAL", what=what)
     if kind in ("DATE", "DT"):
-        return _check_moment(kind, value, what)
+        return check_moment(kind, value, what)
     return _check_text(kind, value, what)
 
 
@@ -82,20 +83,6 @@ def _check_text(kind: str, value: Value, what: str) -> str:
         raise PlcValueError(f"{what}: the text holds a lone surrogate")
     if len(value) > MAX_STRING:
         raise PlcValueError(f"{what}: the text is longer than {MAX_STRING} characters")
-    return value
-
-
-def _check_moment(kind: str, value: Value, what: str) -> datetime:
-    """Return a DATE or DT as a datetime (naive: the PLC's time), ISO text accepted."""
-    if isinstance(value, str):
-        try:
-            value = datetime.fromisoformat(value.strip())
-        except ValueError:
-            raise PlcValueError(f"{what} takes a {kind} as an ISO date, not {value!r}") from None
-    if not isinstance(value, datetime):
-        raise PlcValueError(f"{what} takes a {kind} (a date and time), not {value!r}")
-    if value.year < 1970:
-        raise PlcValueError(f"{what}: a {kind} starts on 1970-01-01")
     return value
 
 

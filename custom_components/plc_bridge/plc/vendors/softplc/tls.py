@@ -18,12 +18,11 @@ import tempfile
 
 from ...errors import (
     PlcAuthenticationError,
-    PlcConnectionError,
     PlcError,
     PlcOptionError,
-    PlcTimeoutError,
     PlcTlsError,
 )
+from ...http import fetch_certificate
 from ...types import ConnectionConfig, TlsMode
 
 CERTIFICATE = "client_certificate"
@@ -175,26 +174,10 @@ def _load(context: ssl.SSLContext, certificate: str, key: str) -> None:
 
 async def _pinned_certificate(config: ConnectionConfig) -> bytes:
     """Return the PLC's certificate (DER) after checking it against the pin."""
-    probe = ssl.SSLContext(ssl.PROTOCOL_TLS_CLIENT)
-    probe.check_hostname = False
-    probe.verify_mode = ssl.CERT_NONE
-    try:
-        async with asyncio.timeout(config.timeout):
-            _reader, writer = await asyncio.open_connection(config.host, config.port, ssl=probe)
-    except TimeoutError as err:
-        raise PlcTimeoutError(f"no answer from {config.host} in time") from err
-    except ssl.SSLError as err:
-        raise PlcTlsError(f"TLS failed: {err.reason}") from err
-    except OSError as err:
-        raise PlcConnectionError(f"cannot reach {config.host}:{config.port}: {err}") from err
-    try:
-        ssl_object = writer.get_extra_info("ssl_object")
-        der = ssl_object.getpeercert(binary_form=True) if ssl_object else None
-    finally:
-        writer.close()
-    if not der or hashlib.sha256(der).hexdigest() != config.fingerprint.lower():
+    der = await fetch_certificate(config.host, config.port, config.timeout)
+    if hashlib.sha256(der).hexdigest() != config.fingerprint.lower():
         raise PlcTlsError("the PLC presented a certificate other than the pinned one")
-    return bytes(der)
+    return der
 
 
 def refused_certificate(err: PlcError) -> bool:

@@ -14,6 +14,7 @@ from ...codec import (
     check_bool,
     check_float,
     check_integer,
+    check_moment,
     local_time,
     plain_decimal,
     shortest_real,
@@ -63,7 +64,7 @@ def check_value(kind: str, value: Value, what: str) -> Value:
     if kind in ("TIME", "TOD"):
         return _format_clock(_check_clock(kind, value, what))
     if kind in ("DATE", "DT"):
-        return _check_date(kind, value, what)
+        return check_moment(kind, value, what)
     return _check_text(value, what)
 
 
@@ -119,20 +120,6 @@ def _format_clock(millis: int) -> str:
     minutes, seconds = divmod(seconds, 60)
     hours, minutes = divmod(minutes, 60)
     return f"{hours:02d}:{minutes:02d}:{seconds:02d}.{millis:03d}"
-
-
-def _check_date(kind: str, value: Value, what: str) -> datetime:
-    """Return a DATE or DT as a datetime (naive: PLC time) from 1970 on."""
-    if isinstance(value, str):
-        try:
-            value = datetime.fromisoformat(value.strip())
-        except ValueError:
-            raise PlcValueError(f"{what} takes a {kind} as an ISO date, not {value!r}") from None
-    if not isinstance(value, datetime):
-        raise PlcValueError(f"{what} takes a {kind} (a date and time), not {value!r}")
-    if value.year < 1970:
-        raise PlcValueError(f"{what}: a {kind} starts on 1970-01-01")
-    return value
 
 
 def encode(kind: str, value: Value, zone: tzinfo) -> Any:
