@@ -3,6 +3,34 @@
 from __future__ import annotations
 
 from collections.abc import Callable, Iterable, Sequence
+from typing import Protocol
+
+from .errors import PlcError
+from .types import Point
+
+
+class Keyed(Protocol):
+    """A parsed address that names its variable by a key (as the PLC compares names)."""
+
+    @property
+    def key(self) -> str:
+        """The variable's name as the PLC compares it."""
+        ...
+
+
+def distinct[K: Keyed](
+    points: Iterable[Point], parse: Callable[[str], K], check_type: Callable[[str], object]
+) -> dict[str, K]:
+    """Return the valid addresses of points, once each by key; an invalid point is left out."""
+    found: dict[str, K] = {}
+    for point in points:
+        try:
+            address = parse(point.address)
+            check_type(point.data_type)
+        except PlcError:
+            continue
+        found.setdefault(address.key, address)
+    return found
 
 
 def chunks[T](items: Sequence[T], size: int) -> list[Sequence[T]]:

@@ -20,6 +20,7 @@ from ...errors import (
     PlcValueError,
     PlcWriteRefusedError,
 )
+from ...planning import distinct
 from ...types import (
     BrowseItem,
     ConnectionConfig,
@@ -42,19 +43,6 @@ from .writing import put
 
 _LOGGER = logging.getLogger(__name__)
 CLOSE_TIMEOUT = 2.0
-
-
-def _distinct(points: Sequence[Point]) -> dict[str, VariablePath]:
-    """Return the valid paths of points, once each."""
-    paths: dict[str, VariablePath] = {}
-    for point in points:
-        try:
-            path = parse_path(point.address)
-            data_type(point.data_type)
-        except PlcError:
-            continue
-        paths.setdefault(path.key, path)
-    return paths
 
 
 class PlcnextClient(PlcClient):
@@ -114,7 +102,7 @@ class PlcnextClient(PlcClient):
     @classmethod
     def requests_for(cls, points: Sequence[Point]) -> int:
         """One poll is one group read, whatever the number of points."""
-        return 1 if _distinct(points) else 0
+        return 1 if distinct(points, parse_path, data_type) else 0
 
     def _rest(self) -> PlcnextApi:
         """Return the service layer, made on first use."""

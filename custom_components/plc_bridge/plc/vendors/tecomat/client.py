@@ -19,7 +19,7 @@ from ...errors import (
     PlcValueError,
     PlcWriteRefusedError,
 )
-from ...planning import chunks
+from ...planning import chunks, distinct
 from ...types import (
     BrowseItem,
     ConnectionConfig,
@@ -54,19 +54,6 @@ class _Write:
     path: VariablePath
     kind: str
     value: Value
-
-
-def _distinct(points: Sequence[Point]) -> dict[str, VariablePath]:
-    """Return the valid paths of points, once each (names are case-insensitive)."""
-    paths: dict[str, VariablePath] = {}
-    for point in points:
-        try:
-            path = parse_path(point.address)
-            data_type(point.data_type)
-        except PlcError:
-            continue
-        paths.setdefault(path.key, path)
-    return paths
 
 
 class TecomatClient(PlcClient):
@@ -141,7 +128,7 @@ class TecomatClient(PlcClient):
     @classmethod
     def requests_for(cls, points: Sequence[Point]) -> int:
         """Count the GetObject requests of one poll (URI <= 256 characters, 128 names)."""
-        return len(plan(_distinct(points).values()))
+        return len(plan(distinct(points, parse_path, data_type).values()))
 
     def _teco(self) -> TecoApi:
         """Return the service layer, made on first use."""
