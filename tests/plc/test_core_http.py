@@ -227,3 +227,68 @@ async def test_own_ssl_context_replaces_tls_mode(
     transport = HttpTransport(config, session, ClientMetrics(), ssl_context=context)
     with pytest.raises(PlcTlsError):
         await transport.request("POST", "/echo", data="1")
+
+
+class ClosingServer:
+    """Answers the first request of each connection, then closes it at the next request.
+
+    What a PLC does that closes an idle kept-alive connection just as a poll reuses it.
+    """
+
+    def __init__(self) -> None:
+        self.connections = 0
+        self.server: asyncio.Server | None = None
+
+    async def handle(self, reader: asyncio.StreamReader, writer: asyncio.StreamWriter) -> None:
+        self.connections += 1
+        for answered in (False, True):
+            try:
+                head = await reader.readuntil(b"\r\n\r\n")
+            except asyncio.IncompleteReadError:  # the client closed it first
+                break
+            length = next(
+                (
+                    int(line.split(b":")[1])
+                    for line in head.split(b"\r\n")
+                    if line.lower().startswith(b"content-length")
+                ),
+                0,
+            )
+            await reader.readexactly(length)
+            if answered:
+                break
+            writer.write(
+                b"HTTP/1.1 200 OK\r\nContent-Length: 2\r\nConnection: keep-alive\r\n\r\nok"
+            )
+            await writer.drain()
+        writer.close()
+
+    async def __aenter__(self) -> int:
+        self.server = await asyncio.start_server(self.handle, "127.0.0.1", 0)
+        return int(self.server.sockets[0].getsockname()[1])
+
+    async def __aexit__(self, *_: object) -> None:
+        assert self.server is not None
+        self.server.close()
+        self.server.close_clients()  # the client's pool still holds the second one
+        await self.server.wait_closed()
+
+
+@pytest.mark.parametrize("idempotent", [True, False])
+async def test_reading_post_sent_again_on_a_closed_kept_alive_connection(
+    session: aiohttp.ClientSession, idempotent: bool
+) -> None:
+    """A POST that only reads survives a kept-alive connection the PLC closed; a write fails."""
+    server = ClosingServer()
+    async with server as port:
+        transport, metrics = _transport(session, port, TlsMode.NONE)
+        assert (await transport.request("POST", "/read", data="1"))[2] == b"ok"
+        if idempotent:
+            status, _headers, body = await transport.request(
+                "POST", "/read", data="2", idempotent=True
+            )
+            assert (status, body, server.connections, metrics.requests) == (200, b"ok", 2, 3)
+        else:
+            with pytest.raises(PlcConnectionError):
+                await transport.request("POST", "/write", data="2")
+            assert server.connections == 1

@@ -204,43 +204,31 @@ class HttpTransport:
         data: str | bytes | None = None,
         headers: Mapping[str, str] | None = None,
         encoded: bool = False,
+        idempotent: bool = False,
         **kwargs: Any,
     ) -> tuple[int, Mapping[str, str], bytes]:
         """Send one request and return status, headers and body; map every failure.
 
         `encoded`: the path is sent exactly as given (no percent-encoding of `[`, `]`, ...).
+        `idempotent`: a POST that only reads. Sent again once when the connection breaks
+        before an answer, as aiohttp does for GET and PUT (RFC 9112 9.3.1): a kept-alive
+        connection the PLC closed while idle must not fail a poll.
         """
         url: str | URL = URL(self._url + path, encoded=True) if encoded else self._url + path
+        arguments = {"data": data, "headers": headers, **kwargs}
         async with self._lock:
             # Capped: a clock that moved back (suspend, a frozen test clock) never stalls a poll.
             wait = min(self._interval, self._last + self._interval - time.monotonic())
             if wait > 0:
                 await asyncio.sleep(wait)
-            self._metrics.requests += 1
-            started = time.monotonic()
             try:
-                async with self._session.request(
-                    method,
-                    url,
-                    data=data,
-                    headers=headers,
-                    ssl=self._ssl if self._ssl is not None else True,
-                    timeout=aiohttp.ClientTimeout(total=self._config.timeout),
-                    **kwargs,
-                ) as response:
-                    body = await _read_capped(response, self._max_body)
-                    # Headers are never logged: they carry the Authorization and the Cookie.
-                    _LOGGER.debug(
-                        "%s %s %s %s -> %s in %.0f ms: %s",
-                        self._config.host,
-                        method,
-                        path,
-                        shown(data, self._secret),
-                        response.status,
-                        (time.monotonic() - started) * 1000,
-                        shown(body, self._secret),
-                    )
-                    return response.status, response.headers, body
+                try:
+                    return await self._send(method, url, path, arguments)
+                except (aiohttp.ClientOSError, aiohttp.ServerDisconnectedError) as err:
+                    if not idempotent or isinstance(err, aiohttp.ClientConnectorError):
+                        raise
+                    _LOGGER.debug("%s: connection lost before an answer, sent again", path)
+                    return await self._send(method, url, path, arguments)
             except aiohttp.ServerFingerprintMismatch as err:
                 raise PlcTlsError(
                     "the PLC presented a certificate other than the pinned one"
@@ -264,3 +252,30 @@ class HttpTransport:
                 raise PlcConnectionError(f"cannot reach {self._config.host}: {err}") from err
             finally:
                 self._last = time.monotonic()
+
+    async def _send(
+        self, method: str, url: str | URL, path: str, arguments: dict[str, Any]
+    ) -> tuple[int, Mapping[str, str], bytes]:
+        """Send one request (counted) and read its answer; aiohttp's errors pass through."""
+        self._metrics.requests += 1
+        started = time.monotonic()
+        async with self._session.request(
+            method,
+            url,
+            ssl=self._ssl if self._ssl is not None else True,
+            timeout=aiohttp.ClientTimeout(total=self._config.timeout),
+            **arguments,
+        ) as response:
+            body = await _read_capped(response, self._max_body)
+            # Headers are never logged: they carry the Authorization and the Cookie.
+            _LOGGER.debug(
+                "%s %s %s %s -> %s in %.0f ms: %s",
+                self._config.host,
+                method,
+                path,
+                shown(arguments["data"], self._secret),
+                response.status,
+                (time.monotonic() - started) * 1000,
+                shown(body, self._secret),
+            )
+            return response.status, response.headers, body

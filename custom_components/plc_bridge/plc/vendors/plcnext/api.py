@@ -80,7 +80,13 @@ class PlcnextApi:
         return bool(self._config.username)
 
     async def send(
-        self, method: str, path: str, body: bytes | None = None, content: str | None = None
+        self,
+        method: str,
+        path: str,
+        body: bytes | None = None,
+        content: str | None = None,
+        *,
+        idempotent: bool = False,
     ) -> tuple[int, Any, bytes]:
         """Send one request with the access token, if there is one; return status and answer."""
         headers = {"Accept": "application/json"}
@@ -89,7 +95,7 @@ class PlcnextApi:
         if self._token is not None:
             headers["Authorization"] = f"Bearer {self._token}"
         status, answer_headers, raw = await self._transport.request(
-            method, path, data=body, headers=headers, encoded=True
+            method, path, data=body, headers=headers, encoded=True, idempotent=idempotent
         )
         return status, answer_headers, raw
 
@@ -108,7 +114,9 @@ class PlcnextApi:
         if isinstance(answer, dict) and isinstance(answer.get("userAuthenticationRequired"), bool):
             self.auth_required = answer["userAuthenticationRequired"]
 
-    async def call(self, method: str, make: Callable[[str | None], Request]) -> Any:
+    async def call(
+        self, method: str, make: Callable[[str | None], Request], *, idempotent: bool = False
+    ) -> Any:
         """Send a data request made for the current session; return its JSON answer.
 
         A refused token (401) and a gone session (410) are renewed once each; any other
@@ -120,7 +128,9 @@ class PlcnextApi:
                 await self.login(self._logins)
             logins, sessions = self._logins, self._sessions
             path, body, content = make(self.session_id)
-            status, headers, raw = await self.send(method, path, body, content)
+            status, headers, raw = await self.send(
+                method, path, body, content, idempotent=idempotent
+            )
             if 200 <= status < 300:
                 answer = loads(raw, path.partition("?")[0][-40:])
                 if not (isinstance(answer, dict) and "error" in answer):

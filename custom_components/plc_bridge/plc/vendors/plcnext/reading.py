@@ -278,4 +278,4 @@ class Reader:
                 fields = {"sessionID": session, **fields}
             return f"{base}/variables", urlencode(fields).encode(), FORM
 
-        return await self._api.call("POST" if long else "GET", make)
+        return await self._api.call("POST" if long else "GET", make, idempotent=True)

@@ -91,6 +91,11 @@ class _PollPlan:
     groups: list[tuple[list[Node], list[dict[str, Any]]]]
 
 
+READING = frozenset({"browse", "login", "get_permission", "read"})
+"""Methods sent again once when a kept-alive connection breaks before the answer: they change
+nothing in the CPU (a login sent twice leaves the second token, the one kept)."""
+
+
 class _RpcError(Exception):
     """An error answer; `_call` turns it into a PlcError and never lets it out."""
 
@@ -387,7 +392,7 @@ class S7SmartClient(PlcClient):
         if self._token is not None:
             headers["Cookie"] = cookie_header(self._token)
         status, _headers, raw = await self._http().request(
-            "POST", PATH, data=body.encode(), headers=headers
+            "POST", PATH, data=body.encode(), headers=headers, idempotent=method in READING
         )
         try:
             reply = json.loads(raw)

@@ -31,7 +31,11 @@ async def send(
     """Send one request; a TLS alert about our client certificate is an authentication error."""
     try:
         status, _headers, raw = await transport.request(
-            method, path, data=body, headers=HEADERS if body is not None else None
+            method,
+            path,
+            data=body,
+            headers=HEADERS if body is not None else None,
+            idempotent=method == "POST",  # POST /dt only reads (manual: reads of many items)
         )
     except PlcError as err:
         if certificate and refused_certificate(err):
