@@ -107,6 +107,26 @@ async def test_group_expiry_mid_polling(
     assert plcnext_client.metrics.last_poll_requests == 3
 
 
+async def test_long_poll_interval_reads_variables(
+    plcnext_sim: PlcnextSimulator, plcnext_config: ConfigFactory
+) -> None:
+    """Polled every 300 s, a group would be gone at each poll (3 requests): variables, 1.
+
+    Before: every poll of a PLC polled less often than its group lasts cost three requests.
+    """
+    client = PlcnextClient(plcnext_config(poll_interval=300.0))
+    try:
+        await client.connect()
+        for _ in range(3):
+            plcnext_sim.expire_groups()  # 300 s later: any group would be gone
+            result = await client.read(POINTS)
+            assert client.metrics.last_poll_requests == 1
+            assert values(result) == EXPECTED
+        assert not plcnext_sim.groups.report()
+    finally:
+        await client.close()
+
+
 @pytest.mark.parametrize("keep_groups", [False, True])
 async def test_program_download_mid_polling(
     plcnext_sim: PlcnextSimulator, plcnext_client: PlcnextClient, keep_groups: bool

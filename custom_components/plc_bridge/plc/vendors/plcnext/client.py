@@ -108,7 +108,7 @@ class PlcnextClient(PlcClient):
         """Return the service layer, made on first use."""
         if self._api is None:
             self._api = PlcnextApi(self.config, self.session, self.metrics)
-            self._reader = Reader(self._api)
+            self._reader = Reader(self._api, self.config.poll_interval)
         return self._api
 
     def _poller(self) -> Reader:

@@ -106,12 +106,21 @@ async def isolate(
     return first + second, second_answer if not first else None
 
 
+GROUP_IDLE = 120.0
+"""Seconds a group may sit unused before the PLC unregisters it (Groups page: "a timeout
+period (e.g. 120 seconds) where it will automatically unregister the group")."""
+GROUP_POLLS_UP_TO = 90.0
+"""The longest poll interval read through a group: a late poll still finds it. Beyond, every
+poll would find it gone and register it again (three requests): variable reads take one."""
+
+
 class Reader:
     """Keeps the poll's group, the names the PLC lacks and what the groups can do."""
 
-    def __init__(self, api: PlcnextApi) -> None:
-        """Start with no group; groups are tried first, with a JSON body."""
+    def __init__(self, api: PlcnextApi, poll_interval: float = 0.0) -> None:
+        """Start with no group; groups are tried first, with a JSON body, where they last."""
         self._api = api
+        self.use_groups = poll_interval <= GROUP_POLLS_UP_TO
         self.group: Group | None = None
         self.unknown: dict[str, PlcError] = {}
         self.groups_ok = True
@@ -127,7 +136,7 @@ class Reader:
         """
         self.unknown = {key: err for key, err in self.unknown.items() if key in paths}
         wanted = [path for key, path in paths.items() if key not in self.unknown]
-        if self.groups_ok:
+        if self.groups_ok and self.use_groups:
             reading = await self._group_read(wanted)
         else:
             reading = await self.variables(wanted, self.unknown)
