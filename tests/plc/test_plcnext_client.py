@@ -97,6 +97,24 @@ async def test_session_loss_mid_polling(
     assert len(plcnext_sim.access.sessions) == 1
 
 
+async def test_sessions_last_four_poll_intervals(
+    plcnext_sim: PlcnextSimulator, plcnext_config: ConfigFactory
+) -> None:
+    """Polled every 600 s: the session and the one made after a loss last 2,400 s each.
+
+    Before: a session made again after a loss lasted 300 s, gone at every later poll.
+    """
+    client = PlcnextClient(plcnext_config(poll_interval=600.0))
+    try:
+        await client.connect()
+        assert [s.timeout for s in plcnext_sim.access.sessions.values()] == [2400.0]
+        plcnext_sim.access.expire_sessions()
+        await client.read(POINTS)
+        assert [s.timeout for s in plcnext_sim.access.sessions.values()] == [2400.0]
+    finally:
+        await client.close()
+
+
 async def test_group_expiry_mid_polling(
     plcnext_sim: PlcnextSimulator, plcnext_client: PlcnextClient
 ) -> None:

@@ -63,6 +63,8 @@ class PlcnextApi:
         self._config = config
         self._metrics = metrics
         self._transport = HttpTransport(config, session, metrics, secrets=SECRETS)
+        # A session lasts four poll intervals (at least SESSION_MIN), re-created ones too.
+        self.session_timeout = max(4 * config.poll_interval, SESSION_MIN)
         self.base = LATEST
         self.auth_required: bool | None = None  # None: the PLC has not said yet
         self._token: str | None = None
@@ -201,7 +203,7 @@ class PlcnextApi:
             raise PlcAuthenticationError(f"the PLC refused the user or password ({error.words})")
         raise request_error(error)
 
-    async def open_session(self, seen: int | None = None, timeout: float = SESSION_MIN) -> None:
+    async def open_session(self, seen: int | None = None) -> None:
         """Create a session (form body `stationID=…&timeout=…`); once, for concurrent callers.
 
         Sessions are optional (notes 3a, Sessions): a PLC that refuses one is used without.
@@ -210,7 +212,7 @@ class PlcnextApi:
             if seen is not None and self._sessions != seen and self.session_id is not None:
                 return
             self.session_id = None
-            millis = round(max(timeout, SESSION_MIN) * 1000)
+            millis = round(self.session_timeout * 1000)
             for _attempt in range(2):
                 body = urlencode({"stationID": self.station, "timeout": millis}).encode()
                 try:

@@ -123,7 +123,7 @@ class PlcnextClient(PlcClient):
         description = await api.describe()
         if api.can_login and api.auth_required is not False:
             await api.login()
-        await api.open_session(timeout=4 * self.config.poll_interval)
+        await api.open_session()
         if api.auth_required and not api.can_login:
             raise PlcAuthenticationError(
                 "the PLC has user authentication on: enter a PLCnext user and password"
