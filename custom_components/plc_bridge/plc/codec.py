@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from collections.abc import Collection, Mapping
+from collections.abc import Callable, Collection, Mapping
 from datetime import datetime, tzinfo
 from decimal import Decimal
 import math
@@ -167,3 +167,25 @@ def check_moment(kind: str, value: Value, what: str) -> datetime:
     if value.year < 1970:
         raise PlcValueError(f"{what}: a {kind} starts on 1970-01-01")
     return value
+
+
+CLOCK_VARIABLE = "clock_variable"
+"""The option naming a DT variable the PLC program copies into its clock (TecoApi, PLCnext)."""
+
+
+def clock_option(
+    options: Mapping[str, object], spell: Callable[[str], str]
+) -> dict[str, str | int | bool]:
+    """Return the clock variable option as `spell` normalizes its path (none when empty).
+
+    Raise PlcValueError with a form-ready message when it is no valid path.
+    """
+    clock = options.get(CLOCK_VARIABLE) or ""
+    if not isinstance(clock, str):
+        raise PlcValueError(f"the clock variable is a variable path, not {clock!r}")
+    if not clock.strip():
+        return {}
+    try:
+        return {CLOCK_VARIABLE: spell(clock)}
+    except PlcAddressError as err:
+        raise PlcValueError(f"clock variable: {err}") from None

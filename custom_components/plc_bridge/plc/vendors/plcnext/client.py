@@ -12,12 +12,12 @@ from zoneinfo import ZoneInfo
 import aiohttp
 
 from ...client import PlcClient
+from ...codec import clock_option
 from ...errors import (
     PlcAddressError,
     PlcAuthenticationError,
     PlcError,
     PlcProtocolError,
-    PlcValueError,
     PlcWriteRefusedError,
 )
 from ...planning import distinct
@@ -69,16 +69,7 @@ class PlcnextClient(PlcClient):
     @classmethod
     def validate_options(cls, options: Mapping[str, object]) -> dict[str, str | int | bool]:
         """Return the clock variable's path, normalized; raise PlcValueError."""
-        settings: dict[str, str | int | bool] = {}
-        clock = options.get("clock_variable") or ""
-        if not isinstance(clock, str):
-            raise PlcValueError(f"the clock variable is a variable path, not {clock!r}")
-        if clock.strip():
-            try:
-                settings["clock_variable"] = parse_path(clock).text
-            except PlcAddressError as err:
-                raise PlcValueError(f"clock variable: {err}") from None
-        return settings
+        return clock_option(options, lambda text: parse_path(text).text)
 
     @classmethod
     def validate_point(cls, point: Point) -> Point:

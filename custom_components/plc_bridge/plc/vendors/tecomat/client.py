@@ -12,6 +12,7 @@ from zoneinfo import ZoneInfo
 import aiohttp
 
 from ...client import PlcClient
+from ...codec import clock_option
 from ...errors import (
     PlcAddressError,
     PlcError,
@@ -95,15 +96,7 @@ class TecomatClient(PlcClient):
         if auth not in AUTH_METHODS:
             raise PlcValueError(f"the authentication is Digest or Basic, not {auth!r}")
         settings: dict[str, str | int | bool] = {"auth": auth}
-        clock = options.get("clock_variable") or ""
-        if not isinstance(clock, str):
-            raise PlcValueError(f"the clock variable is a variable path, not {clock!r}")
-        if clock.strip():
-            try:
-                settings["clock_variable"] = parse_path(clock).text
-            except PlcAddressError as err:
-                raise PlcValueError(f"clock variable: {err}") from None
-        return settings
+        return settings | clock_option(options, lambda text: parse_path(text).text)
 
     @classmethod
     def validate_point(cls, point: Point) -> Point:
