@@ -10,6 +10,7 @@ import pytest
 from custom_components.plc_bridge.plc import (
     ConnectionConfig,
     DeviceInfo,
+    Footprint,
     PlcClient,
     PlcConnectionError,
     PlcValueError,
@@ -106,3 +107,13 @@ def test_registry() -> None:
     for vendor in missing:
         with pytest.raises(KeyError):
             client_class(vendor)
+
+
+def test_footprint_default_is_the_name_and_overlap_needs_shared_data() -> None:
+    """By default a point covers its name as typed; ranges of one area overlap when they meet."""
+    assert FakeClient.footprint(Point("a", "INT")) == Footprint("a", 0, 1)
+    assert FakeClient.address_writable(Point("a", "INT"))
+    word = Footprint("V", 100, 102)
+    assert word.overlaps(Footprint("V", 101, 102))
+    assert not word.overlaps(Footprint("V", 102, 103))
+    assert not word.overlaps(Footprint("M", 100, 102))

@@ -19,6 +19,7 @@ from .types import (
     ClientMetrics,
     ConnectionConfig,
     DeviceInfo,
+    Footprint,
     Point,
     PointResult,
     ReadResult,
@@ -128,6 +129,24 @@ class PlcClient(ABC):
         the PLC negotiated (the S7 PDU size) overrides this.
         """
         return self.requests_for(points)
+
+    @classmethod
+    def footprint(cls, point: Point) -> Footprint:
+        """What a valid point covers in the PLC, to tell whether two points touch the same data.
+
+        The default is the name as typed, for vendors whose points are names compared exactly.
+        A vendor with memory areas returns the area and the byte range a point covers (so that
+        `VW100` and `VB101` overlap); one whose names are case-insensitive folds the case.
+        """
+        return Footprint(point.address, 0, 1)
+
+    @classmethod
+    def address_writable(cls, point: Point) -> bool:
+        """False where no write can ever reach the address: an input, a read-only area.
+
+        Decided from the address alone (the PLC may refuse more); the default allows all.
+        """
+        return True
 
     @classmethod
     def min_scan_interval(cls, points: Sequence[Point]) -> float:

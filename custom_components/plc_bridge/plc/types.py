@@ -57,6 +57,19 @@ class Point:
 
 
 @dataclass(frozen=True, slots=True)
+class Footprint:
+    """The data a point covers: an area (or a name) and the range [start, end) within it."""
+
+    area: str
+    start: int
+    end: int
+
+    def overlaps(self, other: Footprint) -> bool:
+        """True when the two cover some of the same data."""
+        return self.area == other.area and self.start < other.end and other.start < self.end
+
+
+@dataclass(frozen=True, slots=True)
 class PointResult:
     """The outcome for one point: a value, or the error that hides it."""
 
