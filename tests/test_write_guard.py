@@ -50,7 +50,7 @@ async def locked_entry(hass: HomeAssistant, s7_smart_sim: S7SmartSimulator) -> M
 @pytest.mark.parametrize(
     ("address", "data_type", "message"),
     [
-        ("VW50", "unsigned", "VW50 covers data of the read-only point VW50; nothing was sent"),
+        ("VW50", "unsigned", "VW50 is a read-only point; nothing was sent"),
         ("VB50", "unsigned", "VB50 covers data of the read-only point VW50; nothing was sent"),
         ("vb51", "raw", "VB51 covers data of the read-only point VW50; nothing was sent"),
         ("VD48", "signed", "VD48 covers data of the read-only point VW50; nothing was sent"),

@@ -31,11 +31,9 @@ class WriteGuard:
             raise _refused("address_not_writable", point)
         covers = _footprint(self._client, point)
         for other, footprint in self._covered:
-            if other == point:
+            if other == point or (covers is not None and covers == footprint):
                 raise _refused("read_only", point)
-            if covers is None or footprint is None:
-                continue
-            if covers.overlaps(footprint):
+            if covers is not None and footprint is not None and covers.overlaps(footprint):
                 raise _refused("covers_read_only", point, other)
 
 
