@@ -15,27 +15,37 @@ from simulators.s7_smart import S7SmartSimulator
 from .ha_fixtures import POINTS, call, make_entry, point
 
 
-@pytest.mark.parametrize("service", ["write", "sync_clock"])
-async def test_writing_actions_for_administrators_only(
+@pytest.mark.parametrize("service", ["write", "sync_clock", "read", "export_points"])
+async def test_actions_for_administrators_only(
     hass: HomeAssistant,
     setup_integration: MockConfigEntry,
     hass_read_only_user: MockUser,
     service: str,
 ) -> None:
-    """A user without administrator rights cannot write to the PLC or set its clock."""
-    data = {"config_entry_id": setup_integration.entry_id}
+    """A user without administrator rights cannot write, set the clock, read by address or export.
+
+    Reading by address reaches any memory, not only the points shown, and holds the PLC's lock.
+    """
+    data: dict[str, object] = {"config_entry_id": setup_integration.entry_id}
     if service == "write":
         data["points"] = [{"address": "VW30", "data_type": "signed", "value": 1}]
+    if service == "read":
+        data["points"] = [{"address": "VD100", "data_type": "float"}]
     with pytest.raises(Unauthorized):
         await hass.services.async_call(
-            DOMAIN, service, data, blocking=True, context=Context(user_id=hass_read_only_user.id)
+            DOMAIN,
+            service,
+            data,
+            blocking=True,
+            context=Context(user_id=hass_read_only_user.id),
+            return_response=service in ("read", "export_points"),
         )
 
 
-async def test_read_for_every_user(
-    hass: HomeAssistant, setup_integration: MockConfigEntry, hass_read_only_user: MockUser
+async def test_read_for_administrators(
+    hass: HomeAssistant, setup_integration: MockConfigEntry, hass_admin_user: MockUser
 ) -> None:
-    """Reading is no change to the PLC: any user may."""
+    """An administrator reads any address."""
     response = await hass.services.async_call(
         DOMAIN,
         "read",
@@ -45,7 +55,7 @@ async def test_read_for_every_user(
         },
         blocking=True,
         return_response=True,
-        context=Context(user_id=hass_read_only_user.id),
+        context=Context(user_id=hass_admin_user.id),
     )
     assert response == {"values": {"VD100": 21.5}, "errors": {}}
 

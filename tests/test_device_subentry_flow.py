@@ -237,6 +237,8 @@ async def test_import_names_bad_lines(hass: HomeAssistant, smart_entry: MockConf
     assert listed[0].startswith("- line 3: Invalid address: 'VX100' is not an S7-200 SMART")
     assert listed[1] == "- line 4: The PLC already has a point with this address and data type."
     result = await step(hass, result, {"table": "name,address\nGood,VW100"})
+    assert result["errors"] == {"table": "import_types_assumed"}  # no type: shown, then taken
+    result = await step(hass, result, {"table": "name,address\nGood,VW100"})
     assert result["description_placeholders"]["count"] == "1"
 
 
@@ -264,12 +266,17 @@ async def test_export_then_import(hass: HomeAssistant, smart_entry: MockConfigEn
 
 
 async def test_micro_win_smart_paste(hass: HomeAssistant, smart_entry: MockConfigEntry) -> None:
-    """A STEP 7-Micro/WIN SMART symbol table becomes points."""
+    """A STEP 7-Micro/WIN SMART symbol table becomes read-only points, assumed types shown first."""
     table = "Symbol\tAddress\tComment\nFlow\tVD100\tFlow rate REAL\nPump\tQ0.0\tMain pump\n"
-    menu = await paste(hass, await new_device(hass, smart_entry, "Pumps"), table)
+    result = await paste(hass, await new_device(hass, smart_entry, "Pumps"), table)
+    assert result["errors"] == {"table": "import_types_assumed"}
+    assert result["description_placeholders"]["errors"].splitlines() == [
+        "- line 2: VD100 (signed?): the table names no data type, this one is assumed."
+    ]
+    menu = await step(hass, result, {"table": table})
     await step(hass, menu, {"next_step_id": "save"})
     points = {data["name"]: data for data in saved(smart_entry, "Pumps").values()}
-    assert (points["Flow"]["data_type"], points["Pump"]["platform"]) == ("float", "switch")
+    assert (points["Flow"]["data_type"], points["Pump"]["platform"]) == ("signed", "binary_sensor")
 
 
 async def test_tia_portal_paste(hass: HomeAssistant) -> None:
@@ -289,6 +296,6 @@ async def test_tia_portal_paste(hass: HomeAssistant) -> None:
     await step(hass, menu, {"next_step_id": "save"})
     points = sorted(saved(entry, "Motor").values(), key=lambda data: data["name"])
     assert [(p["address"], p["data_type"], p["platform"]) for p in points] == [
-        ("Q0.0", "BOOL", "switch"),
-        ("MW20", "INT", "number"),
+        ("Q0.0", "BOOL", "binary_sensor"),
+        ("MW20", "INT", "sensor"),
     ]

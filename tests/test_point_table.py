@@ -43,11 +43,11 @@ def test_round_trip() -> None:
 
 
 def test_semicolons_and_decimal_commas() -> None:
-    """A European spreadsheet's copy: semicolons, decimal commas; a missing platform is guessed."""
+    """A European spreadsheet's copy: semicolons, decimal commas; no platform: a sensor."""
     points, errors = parse_points(SMART, "Name;Address;Data type;Scale\nTank;VD100;float;0,1\n")
     assert errors == []
     assert points[0]["scale"] == 0.1
-    assert points[0]["platform"] == "number"  # writable numeric: a control
+    assert (points[0]["platform"], points[0]["read_only"]) == ("sensor", True)
 
 
 def test_errors_by_line_and_nothing_returned() -> None:
@@ -108,7 +108,7 @@ def test_blank_lines_before_the_header_keep_line_numbers() -> None:
 
 
 def test_micro_win_smart_symbol_table() -> None:
-    """Symbol, Address, Comment (tab separated): words signed unless the comment says; bits bool."""
+    """Symbol, Address, Comment (tab separated): words signed whatever the comment; read only."""
     table = (
         "Symbol\tAddress\tComment\n"
         "Level\tVW10\tTank level\n"
@@ -120,11 +120,11 @@ def test_micro_win_smart_symbol_table() -> None:
     points, errors = parse_points(SMART, table)
     assert errors == []
     assert [(p["name"], p["address"], p["data_type"], p["platform"]) for p in points] == [
-        ("Level", "VW10", "signed", "number"),
-        ("Pump", "Q0.0", "signed", "switch"),
-        ("Outside", "VD100", "float", "number"),
-        ("Count", "VD104", "unsigned", "number"),
-        ("Always_On", "SM0.0", "signed", "switch"),
+        ("Level", "VW10", "signed", "sensor"),
+        ("Pump", "Q0.0", "signed", "binary_sensor"),
+        ("Outside", "VD100", "signed", "sensor"),
+        ("Count", "VD104", "signed", "sensor"),
+        ("Always_On", "SM0.0", "signed", "binary_sensor"),
     ]
 
 
@@ -140,10 +140,10 @@ def test_tia_portal_tag_table() -> None:
     points, errors = parse_points(S7, table)
     assert errors == []
     assert [(p["address"], p["data_type"], p["platform"]) for p in points] == [
-        ("DB1.DBD0", "REAL", "number"),
-        ("DB1.DBB10", "STRING[20]", "text"),
-        ("I0.0", "BOOL", "switch"),
-        ("MW20", "INT", "number"),
+        ("DB1.DBD0", "REAL", "sensor"),
+        ("DB1.DBB10", "STRING[20]", "sensor"),
+        ("I0.0", "BOOL", "binary_sensor"),
+        ("MW20", "INT", "sensor"),
     ]
 
 

@@ -74,13 +74,11 @@ async def test_write_refused_per_point(
     points = [
         {"address": "VW30", "data_type": "signed", "value": 7},
         {"address": "VW2000", "data_type": "signed", "value": 8},
-        {"address": "SMB10", "data_type": "unsigned", "value": 1},
     ]
     with pytest.raises(HomeAssistantError) as err:
         await call(hass, "write", setup_integration, points=points)
     assert str(err.value) == (
-        "The PLC did not write every value: VW2000: VW2000: the PLC has no such address "
-        "(code 3004); SMB10: SMB10: the address is read-only (code 3007)"
+        "The PLC did not write every value: VW2000: VW2000: the PLC has no such address (code 3004)"
     )
     assert s7_smart_sim.get("VW30") == 7
 

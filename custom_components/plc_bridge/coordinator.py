@@ -43,6 +43,7 @@ from .repairs import (
     async_raise_issue,
     async_raise_point_issue,
 )
+from .write_guard import WriteGuard
 
 if TYPE_CHECKING:
     from .points import PointConfig
@@ -113,6 +114,7 @@ class PlcCoordinator(DataUpdateCoordinator[ReadResult]):
         self.read_only_points = frozenset(
             config.point for config in points.values() if config.read_only
         )
+        self.write_guard = WriteGuard(self.client, self.read_only_points)
         self._poll = list(dict.fromkeys(self.points.values()))
         interval = max(
             float(
@@ -209,6 +211,8 @@ class PlcCoordinator(DataUpdateCoordinator[ReadResult]):
         back by the debouncer after a burst of writes) reads back what the PLC really holds.
         """
         check_can_write(self.config_entry)
+        for point in values:
+            self.write_guard.check(point)
         with translated_errors(self.hass, self.config_entry):
             results = await self.client.write(values)
         taken = {

@@ -8,6 +8,7 @@ from datetime import datetime
 from homeassistant.components.datetime import DateTimeEntity, DateTimeEntityDescription
 from homeassistant.const import EntityCategory
 from homeassistant.core import HomeAssistant
+from homeassistant.exceptions import Unauthorized, UnknownUser
 from homeassistant.helpers.entity_platform import AddConfigEntryEntitiesCallback
 
 from .coordinator import PlcBridgeConfigEntry
@@ -89,5 +90,13 @@ class PlcClock(PlcEntity, DateTimeEntity):
         return self.native_value
 
     async def async_set_value(self, value: datetime) -> None:
-        """Set the PLC clock, as the sync_clock action does."""
+        """Set the PLC clock, as the sync_clock action does: for administrators only."""
+        # Entity actions have no admin rule of their own: check the calling user as
+        # async_register_admin_service does (no user: an automation or the system).
+        if self._context is not None and (user_id := self._context.user_id):
+            user = await self.hass.auth.async_get_user(user_id)
+            if user is None:
+                raise UnknownUser(context=self._context, user_id=user_id)
+            if not user.is_admin:
+                raise Unauthorized(context=self._context, user_id=user_id)
         await self.coordinator.async_set_clock(value)

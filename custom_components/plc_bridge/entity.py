@@ -9,7 +9,6 @@ from typing import Any
 
 from homeassistant.const import CONF_DEVICE_CLASS
 from homeassistant.core import HomeAssistant, callback
-from homeassistant.exceptions import ServiceValidationError
 from homeassistant.helpers import entity_registry as er
 from homeassistant.helpers.device_registry import CONNECTION_NETWORK_MAC, DeviceInfo, format_mac
 from homeassistant.helpers.entity import EntityDescription
@@ -196,11 +195,5 @@ class PlcPointEntity(PlcEntity):
         return self.raw_value
 
     async def async_write(self, value: Value) -> None:
-        """Write the point (one request), then refresh; refuse a point marked read-only."""
-        if self.entity_description.read_only:
-            raise ServiceValidationError(
-                translation_domain=DOMAIN,
-                translation_key="read_only",
-                translation_placeholders={"address": self.entity_description.point.address},
-            )
+        """Write the point (one request), then refresh; the coordinator's write guard checks it."""
         await self.coordinator.async_write({self.entity_description.point: value})

@@ -63,6 +63,8 @@ PLATFORM_KINDS: dict[str, tuple[frozenset[ValueKind], str]] = {
     "text": (frozenset({ValueKind.TEXT}), "needs_text"),
 }
 """The kinds of value a platform can show, and the error when a point is not one (sensor: all)."""
+CONTROLS = frozenset({"switch", "number", "datetime", "text"})
+"""Platforms that write their point: a point only gets one where it asks for it."""
 
 DEVICE_CLASSES: dict[str, type[StrEnum]] = {
     "sensor": SensorDeviceClass,
@@ -215,6 +217,8 @@ def check_point(
         platform in PLATFORM_KINDS and kind is not None and kind not in PLATFORM_KINDS[platform][0]
     ):
         errors[CONF_PLATFORM] = PLATFORM_KINDS[platform][1]
+    elif platform in CONTROLS and not client.address_writable(point):
+        errors[CONF_PLATFORM] = "address_not_writable"
     if not str(values.get(CONF_NAME, "")).strip():
         errors[CONF_NAME] = "name_required"
     return point, kind, errors, placeholders
@@ -313,11 +317,13 @@ def browse_values(client: type[PlcClient], item: BrowseItem) -> dict[str, Any]:
 def suggested_platform(
     client: type[PlcClient], address: str, data_type: str, *, read_only: bool = False
 ) -> str:
-    """Return the platform that fits a point: writable ones get a control."""
+    """Return the platform that fits a point: writable ones get a control, inputs never."""
     try:
-        kind = client.value_kind(client.validate_point(Point(address, data_type)))
+        point = client.validate_point(Point(address, data_type))
     except PlcAddressError:
         return "sensor"
+    kind = client.value_kind(point)
+    read_only = read_only or not client.address_writable(point)
     if kind is ValueKind.BOOL:
         return "binary_sensor" if read_only else "switch"
     if kind in NUMERIC:

@@ -32,8 +32,8 @@ from .const import (
     DOMAIN,
     SUBENTRY_DEVICE,
 )
-from .plc import PlcAddressError, PlcClient, Point
-from .point_form import point_data, point_key, suggested_platform
+from .plc import PlcAddressError, PlcClient, Point, ValueKind
+from .point_form import CONTROLS, point_data, point_key, suggested_platform
 
 COLUMNS = (
     CONF_NAME,
@@ -70,13 +70,19 @@ HEADERS: dict[str, str] = {
     "adresse": CONF_ADDRESS,
 }
 """Header names (lower case, spaces as underscores) and the column each one means."""
+WRITABLE = "writable"
+WRITABLE_HEADER = re.compile(
+    r"(hmi_)?writ[e]?able(_from_hmi.*)?|(hmi_)?schreibbar(_aus_hmi.*)?|von_hmi.*_schreibbar"
+)
+"""An engineering tool's "may be written" column: TIA Portal's Hmi Writeable (in the export),
+Writable from HMI/OPC UA/Web API (in the editor), Schreibbar aus HMI/OPC UA/Web API."""
 NUMBERS = (CONF_SCALE, CONF_OFFSET, CONF_MIN, CONF_MAX, CONF_STEP)
 TRUE = {"1", "true", "yes", "y", "on", "x"}
 FALSE = {"", "0", "false", "no", "n", "off"}
 SIGNED = ("signed", "INT", "DINT")
 """Types tried when a table names none and the vendor's first type does not fit the address."""
-TYPE_WORDS = {"real": "float", "float": "real"}
-"""A comment's word for a type, as the other vendor family spells it."""
+FORMULA = ("=", "+", "-", "@", "\t", "\r", "'")
+"""Text cells starting so are exported behind a `'`, lest a spreadsheet run them as formulas."""
 
 type Describe = Callable[[str, Mapping[str, str]], str]
 """Turns a problem's key and placeholders into the text shown for its line."""
@@ -103,6 +109,12 @@ async def async_describe(hass: HomeAssistant) -> Describe:
 def _header(text: str) -> str:
     """Return a header cell as a key of HEADERS."""
     return re.sub(r"[\s-]+", "_", text.strip().lower())
+
+
+def _column(text: str) -> str | None:
+    """Return the column a header cell names, or None for one the import does not use."""
+    key = _header(text)
+    return WRITABLE if WRITABLE_HEADER.fullmatch(key) else HEADERS.get(key)
 
 
 def _rows(text: str) -> tuple[list[str], list[tuple[int, list[str]]]]:
@@ -138,26 +150,34 @@ def _fits(client: type[PlcClient], address: str, data_type: str) -> bool:
     return True
 
 
-def _data_type(client: type[PlcClient], address: str, cells: Mapping[str, str]) -> str:
-    """Return the cell's type; else one a comment names, or the first that fits the address."""
+def _data_type(client: type[PlcClient], address: str, cells: Mapping[str, str]) -> tuple[str, bool]:
+    """Return the cell's type, else the first that fits the address, and whether it was assumed.
+
+    Never from free text: a comment saying "raw analog input" is no type. A type counts as
+    assumed where the address takes others that would show a different value.
+    """
     if data_type := cells.get(CONF_DATA_TYPE, "").strip():
-        return data_type
-    named = {name.lower(): name for name in client.data_types}
-    for word in re.findall(r"\w+", cells.get(COMMENT, "").lower()):
-        for name in (word, TYPE_WORDS.get(word, "")):
-            if name in named and _fits(client, address, named[name]):
-                return named[name]
+        return data_type, False
     first = client.data_types[0]
     tried = (first, *(name for name in SIGNED if name in client.data_types), *client.data_types)
-    return next((name for name in tried if _fits(client, address, name)), first)
+    fitting = [name for name in dict.fromkeys(tried) if _fits(client, address, name)]
+    if not fitting:
+        return first, False
+    kinds = {client.value_kind(Point(address, name)) for name in fitting}
+    return fitting[0], len(fitting) > 1 and not kinds <= {ValueKind.BOOL, ValueKind.DATETIME}
 
 
 def _values(
     client: type[PlcClient], cells: Mapping[str, str]
 ) -> tuple[dict[str, Any], str, dict[str, str]]:
-    """Return a row as the values point_data takes, or the problem with a cell it cannot read."""
+    """Return a row as the values point_data takes, or the problem with a cell it cannot read.
+
+    A row gets a writable control only where its platform asks for one; without a platform
+    it is a sensor or binary sensor, read only unless its read_only cell says no. A "not
+    writable" flag of an engineering tool makes it read only.
+    """
     address = cells.get(CONF_ADDRESS, "").strip().lstrip("%")
-    data_type = _data_type(client, address, cells)
+    data_type, _ = _data_type(client, address, cells)
     values: dict[str, Any] = {
         CONF_NAME: cells.get(CONF_NAME, "").strip(),
         CONF_ADDRESS: address,
@@ -169,9 +189,17 @@ def _values(
                 values[key] = float(text.replace(",", "."))  # a decimal comma too
             except ValueError:
                 return {}, "import_not_a_number", {"column": key, "text": text}
-    read_only = _flag(cells.get(CONF_READ_ONLY, ""))
+    flags: dict[str, bool | None] = {}
+    for column in (CONF_READ_ONLY, WRITABLE):
+        if text := cells.get(column, "").strip():
+            flags[column] = _flag(text)
+            if flags[column] is None:
+                return {}, "import_not_yes_or_no", {"column": column, "text": text}
+    platform = cells.get(CONF_PLATFORM, "").strip().lower().replace(" ", "_")
+    read_only = flags.get(CONF_READ_ONLY)
     if read_only is None:
-        return {}, "import_not_yes_or_no", {"column": CONF_READ_ONLY, "text": cells[CONF_READ_ONLY]}
+        read_only = platform not in CONTROLS
+    read_only = read_only or flags.get(WRITABLE) is False
     values[CONF_READ_ONLY] = read_only
     for key, column in (
         (CONF_UNIT_OF_MEASUREMENT, "unit"),
@@ -180,9 +208,8 @@ def _values(
     ):
         if cells.get(column, "").strip():
             values[key] = cells[column].strip()
-    platform = cells.get(CONF_PLATFORM, "").strip().lower().replace(" ", "_")
     values[CONF_PLATFORM] = platform or suggested_platform(
-        client, address, data_type, read_only=read_only
+        client, address, data_type, read_only=True
     )
     return values, "", {}
 
@@ -192,14 +219,17 @@ def parse_points(
     text: str,
     taken: Collection[Point] = (),
     describe: Describe = plain,
+    *,
+    assumed: list[tuple[int, str]] | None = None,
 ) -> tuple[list[dict[str, Any]], list[tuple[int, str]]]:
     """Return the points of a pasted table and the errors by line; no points unless no errors.
 
     `taken` holds the points already configured: a line naming one again is an error, as is a
     line repeating an earlier line's address and data type. `describe` words each problem.
+    `assumed` receives, by line, the data types taken where the table names none.
     """
     header, rows = _rows(text)
-    columns = [HEADERS.get(_header(cell)) for cell in header]
+    columns = [_column(cell) for cell in header]
     if CONF_NAME not in columns or CONF_ADDRESS not in columns:
         return [], [(1, describe("import_no_header", {}))]
     if not rows:
@@ -209,7 +239,9 @@ def parse_points(
     seen: dict[Point, int] = dict.fromkeys(taken, 0)
     for line, row in rows:
         cells = {
-            column: cell for column, cell in zip(columns, row, strict=False) if column is not None
+            column: _unescaped(cell)
+            for column, cell in zip(columns, row, strict=False)
+            if column is not None
         }
         values, problem, placeholders = _values(client, cells)
         if problem:
@@ -228,6 +260,8 @@ def parse_points(
             continue
         seen[point] = line
         points.append(data)
+        if assumed is not None and _data_type(client, values[CONF_ADDRESS], cells)[1]:
+            assumed.append((line, describe("import_type_assumed", placeholders)))
     return ([] if errors else points), errors
 
 
@@ -244,9 +278,18 @@ def export_points(points: Iterable[Mapping[str, Any]]) -> str:
 
 
 def _cell(value: Any) -> str:
-    """Return a value as a cell: numbers in their shortest form, nothing for None."""
+    """Return a value as a cell: numbers in their shortest form, nothing for None.
+
+    Text that a spreadsheet would take for a formula goes behind a `'` (import drops it).
+    """
     if value is None:
         return ""
     if isinstance(value, float):
         return f"{value:g}" if value == float(f"{value:g}") else repr(value)
-    return str(value)
+    text = str(value)
+    return f"'{text}" if isinstance(value, str) and text.startswith(FORMULA) else text
+
+
+def _unescaped(cell: str) -> str:
+    """Return a cell without the `'` export puts before text a spreadsheet would run."""
+    return cell[1:] if cell.startswith("'") and cell[1:].startswith(FORMULA) else cell

@@ -12,7 +12,7 @@ from homeassistant.core import HomeAssistant, callback
 from homeassistant.helpers import issue_registry as ir
 import voluptuous as vol
 
-from .const import CONF_FINGERPRINT, CONF_TLS, DOMAIN
+from .const import CONF_FINGERPRINT, CONF_OPTIONS, CONF_TLS, DOMAIN
 from .models import PlcBridgeConfigEntry
 from .plc import PlcError, TlsMode
 from .plc.http import fetch_fingerprint, format_fingerprint
@@ -23,7 +23,9 @@ if TYPE_CHECKING:  # named since Home Assistant 2026.10; only annotations use it
 TLS_OFF = "tls_off"
 CERTIFICATE_CHANGED = "certificate_changed"
 SESSION_CONFLICT = "session_conflict"
-ISSUES = (TLS_OFF, CERTIFICATE_CHANGED, SESSION_CONFLICT)
+PLAIN_PASSWORD = "plain_password"
+"""Basic authentication over plain HTTP: the password crosses the network readable."""
+ISSUES = (TLS_OFF, CERTIFICATE_CHANGED, SESSION_CONFLICT, PLAIN_PASSWORD)
 UNKNOWN_ADDRESS = "unknown_address"
 """One issue per point whose address the PLC does not know (typically a renamed variable)."""
 
@@ -117,11 +119,16 @@ def async_clear_point_issues(
 
 @callback
 def async_check_tls(hass: HomeAssistant, entry: PlcBridgeConfigEntry) -> None:
-    """Raise the issue of a PLC whose certificate is not checked at all; clear it otherwise."""
+    """Raise the issues of a link that leaks: no certificate check, a readable password."""
     if entry.data.get(CONF_TLS) == TlsMode.OFF:
         async_raise_issue(hass, entry, TLS_OFF)
     else:
         async_clear_issue(hass, entry, TLS_OFF)
+    basic = str(entry.data.get(CONF_OPTIONS, {}).get("auth", "")).strip().lower() == "basic"
+    if basic and entry.data.get(CONF_TLS, TlsMode.NONE) == TlsMode.NONE:
+        async_raise_issue(hass, entry, PLAIN_PASSWORD)
+    else:
+        async_clear_issue(hass, entry, PLAIN_PASSWORD)
 
 
 @callback

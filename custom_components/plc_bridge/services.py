@@ -47,8 +47,14 @@ WRITE_SCHEMA = ENTRY_SCHEMA.extend(
         )
     }
 )
+MAX_READ = 100
+"""Points one read action may name: at most a few requests, even at an S7-200 SMART's pace."""
 READ_SCHEMA = ENTRY_SCHEMA.extend(
-    {vol.Required(ATTR_POINTS): vol.All(cv.ensure_list, [vol.Schema(POINT)], vol.Length(1))}
+    {
+        vol.Required(ATTR_POINTS): vol.All(
+            cv.ensure_list, [vol.Schema(POINT)], vol.Length(1, MAX_READ)
+        )
+    }
 )
 
 
@@ -95,12 +101,7 @@ async def async_write(call: ServiceCall) -> None:
     values: dict[Point, Value] = {}
     for item in call.data[ATTR_POINTS]:
         point = checked_point(client, item)
-        if point in coordinator.read_only_points:
-            raise ServiceValidationError(
-                translation_domain=DOMAIN,
-                translation_key="read_only",
-                translation_placeholders={"address": point.address},
-            )
+        coordinator.write_guard.check(point)
         values[point] = checked_value(client, point, item[ATTR_VALUE])
     await coordinator.async_write(values)
 
@@ -142,22 +143,23 @@ async def async_sync_clock(call: ServiceCall) -> None:
 
 @callback
 def async_setup_services(hass: HomeAssistant) -> None:
-    """Register the actions (once, for every PLC); writing and the clock for administrators."""
+    """Register the actions (once, for every PLC), all for administrators only.
+
+    Reading by address reaches any memory of the PLC, not only the points shown to users, and
+    holds the PLC's request lock; the export lists every address.
+    """
     async_register_admin_service(hass, DOMAIN, SERVICE_WRITE, async_write, schema=WRITE_SCHEMA)
-    hass.services.async_register(
-        DOMAIN,
-        SERVICE_READ,
-        async_read,
-        schema=READ_SCHEMA,
-        supports_response=SupportsResponse.ONLY,
+    async_register_admin_service(
+        hass, DOMAIN, SERVICE_READ, async_read, READ_SCHEMA, SupportsResponse.ONLY
     )
     async_register_admin_service(
         hass, DOMAIN, SERVICE_SYNC_CLOCK, async_sync_clock, schema=ENTRY_SCHEMA
     )
-    hass.services.async_register(
+    async_register_admin_service(
+        hass,
         DOMAIN,
         SERVICE_EXPORT_POINTS,
         async_export_points,
-        schema=ENTRY_SCHEMA,
-        supports_response=SupportsResponse.ONLY,
+        ENTRY_SCHEMA,
+        SupportsResponse.ONLY,
     )

@@ -68,6 +68,7 @@ class DeviceSubentryFlowHandler(ConfigSubentryFlow):
         self._published: list[BrowseItem] | None = None
         self._items: list[BrowseItem] = []
         self._ticked: list[str] = []
+        self._confirmed = ""  # a pasted table whose assumed data types were shown
 
     @property
     def _client(self) -> type[PlcClient]:
@@ -296,16 +297,16 @@ class DeviceSubentryFlowHandler(ConfigSubentryFlow):
         errors: dict[str, str] = {}
         problems: list[tuple[int, str]] = []
         if user_input is not None:
+            table, assumed = str(user_input.get(CONF_TABLE, "")), list[tuple[int, str]]()
             points, problems = parse_points(
-                self._client,
-                str(user_input.get(CONF_TABLE, "")),
-                self._taken(),
-                await async_describe(self.hass),
+                self._client, table, self._taken(), await async_describe(self.hass), assumed=assumed
             )
-            if not problems:
+            if not problems and (not assumed or table == self._confirmed):
                 self._points |= {secrets.token_hex(6): data for data in points}
                 return await self.async_step_menu()
-            errors[CONF_TABLE] = "import_failed"
+            errors[CONF_TABLE] = "import_failed" if problems else "import_types_assumed"
+            if not problems:  # shown once: the same table submitted again is imported
+                self._confirmed, problems = table, assumed
         schema = vol.Schema(
             {vol.Required(CONF_TABLE): TextSelector(TextSelectorConfig(multiline=True))}
         )

@@ -126,7 +126,9 @@ SECRET_FIELDS = (
 def secret_fields(names: Iterable[str]) -> re.Pattern[str]:
     """Return the pattern of JSON string fields whose values a debug line masks."""
     alternatives = "|".join(re.escape(name) for name in names)
-    return re.compile(rf'("(?:{alternatives})"\s*:\s*)"[^"]*"', re.IGNORECASE)
+    # A value runs to its closing quote (an escaped \" does not end it), or to the end of a
+    # body cut short.
+    return re.compile(rf'("(?:{alternatives})"\s*:\s*)"(?:[^"\\]|\\.)*"?', re.IGNORECASE)
 
 
 SECRET = secret_fields(SECRET_FIELDS)
@@ -268,14 +270,15 @@ class HttpTransport:
         ) as response:
             body = await _read_capped(response, self._max_body)
             # Headers are never logged: they carry the Authorization and the Cookie.
-            _LOGGER.debug(
-                "%s %s %s %s -> %s in %.0f ms: %s",
-                self._config.host,
-                method,
-                path,
-                shown(arguments["data"], self._secret),
-                response.status,
-                (time.monotonic() - started) * 1000,
-                shown(body, self._secret),
-            )
+            if _LOGGER.isEnabledFor(logging.DEBUG):  # masking a body costs more than a request
+                _LOGGER.debug(
+                    "%s %s %s %s -> %s in %.0f ms: %s",
+                    self._config.host,
+                    method,
+                    path,
+                    shown(arguments["data"], self._secret),
+                    response.status,
+                    (time.monotonic() - started) * 1000,
+                    shown(body, self._secret),
+                )
             return response.status, response.headers, body

@@ -2,11 +2,18 @@
 
 from __future__ import annotations
 
+from collections.abc import Iterable
 from dataclasses import dataclass, field
 from datetime import datetime
 from enum import StrEnum
+import re
 
 from .errors import PlcError
+
+SECRET_OPTION = re.compile(r"key|password|secret|token", re.IGNORECASE)
+"""Vendor options whose values a repr masks (SoftPLC's client_key)."""
+PATH_SEP = "\x1f"
+"""Joins the names of a variable path in a footprint's area (no address or name holds it)."""
 
 type Value = bool | int | float | str | datetime | list[int]
 """A decoded point value: BOOL, integers, REAL, STRING, date/time or raw bytes (list of ints)."""
@@ -47,6 +54,20 @@ class ConnectionConfig:
     poll_interval: float = 5.0  # seconds between two polls: a reconnect never waits longer
     options: dict[str, str | int | bool] = field(default_factory=dict)
 
+    def __repr__(self) -> str:
+        """Show the settings with the password and any secret option masked (logs, tracebacks)."""
+        options = {
+            key: "***" if value and SECRET_OPTION.search(key) else value
+            for key, value in self.options.items()
+        }
+        return (
+            f"ConnectionConfig(host={self.host!r}, port={self.port!r}, "
+            f"username={self.username!r}, password={'***' if self.password else ''!r}, "
+            f"tls={self.tls!r}, fingerprint={self.fingerprint!r}, timeout={self.timeout!r}, "
+            f"time_zone={self.time_zone!r}, poll_interval={self.poll_interval!r}, "
+            f"options={options!r})"
+        )
+
 
 @dataclass(frozen=True, slots=True)
 class Point:
@@ -64,9 +85,18 @@ class Footprint:
     start: int
     end: int
 
+    @classmethod
+    def of_path(cls, parts: Iterable[str | int]) -> Footprint:
+        """A named variable's footprint: it covers its elements and members too (`a` and `a.b`)."""
+        return cls(PATH_SEP.join(str(part) for part in parts), 0, 1)
+
     def overlaps(self, other: Footprint) -> bool:
-        """True when the two cover some of the same data."""
-        return self.area == other.area and self.start < other.end and other.start < self.end
+        """True when the two cover some of the same data, or one is a variable holding the other."""
+        if self.area == other.area:
+            return self.start < other.end and other.start < self.end
+        return self.area.startswith(other.area + PATH_SEP) or other.area.startswith(
+            self.area + PATH_SEP
+        )
 
 
 @dataclass(frozen=True, slots=True)

@@ -25,6 +25,7 @@ from ...types import (
     BrowseItem,
     ConnectionConfig,
     DeviceInfo,
+    Footprint,
     Point,
     PointResult,
     ReadResult,
@@ -75,6 +76,12 @@ class PlcnextClient(PlcClient):
     def validate_point(cls, point: Point) -> Point:
         """Return the point with its full path and type name; raise PlcAddressError."""
         return Point(parse_path(point.address).text, data_type(point.data_type))
+
+    @classmethod
+    def footprint(cls, point: Point) -> Footprint:
+        """The variable's full path case-folded (IEC names are): `a` covers `A.b` and `a[2]`."""
+        path = parse_path(point.address)
+        return Footprint.of_path(str(part).casefold() for part in (path.component, *path.segments))
 
     @classmethod
     def validate_value(cls, point: Point, value: Value) -> Value:

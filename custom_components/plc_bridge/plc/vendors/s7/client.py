@@ -15,6 +15,7 @@ from ...errors import PlcAddressError, PlcWriteRefusedError
 from ...types import (
     ConnectionConfig,
     DeviceInfo,
+    Footprint,
     Point,
     PointResult,
     ReadResult,
@@ -22,7 +23,7 @@ from ...types import (
     Value,
     ValueKind,
 )
-from .address import DATA_TYPES, Variable, on_s7_200, value_kind, variable
+from .address import AREA_I, AREA_P, DATA_TYPES, Variable, on_s7_200, value_kind, variable
 from .codec import check_value, plc_time, span_of
 from .link import S7Link, S7RequestError, endpoint, tsap_text, validate_options
 from .planner import DEFAULT_PDU, Span, plan_reads
@@ -78,6 +79,21 @@ class S7Client(PlcClient):
         """Return the point with address and type normalized; raise PlcAddressError."""
         found = variable(point)
         return Point(found.text, found.data_type)
+
+    @classmethod
+    def footprint(cls, point: Point) -> Footprint:
+        """The area (a DB by its number) and bytes a point covers; a timer or counter its number."""
+        found = variable(point)
+        return Footprint(
+            f"{found.area}:{found.db}",
+            found.start,
+            found.start + (1 if found.counted else found.size),
+        )
+
+    @classmethod
+    def address_writable(cls, point: Point) -> bool:
+        """False for the inputs: I (E) and peripheral inputs PI (PE), whose writes reach outputs."""
+        return variable(point).area not in (AREA_I, AREA_P)
 
     @classmethod
     def validate_value(cls, point: Point, value: Value) -> Value:

@@ -118,6 +118,34 @@ def _check_range(address: Address) -> None:
         )
 
 
+def covered(address: Address, kind: str) -> tuple[str, int, int]:
+    """Return the area and the [start, end) a point covers: its bytes, or a T, C, HC number.
+
+    A bit covers its byte; a string at VB100 up to 255 bytes (its length byte and at most 254
+    characters), as long as the area lasts.
+    """
+    if not address.is_byte_area and address.area not in ("AIW", "AQW"):
+        return address.area, address.index, address.index + 1
+    size = 255 if kind == "string" else max(1, address.width // 8)
+    return address.area, address.index, min(address.index + size, SIZES[address.area])
+
+
+READ_ONLY_SM = ((0, 30), (1000, 1536))
+"""SMB0..SMB29 (system status) and SMB1000..SMB1535 (module information) are read-only."""
+INPUTS = ("I", "AIW", "HC")
+"""Process inputs, analog inputs and high-speed counters: the CPU writes them, never a client."""
+
+
+def writable(address: Address, kind: str) -> bool:
+    """False where no write can ever reach the address: inputs and read-only SM bytes."""
+    if address.area in INPUTS:
+        return False
+    if address.area == "SM":
+        _, start, end = covered(address, kind)
+        return not any(start < high and low < end for low, high in READ_ONLY_SM)
+    return True
+
+
 def point_kind(address: Address, mode: str) -> str:
     """Return how a point is read and written: bool, date, or the checked data mode.
 

@@ -27,6 +27,7 @@ from ...http import HttpTransport
 from ...types import (
     ConnectionConfig,
     DeviceInfo,
+    Footprint,
     PlcStatus,
     Point,
     PointResult,
@@ -35,7 +36,7 @@ from ...types import (
     Value,
     ValueKind,
 )
-from .address import BOOL, DATE, MODES
+from .address import BOOL, DATE, MODES, covered, writable
 from .codec import (
     INVALID_TOKEN,
     MAX_NODES,
@@ -144,6 +145,18 @@ class S7SmartClient(PlcClient):
         """Return the point with its address in upper case; raise PlcAddressError."""
         node = node_for(point)
         return Point(node.address.text, point.data_type.strip().lower())
+
+    @classmethod
+    def footprint(cls, point: Point) -> Footprint:
+        """The memory area and bytes a point covers (VW100 and VB101 overlap)."""
+        node = node_for(point)
+        return Footprint(*covered(node.address, node.kind))
+
+    @classmethod
+    def address_writable(cls, point: Point) -> bool:
+        """False for inputs (I, AIW), high-speed counters and the read-only SM bytes."""
+        node = node_for(point)
+        return writable(node.address, node.kind)
 
     @classmethod
     def validate_value(cls, point: Point, value: Value) -> Value:

@@ -26,6 +26,7 @@ from ...http import HttpTransport
 from ...types import (
     ConnectionConfig,
     DeviceInfo,
+    Footprint,
     Point,
     PointResult,
     ReadResult,
@@ -104,6 +105,25 @@ class SoftplcClient(PlcClient):
         """Return the point with its address spelled as the manual does and its type."""
         address = parse_address(point.address)
         return Point(address.text, data_type(address, point.data_type))
+
+    @classmethod
+    def footprint(cls, point: Point) -> Footprint:
+        """The file and word a point covers (a bit its word); a tag or PD word its name as typed."""
+        address = parse_address(point.address)
+        if address.is_tag or address.is_named_word:
+            return Footprint(address.text, 0, 1)
+        word = address.element * address.words + address.word
+        return Footprint(f"{address.type}{address.file}", word, word + 1)
+
+    @classmethod
+    def address_writable(cls, point: Point) -> bool:
+        """False for the input file I and the status words of T, C and R elements."""
+        address = parse_address(point.address)
+        try:
+            check_writable(address)
+        except PlcAddressError:
+            return False
+        return address.type != "I"
 
     @classmethod
     def validate_value(cls, point: Point, value: Value) -> Value:

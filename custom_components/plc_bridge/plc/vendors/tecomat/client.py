@@ -25,6 +25,7 @@ from ...types import (
     BrowseItem,
     ConnectionConfig,
     DeviceInfo,
+    Footprint,
     PlcStatus,
     Point,
     PointResult,
@@ -102,6 +103,13 @@ class TecomatClient(PlcClient):
     def validate_point(cls, point: Point) -> Point:
         """Return the point with its path and type normalized; raise PlcAddressError."""
         return Point(parse_path(point.address).text, data_type(point.data_type))
+
+    @classmethod
+    def footprint(cls, point: Point) -> Footprint:
+        """The variable's path case-folded (the PLC's names are): `a` covers `A.b` and `a[2]`."""
+        return Footprint.of_path(
+            str(part).casefold() for part in parse_path(point.address).segments
+        )
 
     @classmethod
     def validate_value(cls, point: Point, value: Value) -> Value:

@@ -1,0 +1,154 @@
+"""What a point covers in each vendor's PLC, and which addresses no write can ever reach."""
+
+from __future__ import annotations
+
+import pytest
+
+from custom_components.plc_bridge.plc import ConnectionConfig, Footprint, Point
+from custom_components.plc_bridge.plc.vendors import client_class
+
+
+def overlap(vendor: str, first: tuple[str, str], second: tuple[str, str]) -> bool:
+    """True when the two (validated) points of the vendor cover some of the same data."""
+    client = client_class(vendor)
+    one = client.footprint(client.validate_point(Point(*first)))
+    other = client.footprint(client.validate_point(Point(*second)))
+    assert one.overlaps(other) == other.overlaps(one)
+    return one.overlaps(other)
+
+
+@pytest.mark.parametrize(
+    ("vendor", "first", "second"),
+    [
+        ("s7_smart", ("VW100", "signed"), ("VW100", "unsigned")),
+        ("s7_smart", ("VW100", "signed"), ("VB100", "unsigned")),
+        ("s7_smart", ("VW100", "signed"), ("vb101", "raw")),
+        ("s7_smart", ("VD100", "float"), ("V103.7", "signed")),
+        ("s7_smart", ("VB100", "string"), ("VW200", "signed")),  # a string's characters
+        ("s7", ("DB1.DBW0", "INT"), ("DB1.DBB0", "BYTE")),
+        ("s7", ("DB1.DBW0", "INT"), ("DB1.DBX1.3", "BOOL")),
+        ("s7", ("DB1.DBB10", "STRING[20]"), ("DB1.DBW30", "INT")),
+        ("s7", ("MW4", "INT"), ("M5.0", "BOOL")),
+        ("s7", ("QW0", "WORD"), ("PQW0", "WORD")),  # a PQ write updates the process image
+        ("softplc", ("N7:3", "INT"), ("N7:3/4", "BOOL")),
+        ("softplc", ("T4:0.DN", "BOOL"), ("T4:0/13", "BOOL")),
+        ("tecomat", ("Main.Speed", "INT"), ("main.SPEED", "INT")),
+        ("tecomat", ("Main.Arr", "INT"), ("main.arr[2]", "INT")),
+        ("tecomat", ("Main.Arr", "INT"), ("MAIN.ARR[1, 2]", "INT")),
+        ("tecomat", ("Main", "INT"), ("main.motor.speed", "REAL")),
+        ("plcnext", ("Main.Recipe", "INT"), ("Arp.Plc.Eclr/main.recipe[2].weight", "INT")),
+        ("plcnext", ("Main.Speed", "INT"), ("ARP.PLC.ECLR/MAIN.SPEED", "INT")),
+    ],
+)
+def test_overlapping_points(vendor: str, first: tuple[str, str], second: tuple[str, str]) -> None:
+    """Another spelling, width, type, case or an element of the same data overlaps."""
+    assert overlap(vendor, first, second)
+
+
+@pytest.mark.parametrize(
+    ("vendor", "first", "second"),
+    [
+        ("s7_smart", ("VW100", "signed"), ("VB102", "unsigned")),
+        ("s7_smart", ("VW10", "signed"), ("MW10", "signed")),
+        ("s7_smart", ("AIW16", "signed"), ("AQW16", "signed")),
+        ("s7_smart", ("T37", "signed"), ("C37", "signed")),
+        ("s7", ("DB1.DBW0", "INT"), ("DB2.DBW0", "INT")),
+        ("s7", ("DB1.DBW0", "INT"), ("DB1.DBB2", "BYTE")),
+        ("s7", ("T5", "WORD"), ("T6", "WORD")),
+        ("softplc", ("N7:3", "INT"), ("N7:4", "INT")),
+        ("softplc", ("N7:3", "INT"), ("N9:3", "INT")),
+        ("softplc", ("T4:0.PRE", "INT"), ("T4:0.ACC", "INT")),
+        ("softplc", ("PD12:3000.PV", "REAL"), ("PD12:3000.SP", "REAL")),
+        ("tecomat", ("Main.Speed", "INT"), ("Main.SpeedSet", "INT")),
+        ("tecomat", ("Main.Arr[1]", "INT"), ("Main.Arr[2]", "INT")),
+        ("plcnext", ("Main.Motor.Actual", "INT"), ("Main.Motor.Setpoint", "INT")),
+    ],
+)
+def test_separate_points(vendor: str, first: tuple[str, str], second: tuple[str, str]) -> None:
+    """Neighbouring bytes, other areas, DBs, files, members and elements do not overlap."""
+    assert not overlap(vendor, first, second)
+
+
+def test_softplc_tags_as_typed() -> None:
+    """SoftPLC tag names are compared as typed (the manual does not say they fold)."""
+    assert not overlap("softplc", ("pump", "INT"), ("Pump", "INT"))
+    assert overlap("softplc", ("pump", "INT"), ("pump", "REAL"))
+
+
+def test_path_footprints_hold_their_members() -> None:
+    """A path covers what lies below it, not a name that merely starts the same."""
+    arr = Footprint.of_path(["main", "arr"])
+    assert arr.overlaps(Footprint.of_path(["main", "arr", 1, "x"]))
+    assert not arr.overlaps(Footprint.of_path(["main", "arr2"]))
+    assert Footprint.of_path(["main"]).overlaps(arr)
+
+
+@pytest.mark.parametrize(
+    ("vendor", "address", "data_type"),
+    [
+        ("s7_smart", "I0.0", "signed"),
+        ("s7_smart", "IW0", "signed"),
+        ("s7_smart", "AIW16", "signed"),
+        ("s7_smart", "HC0", "signed"),
+        ("s7_smart", "SMB28", "unsigned"),
+        ("s7_smart", "SMW28", "unsigned"),  # SMB29 is read-only
+        ("s7_smart", "SMB1000", "unsigned"),
+        ("s7", "I0.0", "BOOL"),
+        ("s7", "E0.1", "BOOL"),
+        ("s7", "IW64", "INT"),
+        ("s7", "PIW256", "INT"),
+        ("s7", "PEW256", "INT"),
+        ("softplc", "I:1", "INT"),
+        ("softplc", "I1:3/2", "BOOL"),
+        ("softplc", "T4:0.DN", "BOOL"),
+        ("softplc", "C5:1", "INT"),
+    ],
+)
+def test_never_writable(vendor: str, address: str, data_type: str) -> None:
+    """Inputs and read-only areas are never writable, whatever the type."""
+    client = client_class(vendor)
+    assert not client.address_writable(client.validate_point(Point(address, data_type)))
+
+
+@pytest.mark.parametrize(
+    ("vendor", "address", "data_type"),
+    [
+        ("s7_smart", "Q0.0", "signed"),
+        ("s7_smart", "VW100", "signed"),
+        ("s7_smart", "AQW0", "signed"),
+        ("s7_smart", "SMB30", "unsigned"),
+        ("s7_smart", "T37", "signed"),
+        ("s7_smart", "DATE", "raw"),
+        ("s7", "Q0.1", "BOOL"),
+        ("s7", "PQW256", "INT"),
+        ("s7", "DB1.DBW0", "INT"),
+        ("softplc", "O:0", "INT"),
+        ("softplc", "N7:3/4", "BOOL"),
+        ("softplc", "T4:0.PRE", "INT"),
+        ("tecomat", "Main.Inputs", "INT"),
+        ("plcnext", "Main.Inputs", "INT"),
+    ],
+)
+def test_writable(vendor: str, address: str, data_type: str) -> None:
+    """Outputs, memory and the vendors without an address rule stay writable."""
+    client = client_class(vendor)
+    assert client.address_writable(client.validate_point(Point(address, data_type)))
+
+
+def test_connection_config_repr_masks_secrets() -> None:
+    """Neither the password nor a client key appears in a repr (a log line, a traceback)."""
+    config = ConnectionConfig(
+        host="plc.local",
+        port=443,
+        username="hass",
+        password="s3cret-pass",
+        options={"client_key": "-----BEGIN PRIVATE KEY-----abc", "rack": 0, "auth": "digest"},
+    )
+    text = repr(config)
+    assert "s3cret-pass" not in text
+    assert "PRIVATE KEY" not in text
+    assert "plc.local" in text
+    assert "'rack': 0" in text
+    assert "'auth': 'digest'" in text
+    assert "password='***'" in text
+    assert "password=''" in repr(ConnectionConfig(host="plc", port=80))
