@@ -133,9 +133,9 @@ async def test_poll_of_200_points_at_the_uri_bound(tecomat_config: ConfigFactory
         result = await client.read(points)
         assert all(outcome.ok for outcome in result.values.values())
         names = sum(len(point.address) + 1 for point in points)
-        bound = math.ceil(names / (256 - len("/TecoApi/GetObject?") + 1))
-        assert sim.requests - before == client.metrics.last_poll_requests
-        assert sim.requests - before == TecomatClient.requests_for(points) == bound
+        bound = TecomatClient.requests_for(points)  # arrays read whole (5.2) need fewer
+        assert bound < math.ceil(names / (256 - len("/TecoApi/GetObject?") + 1))
+        assert sim.requests - before == client.metrics.last_poll_requests == bound
         assert max(len(uri) for uri in list(sim.uris)[-bound:]) <= 256
         await client.read(points)  # the plan is kept between polls
         assert sim.requests - before == 2 * bound
