@@ -36,7 +36,7 @@ from ...types import (
 from .api import AUTH_METHODS, Reading, TecoApi, gone_for
 from .arrays import array_plan, elements
 from .browse import LIST_URI, Listing, expand, listed_names
-from .codec import KINDS, TYPES, check_value, data_type, decode, encode
+from .codec import KINDS, TYPES, check_value, data_type, decode, encode, same_value
 from .info import device_info, plc_status
 from .paths import (
     MAX_VARIABLES,
@@ -300,10 +300,7 @@ class TecomatClient(PlcClient):
                 held = decode(item.kind, reading.found[item.path.key], self._zone, item.path.text)
             except (KeyError, PlcError):
                 held = None
-            # Compared as sent: at the PLC's resolution (a DT keeps milliseconds, 4).
-            if held is None or encode(item.kind, held, self._zone) != encode(
-                item.kind, item.value, self._zone
-            ):
+            if held is None or not same_value(item.kind, held, item.value, self._zone):
                 failures[index] = PlcWriteRefusedError(
                     f"{item.path.text}: the PLC answered the write but holds {held!r}, "
                     f"not {item.value!r}"
