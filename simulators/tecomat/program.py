@@ -148,7 +148,7 @@ def resolve(variables: dict[str, Node], parts: list[Segment]) -> tuple[list[Segm
             continue
         if not isinstance(node, dict):
             raise KeyError(part)
-        key = next((name for name in node if name.lower() == part.lower()), None)
+        key = part if part in node else next((n for n in node if n.lower() == part.lower()), None)
         if key is None:
             raise KeyError(part)
         canonical.append(key)

@@ -68,7 +68,7 @@ class TecomatSimulator(HttpSimulator):
         users: dict[str, str] | None = None,
         tls: bool = False,
         max_variables: int = 128,
-        bench: int = 1000,
+        bench: int = 10_000,
     ) -> None:
         super().__init__()
         self.tls = tls

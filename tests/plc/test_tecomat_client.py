@@ -18,7 +18,8 @@ from custom_components.plc_bridge.plc import (
     Point,
     Value,
 )
-from custom_components.plc_bridge.plc.vendors.tecomat import TecomatClient
+from custom_components.plc_bridge.plc.vendors.tecomat import TecomatClient, client as client_module
+from custom_components.plc_bridge.plc.vendors.tecomat.paths import VariablePath, parse_path
 from simulators.tecomat import TecomatSimulator
 
 if TYPE_CHECKING:
@@ -301,3 +302,30 @@ async def test_clock(
         await bad.set_clock(datetime(2026, 1, 2, tzinfo=PRAGUE))
     for each in (client, bad):
         await each.close()
+
+
+async def test_points_parsed_once_across_polls(
+    tecomat_config: ConfigFactory, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """5,000 points: the second poll parses no path again (a cache of 4,096 thrashed: issue 19)."""
+    sim = TecomatSimulator(bench=5000)
+    await sim.start()
+    client = TecomatClient(tecomat_config(port=sim.port))
+    parsed: list[str] = []
+
+    def counting(address: str) -> VariablePath:
+        parsed.append(address)
+        return parse_path(address)
+
+    monkeypatch.setattr(client_module, "parse_path", counting)
+    points = [Point(f"BENCH.V{index}", "INT") for index in range(5000)]
+    try:
+        await client.connect()
+        first = await client.read(points)
+        assert len(parsed) == 5000
+        assert first.values[points[4999]].value == 4999 % 1000
+        await client.read(points)
+        assert len(parsed) == 5000
+    finally:
+        await client.close()
+        await sim.stop()

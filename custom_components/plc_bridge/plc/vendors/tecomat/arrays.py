@@ -119,9 +119,8 @@ def _by_name(node: dict[str, Any], walk: Walk, found: dict[str, Any], *, whole: 
         name = segments[at]
         assert isinstance(name, str)
         for stop in range(end, at, -1):  # "arr2[1][3]" or "arr2[1,3]", then "arr2[1]", "arr2"
-            keys = _spellings(name, segments[at + 1 : stop])
             value = _MISSING
-            for key in keys:
+            for key in _spellings(name, segments[at + 1 : stop]):
                 value = node.get(key, _MISSING)
                 if value is _MISSING:
                     if folded is None:
@@ -129,10 +128,15 @@ def _by_name(node: dict[str, Any], walk: Walk, found: dict[str, Any], *, whole: 
                     value = folded.get(key.lower(), _MISSING)
                 if value is not _MISSING:
                     break
-            if value is not _MISSING:
+            if value is _MISSING:
+                continue
+            if stop == len(segments):  # the common case: a member's own value
+                found[path.key] = value
+            else:
                 hits.append((value, path, stop))
-                break
-    _descend(hits, found, whole)
+            break
+    if hits:
+        _descend(hits, found, whole)
 
 
 def _spellings(name: str, indices: tuple[object, ...]) -> tuple[str, ...]:
