@@ -18,6 +18,7 @@ from urllib.parse import unquote
 from aiohttp import web
 
 from ..base import HttpSimulator
+from .answers import read
 from .auth import Authenticator
 from .program import (
     CLOCK,
@@ -27,7 +28,6 @@ from .program import (
     default_program,
     parse,
     parse_body,
-    read,
     resolve,
     write,
 )
@@ -53,8 +53,8 @@ class TecomatSimulator(HttpSimulator):
     time; writing `setTime` sets it, as a PLC program would), `public_file` ("ok", "missing",
     "too_big", "unreadable"), `rewrite` (edit each JSON answer), `leaf_names` (400.005 and
     400.015 name only the item where the PLC stopped, `sport` for myObject.favorites.sport),
-    `array_answers`, `real_format`, `rename_stamps` (see READINGS.md), `stale_nonce()`,
-    `rename()`; the demo calls `animate()`.
+    `array_answers`, `asked_case`, `real_format`, `rename_stamps` (see READINGS.md),
+    `stale_nonce()`, `rename()`; the demo calls `animate()`.
     `bodies` keeps the last PutObject bodies and `uris` the last request targets; `calls`
     counts services; `auth.accepted` counts the credentials accepted, by method and qop.
     """
@@ -87,8 +87,9 @@ class TecomatSimulator(HttpSimulator):
         self.calls: Counter[str] = Counter()
         self.rewrite: Callable[[bytes], bytes] | None = None
         self.leaf_names = False
-        self.array_answers = "keyed"  # how elements of an array come (program.ARRAY_ANSWERS)
+        self.array_answers = "keyed"  # how elements of an array come (answers.ARRAY_ANSWERS)
         self.drop_writes = False  # PutObject answered 204 without storing anything
+        self.asked_case = False  # answers spell names as asked, not as declared
         self.real_format = "fixed"  # how REALs are printed (values.REAL_FORMATS)
         self.stamp = "E28AE29B"  # GetInfo's userProg.stamp
         self.rename_stamps = True  # rename() builds a new program: a new stamp
@@ -274,6 +275,7 @@ class TecomatSimulator(HttpSimulator):
                 self.max_variables,
                 leaf_names=self.leaf_names,
                 array_answers=self.array_answers,
+                asked_case=self.asked_case,
             )
         )
 

@@ -15,7 +15,7 @@ from custom_components.plc_bridge.plc.vendors.tecomat import TecomatClient
 from custom_components.plc_bridge.plc.vendors.tecomat.arrays import answered
 from custom_components.plc_bridge.plc.vendors.tecomat.paths import parse_path
 from simulators.tecomat import TecomatSimulator
-from simulators.tecomat.program import ARRAY_ANSWERS
+from simulators.tecomat.answers import ARRAY_ANSWERS
 from simulators.tecomat.values import Var
 
 ONE_DIMENSION = [Point(f"arr1[{index}]", "STRING") for index in (1, 4)] + [

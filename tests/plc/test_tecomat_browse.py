@@ -11,7 +11,7 @@ from custom_components.plc_bridge.plc.vendors.tecomat import TecomatClient
 from custom_components.plc_bridge.plc.vendors.tecomat.browse import array_elements
 from custom_components.plc_bridge.plc.vendors.tecomat.paths import VariablePath
 from simulators.tecomat import TecomatSimulator
-from simulators.tecomat.program import ARRAY_ANSWERS
+from simulators.tecomat.answers import ARRAY_ANSWERS
 from simulators.tecomat.values import Var
 
 BIG = 300
