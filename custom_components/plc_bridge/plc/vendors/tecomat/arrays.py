@@ -13,7 +13,9 @@ from collections.abc import Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
+from ...errors import PlcProtocolError
 from .paths import VariablePath
+from .reading import Reading, gone_for
 
 _MISSING = object()
 type Walk = list[tuple[VariablePath, int]]  # paths with the number of segments already followed
@@ -55,6 +57,32 @@ def array_plan(paths: dict[str, VariablePath], too_big: set[str]) -> ArrayPlan:
         else:
             result.asked[inside[0].key] = inside[0]
     return result
+
+
+def place_arrays(plan: ArrayPlan, reading: Reading, too_big: set[str]) -> dict[str, VariablePath]:
+    """Index the arrays read whole into the reading; return the paths of those too big to read.
+
+    Their keys join `too_big`: from then on their elements are asked.
+    """
+    later: dict[str, VariablePath] = {}
+    for key, inside in plan.inside.items():
+        array = plan.asked[key]
+        if key in reading.too_big:
+            too_big.add(key)
+            later.update((path.key, path) for path in inside)
+        elif key in reading.found:
+            placed = elements(reading.found[key], array, inside)
+            reading.found.update(placed)
+            for path in inside:
+                if path.key not in placed:
+                    reading.failed[path.key] = PlcProtocolError(
+                        f"{path.text}: the array {array.text} has no such element"
+                    )
+        else:
+            for path in inside:
+                gone = gone_for(path, reading.gone)
+                reading.failed[path.key] = gone.error(path) if gone else reading.failed[key]
+    return later
 
 
 def answered(answer: Any, paths: Sequence[VariablePath]) -> dict[str, Any]:

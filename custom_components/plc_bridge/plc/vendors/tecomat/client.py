@@ -33,8 +33,8 @@ from ...types import (
     Value,
     ValueKind,
 )
-from .api import AUTH_METHODS, Reading, TecoApi, gone_for
-from .arrays import array_plan, elements
+from .api import AUTH_METHODS, TecoApi
+from .arrays import array_plan, place_arrays
 from .browse import LIST_URI, Listing, expand, listed_names
 from .codec import KINDS, TYPES, check_value, data_type, decode, encode, same_value
 from .info import device_info, plc_status
@@ -46,6 +46,7 @@ from .paths import (
     parse_path,
     plan,
 )
+from .reading import Reading
 from .unknown import UnknownVariables
 
 _ABSENT = object()
@@ -204,24 +205,7 @@ class TecomatClient(PlcClient):
         """
         arrays = array_plan(paths, self._too_big)
         reading = await self._get_paths(arrays.asked, poll)
-        later: dict[str, VariablePath] = {}
-        for key, inside in arrays.inside.items():
-            array = arrays.asked[key]
-            if key in reading.too_big:
-                self._too_big.add(key)
-                later.update((path.key, path) for path in inside)
-            elif key in reading.found:
-                placed = elements(reading.found[key], array, inside)
-                reading.found.update(placed)
-                for path in inside:
-                    if path.key not in placed:
-                        reading.failed[path.key] = PlcProtocolError(
-                            f"{path.text}: the array {array.text} has no such element"
-                        )
-            else:
-                for path in inside:
-                    gone = gone_for(path, reading.gone)
-                    reading.failed[path.key] = gone.error(path) if gone else reading.failed[key]
+        later = place_arrays(arrays, reading, self._too_big)
         if later:
             reading.merge(await self._get_paths(later, poll))
         return reading
@@ -239,14 +223,7 @@ class TecomatClient(PlcClient):
                     unknown.found(gone.path.key)
                 else:
                     unknown.still_gone(gone.path.key, now)
-            if registered := unknown.gone():
-                known = {}
-                for key, path in paths.items():
-                    if (entry := gone_for(path, registered)) is not None:
-                        skipped[key] = entry.error(path)
-                    else:
-                        known[key] = path
-                paths = known
+            paths, skipped = unknown.skip(paths)
         reading = await self._teco().get(self._planned(paths))
         unknown.add(reading.gone.values(), now, self.status_interval)
         reading.failed.update(skipped)

@@ -10,8 +10,9 @@ from __future__ import annotations
 from collections.abc import Iterable
 from dataclasses import dataclass
 
-from .api import Gone, gone_for
+from ...errors import PlcError
 from .paths import VariablePath
+from .reading import Gone, gone_for
 
 LONGEST_DELAY = 300.0
 """Seconds at most between two questions about a variable still unknown."""
@@ -60,6 +61,22 @@ class UnknownVariables:
         entry = self._entries[key]
         entry.delay = min(entry.delay * 2, max(LONGEST_DELAY, entry.delay))
         entry.due = now + entry.delay
+
+    def skip(
+        self, paths: dict[str, VariablePath]
+    ) -> tuple[dict[str, VariablePath], dict[str, PlcError]]:
+        """Return the paths to ask, and the errors of those that are or lie inside one unknown."""
+        gone = self.gone()
+        if not gone:
+            return paths, {}
+        known: dict[str, VariablePath] = {}
+        skipped: dict[str, PlcError] = {}
+        for key, path in paths.items():
+            if (entry := gone_for(path, gone)) is not None:
+                skipped[key] = entry.error(path)
+            else:
+                known[key] = path
+        return known, skipped
 
     def keep_used(self, paths: Iterable[VariablePath]) -> None:
         """Forget the variables no asked path is or lies inside (their points were removed)."""
