@@ -159,7 +159,9 @@ class TecomatClient(PlcClient):
             self._take_status(await self._teco().ask("GET", SERVICE + "GetInfo"))
         return self._status
 
-    def _parse(self, points: Sequence[Point]) -> dict[Point, tuple[VariablePath, str] | PlcError]:
+    def _parse(
+        self, points: Sequence[Point], poll: bool
+    ) -> dict[Point, tuple[VariablePath, str] | PlcError]:
         """Return each point's path and type, or its error; kept for the next poll's points."""
         last, parsed = self._parsed, {}
         for point in points:
@@ -170,13 +172,14 @@ class TecomatClient(PlcClient):
                 except PlcError as err:
                     found = err
             parsed[point] = found
-        self._parsed = parsed
+        if poll:
+            self._parsed = parsed
         return parsed
 
     async def _read(self, points: Sequence[Point], *, poll: bool) -> ReadResult:
         """Read every distinct path once, packed into the fewest GetObject requests."""
         status = await self._poll_status() if poll else PlcStatus()
-        parsed = self._parse(points)
+        parsed = self._parse(points, poll)
         paths: dict[str, VariablePath] = {}  # names are case-insensitive: the first spelling
         for found in parsed.values():
             if not isinstance(found, PlcError):
@@ -205,7 +208,7 @@ class TecomatClient(PlcClient):
         """
         arrays = array_plan(paths, self._too_big)
         reading = await self._get_paths(arrays.asked, poll)
-        later = place_arrays(arrays, reading, self._too_big)
+        later = place_arrays(arrays, reading, self._too_big if poll else set())
         if later:
             reading.merge(await self._get_paths(later, poll))
         return reading
