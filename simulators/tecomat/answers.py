@@ -36,6 +36,18 @@ keyed by index, `{"arr2": {"1": {"3": v}}}`.
 """
 
 
+ELEMENT_SPELLINGS = ("any", "brackets", "comma")
+"""How a request may name an element of several indices (5.2 shows none): any, only arr2[1][3],
+or only arr2[1,3] (IEC 61131-3); the other spelling is an unknown variable (400.005)."""
+
+
+def _spelled_as(name: str, spelling: str) -> bool:
+    """True when the PLC takes a name's element spelling."""
+    if spelling == "brackets":
+        return "," not in name
+    return spelling != "comma" or "][" not in name
+
+
 def read(
     variables: dict[str, Node],
     names: list[str],
@@ -44,18 +56,20 @@ def read(
     leaf_names: bool = False,
     array_answers: str = "keyed",
     asked_case: bool = False,
+    element_spelling: str = "any",
 ) -> dict[str, Any]:
     """Answer GetObject; the first unknown name fails the request (400.005).
 
     With `leaf_names` the error names only the item where the walk stopped, not the path.
     `array_answers` picks how elements of an array come (ARRAY_ANSWERS). With `asked_case` the
     answer spells names as the request did, else as the program declares them.
+    `element_spelling` is how the PLC takes an element of several indices (ELEMENT_SPELLINGS).
     """
     answer: dict[str, Any] = {}
     elements: dict[tuple[str, ...], Any] = {}
     items = 0
     for name in names:
-        parts = parse(name)
+        parts = parse(name) if _spelled_as(name, element_spelling) else None
         try:
             if parts is None:
                 raise KeyError(name)

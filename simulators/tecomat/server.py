@@ -53,7 +53,8 @@ class TecomatSimulator(HttpSimulator):
     time; writing `setTime` sets it, as a PLC program would), `public_file` ("ok", "missing",
     "too_big", "unreadable"), `rewrite` (edit each JSON answer), `leaf_names` (400.005 and
     400.015 name only the item where the PLC stopped, `sport` for myObject.favorites.sport),
-    `array_answers`, `asked_case`, `real_format`, `rename_stamps` (see READINGS.md),
+    `array_answers`, `asked_case`, `element_spelling`, `real_format`, `rename_stamps` (see
+    READINGS.md),
     `stale_nonce()`, `rename()`; the demo calls `animate()`.
     `bodies` keeps the last PutObject bodies and `uris` the last request targets; `calls`
     counts services; `auth.accepted` counts the credentials accepted, by method and qop.
@@ -90,6 +91,7 @@ class TecomatSimulator(HttpSimulator):
         self.array_answers = "keyed"  # how elements of an array come (answers.ARRAY_ANSWERS)
         self.drop_writes = False  # PutObject answered 204 without storing anything
         self.asked_case = False  # answers spell names as asked, not as declared
+        self.element_spelling = "any"  # arr2[1][3] and/or arr2[1,3] (answers.ELEMENT_SPELLINGS)
         self.real_format = "fixed"  # how REALs are printed (values.REAL_FORMATS)
         self.stamp = "E28AE29B"  # GetInfo's userProg.stamp
         self.rename_stamps = True  # rename() builds a new program: a new stamp
@@ -276,6 +278,7 @@ class TecomatSimulator(HttpSimulator):
                 leaf_names=self.leaf_names,
                 array_answers=self.array_answers,
                 asked_case=self.asked_case,
+                element_spelling=self.element_spelling,
             )
         )
 

@@ -10,12 +10,12 @@ from typing import Any
 
 import pytest
 
-from custom_components.plc_bridge.plc import Point
+from custom_components.plc_bridge.plc import PlcAddressError, Point
 from custom_components.plc_bridge.plc.vendors.tecomat import TecomatClient
 from custom_components.plc_bridge.plc.vendors.tecomat.arrays import answered
 from custom_components.plc_bridge.plc.vendors.tecomat.paths import parse_path
 from simulators.tecomat import TecomatSimulator
-from simulators.tecomat.answers import ARRAY_ANSWERS
+from simulators.tecomat.answers import ARRAY_ANSWERS, ELEMENT_SPELLINGS
 from simulators.tecomat.values import Var
 
 ONE_DIMENSION = [Point(f"arr1[{index}]", "STRING") for index in (1, 4)] + [
@@ -64,6 +64,23 @@ async def test_several_elements_in_one_poll(
     if fits:
         assert tecomat_client.metrics.last_poll_requests == 1
         assert {"arr2", "arr3"} <= set(tecomat_sim.uris[-1].partition("?")[2].split("&"))
+
+
+@pytest.mark.parametrize("spelling", ELEMENT_SPELLINGS)
+async def test_element_spelling_of_an_array_too_big(
+    tecomat_sim: TecomatSimulator, tecomat_client: TecomatClient, spelling: str
+) -> None:
+    """Asked element by element, arr2[1][3] is sent so; a PLC taking only arr2[1,3] fails it."""
+    tecomat_sim.element_spelling = spelling
+    tecomat_sim.max_variables = 10
+    result = await tecomat_client.read(POINTS)
+    for point in POINTS:
+        outcome = result.values[point]
+        if outcome.ok:
+            assert outcome.value == held(tecomat_sim, point), point.address
+        else:
+            assert (spelling, point in SEVERAL) == ("comma", True), point.address
+            assert isinstance(outcome.error, PlcAddressError)
 
 
 async def test_an_element_beyond_the_array_fails_alone(
