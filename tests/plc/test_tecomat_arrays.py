@@ -90,6 +90,7 @@ async def test_an_element_beyond_the_array_fails_alone(
     first, beyond = Point("arr1[0]", "STRING"), Point("arr1[9]", "STRING")
     result = await tecomat_client.read([first, beyond])
     assert result.values[first].value == "zero"
+    assert isinstance(result.values[beyond].error, PlcAddressError)  # a repair issue names it
     assert "arr1 has no such element" in str(result.values[beyond].error)
 
 

@@ -13,7 +13,7 @@ from collections.abc import Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
-from ...errors import PlcProtocolError
+from ...errors import PlcAddressError
 from .paths import VariablePath
 from .reading import Reading, gone_for
 
@@ -75,7 +75,7 @@ def place_arrays(plan: ArrayPlan, reading: Reading, too_big: set[str]) -> dict[s
             reading.found.update(placed)
             for path in inside:
                 if path.key not in placed:
-                    reading.failed[path.key] = PlcProtocolError(
+                    reading.failed[path.key] = PlcAddressError(  # as 400.005 for it alone
                         f"{path.text}: the array {array.text} has no such element"
                     )
         else:
