@@ -8,7 +8,7 @@ import re
 import struct
 from typing import Any
 
-from .values import Fault, Var, leaves, render
+from .values import Fault, Var
 
 type Node = Var | dict[str, Node] | list[Node]
 type Segment = str | int
@@ -148,7 +148,7 @@ def resolve(variables: dict[str, Node], parts: list[Segment]) -> tuple[list[Segm
             continue
         if not isinstance(node, dict):
             raise KeyError(part)
-        key = next((name for name in node if name.lower() == part.lower()), None)
+        key = part if part in node else next((n for n in node if n.lower() == part.lower()), None)
         if key is None:
             raise KeyError(part)
         canonical.append(key)
@@ -172,63 +172,6 @@ def last_item(parts: list[Segment]) -> str:
     """Return the last item of a path: its last name with the indices that follow it."""
     start = max(index for index, part in enumerate(parts) if isinstance(part, str))
     return spell(parts[start:])
-
-
-def place(answer: dict[str, Any], canonical: list[Segment], value: Any) -> None:
-    """Put a value into a GetObject answer: members nest; "arr1[2]" keys an array element."""
-    keys: list[str] = []
-    for part in canonical:
-        if isinstance(part, int):
-            keys[-1] += f"[{part}]"
-        else:
-            keys.append(part)
-    node = answer
-    for key in keys[:-1]:
-        node = node.setdefault(key, {})
-    old = node.get(keys[-1])
-    if isinstance(old, dict) and isinstance(value, dict):
-        old.update(value)
-    else:
-        node[keys[-1]] = value
-
-
-def read(
-    variables: dict[str, Node],
-    names: list[str],
-    limit: int,
-    *,
-    leaf_names: bool = False,
-    compact_arrays: bool = False,
-) -> dict[str, Any]:
-    """Answer GetObject; the first unknown name fails the request (400.005).
-
-    With `leaf_names` the error names only the item where the walk stopped, not the path. With
-    `compact_arrays` elements of a top-level array come as a shorter array of the asked ones in
-    index order (`arr1[1]&arr1[4]` -> `{"arr1": ["one", "four"]}`), as real firmware may answer:
-    the spec shows no answer for elements.
-    """
-    answer: dict[str, Any] = {}
-    elements: dict[str, dict[int, Any]] = {}
-    items = 0
-    for name in names:
-        parts = parse(name)
-        try:
-            if parts is None:
-                raise KeyError(name)
-            canonical, node = resolve(variables, parts)
-        except KeyError:
-            shown = stopped_at(variables, parts) if parts and leaf_names else name
-            raise Fault("400.005", f"Variable '{shown}' is not found") from None
-        items += leaves(node)
-        if compact_arrays and parts and len(parts) == 2 and isinstance(parts[1], int):
-            elements.setdefault(str(parts[0]), {})[parts[1]] = render(node)
-            continue
-        place(answer, canonical, render(node))
-    if items > limit:
-        raise Fault("413.004", f"Too many variables (maximum is {limit})")
-    for name, found in elements.items():
-        answer[name] = [found[index] for index in sorted(found)]
-    return answer
 
 
 class Pairs(list[tuple[str, Any]]):

@@ -18,6 +18,7 @@ from urllib.parse import unquote
 from aiohttp import web
 
 from ..base import HttpSimulator
+from .answers import read
 from .auth import Authenticator
 from .program import (
     CLOCK,
@@ -27,7 +28,6 @@ from .program import (
     default_program,
     parse,
     parse_body,
-    read,
     resolve,
     write,
 )
@@ -53,6 +53,8 @@ class TecomatSimulator(HttpSimulator):
     time; writing `setTime` sets it, as a PLC program would), `public_file` ("ok", "missing",
     "too_big", "unreadable"), `rewrite` (edit each JSON answer), `leaf_names` (400.005 and
     400.015 name only the item where the PLC stopped, `sport` for myObject.favorites.sport),
+    `array_answers`, `asked_case`, `element_spelling`, `real_format`, `rename_stamps` (see
+    READINGS.md),
     `stale_nonce()`, `rename()`; the demo calls `animate()`.
     `bodies` keeps the last PutObject bodies and `uris` the last request targets; `calls`
     counts services; `auth.accepted` counts the credentials accepted, by method and qop.
@@ -67,7 +69,7 @@ class TecomatSimulator(HttpSimulator):
         users: dict[str, str] | None = None,
         tls: bool = False,
         max_variables: int = 128,
-        bench: int = 1000,
+        bench: int = 10_000,
     ) -> None:
         super().__init__()
         self.tls = tls
@@ -86,8 +88,13 @@ class TecomatSimulator(HttpSimulator):
         self.calls: Counter[str] = Counter()
         self.rewrite: Callable[[bytes], bytes] | None = None
         self.leaf_names = False
-        self.compact_arrays = False  # elements of an array answered as a shorter array
+        self.array_answers = "keyed"  # how elements of an array come (answers.ARRAY_ANSWERS)
         self.drop_writes = False  # PutObject answered 204 without storing anything
+        self.asked_case = False  # answers spell names as asked, not as declared
+        self.element_spelling = "any"  # arr2[1][3] and/or arr2[1,3] (answers.ELEMENT_SPELLINGS)
+        self.real_format = "fixed"  # how REALs are printed (values.REAL_FORMATS)
+        self.stamp = "E28AE29B"  # GetInfo's userProg.stamp
+        self.rename_stamps = True  # rename() builds a new program: a new stamp
 
     def build_app(self, app: web.Application) -> None:
         app.router.add_route("*", "/TecoApi{tail:.*}", self._handle)
@@ -116,6 +123,8 @@ class TecomatSimulator(HttpSimulator):
             raise TypeError(f"{old!r} is not a member of a structure")
         key = next(name for name in parent if name.lower() == parts[-1].lower())
         parent[new] = parent.pop(key)
+        if self.rename_stamps:
+            self.stamp = f"{(int(self.stamp, 16) * 31 + 7) & 0xFFFFFFFF:08X}"
 
     def var(self, path: str) -> Var:
         """Return an elementary variable by path (case-insensitive)."""
@@ -177,7 +186,7 @@ class TecomatSimulator(HttpSimulator):
 
     def _json(self, data: Any) -> web.Response:
         """Return a 200 answer with a JSON body (edited by `rewrite` when set)."""
-        body = dumps(data).encode()
+        body = dumps(data, self.real_format).encode()
         if self.rewrite is not None:
             body = self.rewrite(body)
         return web.Response(body=body, content_type="application/json", headers=self._headers())
@@ -210,7 +219,7 @@ class TecomatSimulator(HttpSimulator):
             "userProg": {
                 "name": "DOC_TECOAPI v1.0",
                 "compiled": "2018-01-18T16:39:38.000Z",
-                "stamp": "E28AE29B",
+                "stamp": self.stamp,
             },
             "time": stamp,
         }
@@ -267,7 +276,9 @@ class TecomatSimulator(HttpSimulator):
                 names,
                 self.max_variables,
                 leaf_names=self.leaf_names,
-                compact_arrays=self.compact_arrays,
+                array_answers=self.array_answers,
+                asked_case=self.asked_case,
+                element_spelling=self.element_spelling,
             )
         )
 

@@ -5,6 +5,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from datetime import date, datetime
 import json
+import math
 import re
 import struct
 from typing import Any
@@ -52,7 +53,7 @@ class Var:
     def json(self) -> Any:
         """Return the value as TecoApi sends it (chapter 4)."""
         if self.type in ("REAL", "LREAL"):
-            return Fixed(self.value)
+            return (Single if self.type == "REAL" else Fixed)(self.value)
         if self.type in ("TIME", "TOD"):
             seconds, millis = divmod(self.value, 1000)
             hours, minutes = seconds // 3600, seconds // 60 % 60
@@ -126,17 +127,41 @@ def _date(kind: str, text: str) -> date | datetime | None:
 
 
 class Fixed(float):
-    """A REAL or LREAL: the PLC prints six decimals ("varReal": 1000.000000, chapter 4)."""
+    """An LREAL (or, as Single, a REAL): printed as REAL_FORMATS says."""
 
 
-def dumps(value: Any) -> str:
-    """Serialize an answer as the PLC does: REALs with six decimals, UTF-8 text."""
-    if isinstance(value, dict):
-        return "{" + ",".join(f"{json.dumps(k)}:{dumps(v)}" for k, v in value.items()) + "}"
-    if isinstance(value, list):
-        return "[" + ",".join(dumps(item) for item in value) + "]"
-    if isinstance(value, Fixed):
+class Single(Fixed):
+    """A REAL: a 32-bit float."""
+
+
+REAL_FORMATS = ("fixed", "shortest")
+"""How the PLC prints a REAL or LREAL. fixed: six decimals, as every example of the spec
+("varReal": 1000.000000, chapter 4; 0.100000, 5.2); shortest: the shortest text that reads back
+as the same float of the type (1e-07), as JSON libraries print."""
+
+
+def _real(value: Fixed, real_format: str) -> str:
+    """Return a REAL or LREAL as the PLC prints it."""
+    if real_format == "fixed" or not math.isfinite(value):
         return f"{value:.6f}"
+    if isinstance(value, Single):
+        packed = struct.pack("<f", value)
+        for digits in range(1, 10):
+            text = f"{value:.{digits}g}"
+            if struct.pack("<f", float(text)) == packed:
+                return text
+    return repr(float(value))
+
+
+def dumps(value: Any, real_format: str = "fixed") -> str:
+    """Serialize an answer as the PLC does: REALs as `real_format` says, UTF-8 text."""
+    if isinstance(value, dict):
+        members = (f"{json.dumps(k)}:{dumps(v, real_format)}" for k, v in value.items())
+        return "{" + ",".join(members) + "}"
+    if isinstance(value, list):
+        return "[" + ",".join(dumps(item, real_format) for item in value) + "]"
+    if isinstance(value, Fixed):
+        return _real(value, real_format)
     return json.dumps(value, ensure_ascii=False)
 
 

@@ -41,3 +41,20 @@ async def test_browse_odd_listing(
 ) -> None:
     tecomat_sim.variables = {"plcName": tecomat_sim.variables["plcName"], "1bad": Var("INT", 1)}
     assert [item.address for item in await tecomat_client.browse()] == ["plcName"]
+
+
+@pytest.mark.parametrize("asked_case", [False, True], ids=["declared", "asked"])
+async def test_names_in_any_case(
+    tecomat_sim: TecomatSimulator, tecomat_client: TecomatClient, asked_case: bool
+) -> None:
+    """Names are case-insensitive (3.4, 3.5, 4); the answer may spell them either way."""
+    tecomat_sim.asked_case = asked_case
+    points = {
+        Point("MYOBJECT.favorites.SPORT", "STRING"): "Soccer",
+        Point("myobject.First", "STRING"): "John",
+        Point("ARR2[1][3]", "REAL"): 1.3,
+        Point("arr2[2][0]", "REAL"): 2.0,
+        Point("PLCNAME", "STRING"): "myFoxtrot",
+    }
+    result = await tecomat_client.read(list(points))
+    assert {point: result.values[point].value for point in points} == points

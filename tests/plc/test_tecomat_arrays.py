@@ -1,26 +1,138 @@
-"""Array elements in every answer shape: never a value under another point's index (issue 10)."""
+"""Array elements in every answer shape: never a value under another point's index (issues 10, 19).
+
+The spec shows arrays only whole (5.2). Each shape a PLC may answer elements in is a simulator
+switch (simulators/tecomat/READINGS.md, "array answers"); the client is run against all of them.
+"""
 
 from __future__ import annotations
 
+from typing import Any
+
 import pytest
 
-from custom_components.plc_bridge.plc import Point
+from custom_components.plc_bridge.plc import PlcAddressError, Point
 from custom_components.plc_bridge.plc.vendors.tecomat import TecomatClient
-from custom_components.plc_bridge.plc.vendors.tecomat.paths import answered, parse_path
+from custom_components.plc_bridge.plc.vendors.tecomat.arrays import answered
+from custom_components.plc_bridge.plc.vendors.tecomat.paths import parse_path
 from simulators.tecomat import TecomatSimulator
+from simulators.tecomat.answers import ARRAY_ANSWERS, ELEMENT_SPELLINGS
+from simulators.tecomat.values import Var
+
+ONE_DIMENSION = [Point(f"arr1[{index}]", "STRING") for index in (1, 4)] + [
+    Point(f"myObject.interests[{index}]", "STRING") for index in (0, 2)
+]
+SEVERAL = (
+    [Point(f"arr2[{row}][{column}]", "REAL") for row, column in ((1, 1), (1, 3), (2, 0))]
+    + [Point("arr2[0, 2]", "REAL")]
+    + [
+        Point(f"arr3[{i}][{j}][{k}]", "BYTE")
+        for i, j, k in ((0, 1, 2), (1, 0, 3), (1, 2, 0), (1, 2, 3), (0, 2, 1))
+    ]
+)
+POINTS = [*ONE_DIMENSION, *SEVERAL, Point("plcName", "STRING")]
 
 
-@pytest.mark.parametrize("compact", [False, True], ids=["keyed", "compact"])
-async def test_elements_read_right_in_both_shapes(
-    tecomat_sim: TecomatSimulator, tecomat_client: TecomatClient, compact: bool
+def held(sim: TecomatSimulator, point: Point) -> Any:
+    """Return what the simulator holds at a point, as the client shows it."""
+    value = sim.get(point.address.replace(" ", ""))
+    return pytest.approx(value, rel=1e-6) if point.data_type == "REAL" else value
+
+
+@pytest.mark.parametrize("fits", [True, False], ids=["whole", "too-big"])
+@pytest.mark.parametrize("shape", ARRAY_ANSWERS)
+async def test_several_elements_in_one_poll(
+    tecomat_sim: TecomatSimulator, tecomat_client: TecomatClient, shape: str, fits: bool
 ) -> None:
-    """arr1[1] and arr1[4]: answered keyed or as a shorter array, each shows its own element."""
-    tecomat_sim.compact_arrays = compact
-    one, four = Point("arr1[1]", "STRING"), Point("arr1[4]", "STRING")
-    result = await tecomat_client.read([one, four])
-    assert result.values[one].value == tecomat_sim.get("arr1[1]")
-    assert result.values[four].value == tecomat_sim.get("arr1[4]")
-    assert result.values[one].value != result.values[four].value
+    """2-D, 3-level and 1-D elements in one poll: each shows its own value, or fails.
+
+    An array that fits one answer is read whole, as 5.2 shows it: every element is right
+    whatever shape the PLC gives elements. One too big (413.004) has its elements asked; only a
+    flat list of the asked leaves cannot say where a multi-dimensional element goes: it fails.
+    Before, arr2[1][1] showed arr2[1][3]'s value when the PLC answered nested, partial arrays.
+    """
+    tecomat_sim.array_answers = shape
+    if not fits:
+        tecomat_sim.max_variables = 10  # arr2 holds 12 items, arr3 24: neither answers whole
+    for _ in range(2):  # the second poll asks the elements of too big arrays straight away
+        result = await tecomat_client.read(POINTS)
+        for point in POINTS:
+            outcome = result.values[point]
+            if outcome.ok:
+                assert outcome.value == held(tecomat_sim, point), point.address
+            else:
+                assert (fits, shape, point in SEVERAL) == (False, "flat", True), point.address
+    if fits:
+        assert tecomat_client.metrics.last_poll_requests == 1
+        assert {"arr2", "arr3"} <= set(tecomat_sim.uris[-1].partition("?")[2].split("&"))
+
+
+@pytest.mark.parametrize("spelling", ELEMENT_SPELLINGS)
+async def test_element_spelling_of_an_array_too_big(
+    tecomat_sim: TecomatSimulator, tecomat_client: TecomatClient, spelling: str
+) -> None:
+    """Asked element by element, arr2[1][3] is sent so; a PLC taking only arr2[1,3] fails it."""
+    tecomat_sim.element_spelling = spelling
+    tecomat_sim.max_variables = 10
+    result = await tecomat_client.read(POINTS)
+    for point in POINTS:
+        outcome = result.values[point]
+        if outcome.ok:
+            assert outcome.value == held(tecomat_sim, point), point.address
+        else:
+            assert (spelling, point in SEVERAL) == ("comma", True), point.address
+            assert isinstance(outcome.error, PlcAddressError)
+
+
+async def test_an_element_beyond_the_array_fails_alone(
+    tecomat_sim: TecomatSimulator, tecomat_client: TecomatClient
+) -> None:
+    """arr1 holds 6 elements: arr1[9] fails, arr1[0] read with it is right."""
+    first, beyond = Point("arr1[0]", "STRING"), Point("arr1[9]", "STRING")
+    result = await tecomat_client.read([first, beyond])
+    assert result.values[first].value == "zero"
+    assert isinstance(result.values[beyond].error, PlcAddressError)  # a repair issue names it
+    assert "arr1 has no such element" in str(result.values[beyond].error)
+
+
+async def test_array_grown_too_big_is_read_by_elements(
+    tecomat_sim: TecomatSimulator, tecomat_client: TecomatClient
+) -> None:
+    """413.004 for the whole array: its elements are asked, the same poll and the next ones."""
+    tecomat_sim.variables["big"] = [Var("INT", index) for index in range(200)]
+    points = [Point(f"big[{index}]", "INT") for index in (3, 150, 199)]
+    first = await tecomat_client.read(points)
+    assert [first.values[point].value for point in points] == [3, 150, 199]
+    assert tecomat_client.metrics.last_poll_requests == 2  # the whole, then the elements
+    await tecomat_client.read(points)
+    assert tecomat_client.metrics.last_poll_requests == 1
+    assert tecomat_sim.uris[-1].endswith("?big[3]&big[150]&big[199]")  # in index order
+
+
+@pytest.mark.parametrize(
+    ("answer", "value"),
+    [
+        ({"arr2": [[1.1, 1.3]]}, None),  # compact: one row asked, two columns: by order
+        ({"arr2": [None, [0, 1.1, 0, 1.3]]}, 1.1),
+        ({"arr2": {"1": {"1": 1.1, "3": 1.3}}}, 1.1),
+        ({"arr2[1][1]": 1.1, "arr2[1][3]": 1.3}, 1.1),
+        ({"ARR2[1,1]": 1.1, "arr2[1, 3]": 1.3}, 1.1),
+        ({"arr2[1]": [0, 1.1, 0, 1.3]}, 1.1),
+        ({"arr2": [1.1, 1.3]}, "absent"),  # flat: a number cannot be indexed again
+        ({"arr2": [[1.1, 1.3, 5.0]]}, "absent"),  # three items for two asked: no known shape
+        ({"arr2": [[1.1]]}, "absent"),
+    ],
+)
+def test_answer_shapes(answer: Any, value: Any) -> None:
+    """arr2[1][1] and arr2[1][3]: placed only where the shape names the index."""
+    paths = [parse_path("arr2[1][1]"), parse_path("arr2[1][3]")]
+    found = answered(answer, paths)
+    if value == "absent":
+        assert found == {}
+    elif value is None:
+        assert found == {"arr2[1][1]": 1.1, "arr2[1][3]": 1.3}
+    else:
+        assert found["arr2[1][1]"] == value
+        assert found["arr2[1][3]"] == 1.3
 
 
 def test_a_list_of_no_known_shape_places_nobody() -> None:

@@ -11,6 +11,7 @@ from custom_components.plc_bridge.plc.vendors.tecomat import TecomatClient
 from custom_components.plc_bridge.plc.vendors.tecomat.browse import array_elements
 from custom_components.plc_bridge.plc.vendors.tecomat.paths import VariablePath
 from simulators.tecomat import TecomatSimulator
+from simulators.tecomat.answers import ARRAY_ANSWERS
 from simulators.tecomat.values import Var
 
 BIG = 300
@@ -29,15 +30,15 @@ def big_program(tecomat_sim: TecomatSimulator) -> TecomatSimulator:
     return tecomat_sim
 
 
-@pytest.mark.parametrize("compact", [False, True], ids=["keyed", "compact"])
+@pytest.mark.parametrize("shape", ARRAY_ANSWERS)
 async def test_arrays_larger_than_an_answer_are_listed(
-    big_program: TecomatSimulator, tecomat_client: TecomatClient, compact: bool
+    big_program: TecomatSimulator, tecomat_client: TecomatClient, shape: str
 ) -> None:
     """Every element of an array too big to read whole is offered, at its own index.
 
     Before: browse left out every variable the PLC refused to answer whole (413.004).
     """
-    big_program.compact_arrays = compact
+    big_program.array_answers = shape
     before = big_program.requests
     items = {item.address: item for item in await tecomat_client.browse()}
     spent = big_program.requests - before
@@ -54,12 +55,12 @@ async def test_arrays_larger_than_an_answer_are_listed(
     assert [result.value for result in values.values.values()] == [-150, -23, 149]
 
 
-@pytest.mark.parametrize("compact", [False, True], ids=["keyed", "compact"])
+@pytest.mark.parametrize("shape", ARRAY_ANSWERS)
 async def test_whole_array_spread_over_requests(
-    big_program: TecomatSimulator, tecomat_client: TecomatClient, compact: bool
+    big_program: TecomatSimulator, tecomat_client: TecomatClient, shape: str
 ) -> None:
     """All 300 elements as points: several requests, each element its own value."""
-    big_program.compact_arrays = compact
+    big_program.array_answers = shape
     points = [Point(f"big[{index}]", "INT") for index in range(BIG)]
     result = await tecomat_client.read(points)
     assert tecomat_client.metrics.last_poll_requests > 1

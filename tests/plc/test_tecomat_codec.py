@@ -19,6 +19,7 @@ from custom_components.plc_bridge.plc import (
     ValueKind,
 )
 from custom_components.plc_bridge.plc.vendors.tecomat import TecomatClient
+from custom_components.plc_bridge.plc.vendors.tecomat.arrays import answered
 from custom_components.plc_bridge.plc.vendors.tecomat.browse import (
     api_object,
     listed_names,
@@ -28,7 +29,6 @@ from custom_components.plc_bridge.plc.vendors.tecomat.codec import decode, dumps
 from custom_components.plc_bridge.plc.vendors.tecomat.errors import parse_error, request_error
 from custom_components.plc_bridge.plc.vendors.tecomat.info import device_info, plc_status
 from custom_components.plc_bridge.plc.vendors.tecomat.paths import (
-    find,
     nest,
     pack_names,
     parse_path,
@@ -185,20 +185,19 @@ def test_options() -> None:
     ],
 )
 def test_find(answer: Any, path: str, value: Any) -> None:
+    found = answered(answer, [parse_path(path)])
     if value is None:
-        with pytest.raises(KeyError):
-            find(answer, parse_path(path))
+        assert found == {}
     else:
-        assert find(answer, parse_path(path)) == value
+        assert found == {parse_path(path).key: value}
 
 
 @pytest.mark.parametrize(
     ("answer", "path"),
-    [({"a": 1}, "b"), ({"a": [1]}, "a[1]"), ({"a": 1}, "a.b"), ({"a": {"b": 1}}, "a[0]")],
+    [({"a": 1}, "b"), ({"a": [1, 2]}, "a[2]"), ({"a": 1}, "a.b"), ({"a": {"b": 1}}, "a[0]")],
 )
 def test_find_missing(answer: Any, path: str) -> None:
-    with pytest.raises(KeyError):
-        find(answer, parse_path(path))
+    assert answered(answer, [parse_path(path)]) == {}
 
 
 def test_nest() -> None:

@@ -2,10 +2,12 @@
 
 from __future__ import annotations
 
+import time
+
 import pytest
 
 from custom_components.plc_bridge.plc import PlcAddressError, PlcValueError, Point
-from custom_components.plc_bridge.plc.vendors.tecomat import TecomatClient
+from custom_components.plc_bridge.plc.vendors.tecomat import TecomatClient, client as client_module
 from simulators.tecomat import TecomatSimulator
 
 SPORT, COLOR = (
@@ -14,6 +16,11 @@ SPORT, COLOR = (
 )
 NAME, REQUESTED = Point("plcName", "STRING"), Point("Main.myObject3.value", "REAL")
 PUMP = Point("Main.pump.value", "BOOL")
+
+
+def later(monkeypatch: pytest.MonkeyPatch, seconds: float) -> None:
+    """Let the client's clock run `seconds` past the real one."""
+    monkeypatch.setattr(client_module, "monotonic", lambda: time.monotonic() + seconds)
 
 
 async def test_unknown_variable_named_by_its_last_item(
@@ -94,9 +101,15 @@ async def test_write_refusal_the_answer_does_not_single_out(
     assert tecomat_sim.calls["PutObject"] == 3  # all, then each half
 
 
+@pytest.mark.parametrize("stamps", [True, False], ids=["new-stamp", "same-stamp"])
 async def test_unknown_variable_costs_no_request_per_poll(
-    tecomat_sim: TecomatSimulator, tecomat_client: TecomatClient, monkeypatch: pytest.MonkeyPatch
+    tecomat_sim: TecomatSimulator,
+    tecomat_client: TecomatClient,
+    monkeypatch: pytest.MonkeyPatch,
+    stamps: bool,
 ) -> None:
+    """Not asked at every poll; asked again at a new program stamp, or on its own timer."""
+    tecomat_sim.rename_stamps = stamps
     good = [NAME, Point("plcDesc", "STRING"), REQUESTED]
     lost = Point("plcType", "UINT")
     await tecomat_client.read(good)
@@ -111,10 +124,11 @@ async def test_unknown_variable_costs_no_request_per_poll(
         assert isinstance(result.values[lost].error, PlcAddressError)
         assert result.values[NAME].value == "myFoxtrot"
     assert all("plcType" not in uri for uri in list(tecomat_sim.uris)[-3:])
-    monkeypatch.setattr(TecomatClient, "status_interval", 0.0)
+    later(monkeypatch, 61)  # GetInfo (its stamp) and the variable's first timer are due
     getting = tecomat_sim.calls["GetObject"]
     result = await tecomat_client.read([*good, lost])
-    assert tecomat_sim.calls["GetObject"] - getting == usual + 1  # asked again, on its own
+    # A new stamp puts it back in the plan; else it is asked again on its own, then read.
+    assert tecomat_sim.calls["GetObject"] - getting == usual + (0 if stamps else 1)
     assert result.values[lost].value == 2005
     getting = tecomat_sim.calls["GetObject"]
     await tecomat_client.read([*good, lost])

@@ -4,7 +4,6 @@ from __future__ import annotations
 
 import base64
 from collections.abc import Sequence
-from dataclasses import dataclass, field
 import json
 import re
 from typing import Any
@@ -20,6 +19,7 @@ from ...errors import (
 )
 from ...http import HttpTransport
 from ...types import ClientMetrics, ConnectionConfig
+from .arrays import answered
 from .codec import dumps
 from .errors import (
     TOO_MANY_ITEMS,
@@ -31,36 +31,15 @@ from .errors import (
     refused_value,
     request_error,
 )
-from .paths import SERVICE, VariablePath, answered, get_uri, nest
+from .paths import SERVICE, VariablePath, get_uri, nest
+from .reading import Gone, Reading, gone_for, under
 
 AUTH_METHODS = ("digest", "basic")
-
-
-@dataclass(slots=True)
-class Reading:
-    """What GetObject requests gave: raw values and per-path errors, by path key."""
-
-    found: dict[str, Any] = field(default_factory=dict)
-    failed: dict[str, PlcError] = field(default_factory=dict)
-    unknown: set[str] = field(default_factory=set)  # the paths answered with 400.005
-    too_big: set[str] = field(default_factory=set)  # alone, more items than one answer holds
-
-    def merge(self, other: Reading) -> None:
-        """Take in another reading's results."""
-        self.found.update(other.found)
-        self.failed.update(other.failed)
-        self.unknown |= other.unknown
-        self.too_big |= other.too_big
 
 
 _STRINGS_OR_NON_FINITE = re.compile(
     r'"(?:[^"\\]|\\.)*"|(?<![\w.])-?(?:nan|inf(?:inity)?)(?![\w.])', re.IGNORECASE
 )
-
-
-def _under(path: VariablePath, prefix: VariablePath) -> bool:
-    """True when path is prefix or lies inside it (compared as the PLC does, ignoring case)."""
-    return path.key == prefix.key or path.key.startswith((prefix.key + ".", prefix.key + "["))
 
 
 def loads(text: str) -> Any:
@@ -167,7 +146,7 @@ class TecoApi:
             return None
         try:
             return loads(_text(raw))
-        except ValueError:
+        except (ValueError, RecursionError):  # RecursionError: nested deeper than a stack holds
             raise PlcProtocolError(
                 f"the PLC answered {path[:40]} with something other than JSON"
             ) from None
@@ -180,13 +159,33 @@ class TecoApi:
             raise request_error(err, self.auth) from None
 
     async def get(self, groups: Sequence[Sequence[VariablePath]]) -> Reading:
-        """Read groups of paths; return raw values and per-path errors."""
+        """Read groups of paths; return raw values and per-path errors.
+
+        A variable found unknown is not asked again in later groups: every asked path inside it
+        fails with its error.
+        """
         reading = Reading()
+        asked = [path for group in groups for path in group]
         for group in groups:
-            await self._get(list(group), reading)
+            await self._get(self._left(group, reading), reading, asked)
         return reading
 
-    async def _get(self, pending: list[VariablePath], reading: Reading) -> None:
+    @staticmethod
+    def _left(pending: Sequence[VariablePath], reading: Reading) -> list[VariablePath]:
+        """Return the paths not inside a variable found unknown; fail the others."""
+        if not reading.gone:
+            return list(pending)
+        left = []
+        for path in pending:
+            if (gone := gone_for(path, reading.gone)) is not None:
+                reading.failed[path.key] = gone.error(path)
+            else:
+                left.append(path)
+        return left
+
+    async def _get(
+        self, pending: list[VariablePath], reading: Reading, asked: Sequence[VariablePath]
+    ) -> None:
         """Read one group; drop an unknown variable (400.005) and ask for the rest again.
 
         When the answer does not say which path it means, or the group asks too much
@@ -197,28 +196,24 @@ class TecoApi:
                 answer = await self.send("GET", get_uri(path.text for path in pending))
             except TecoError as err:
                 name = missing_variable(err)
-                if name is not None and (lost := blame(pending, name)) is not None:
-                    # Named by its whole path, the PLC did not say where its walk stopped.
-                    whole = name.strip().lower() == pending[lost[0]].key
-                    if len(lost) == 1 and len(pending) > 1 and whole:
-                        gone = await self._unknown_ancestor(pending[lost[0]], pending)
-                        if gone is not None:
-                            lost = [i for i, path in enumerate(pending) if _under(path, gone)]
-                    for index in lost:
-                        reading.unknown.add(pending[index].key)
-                        reading.failed[pending[index].key] = PlcAddressError(
-                            f"{pending[index].text}: the PLC does not know this variable "
-                            f"(400.005: '{name}' is not found)"
-                        )
-                    pending = [path for path in pending if path.key not in reading.unknown]
+                hit = blame(pending, name) if name is not None else None
+                if name is not None and hit is not None:
+                    lost, length = hit
+                    path = pending[lost[0]]
+                    gone = VariablePath(path.segments[:length])
+                    if len(lost) == 1 and name.strip().lower() == path.key:
+                        # Named by its whole path: the PLC did not say where its walk stopped.
+                        gone = await self._unknown_ancestor(path, asked) or gone
+                    reading.gone[gone.key] = Gone(gone, name)
+                    pending = self._left(pending, reading)
                     continue
                 split = name is not None or err.code in (TOO_MANY_REQUESTED, TOO_MANY_ITEMS)
                 if err.code == TOO_MANY_REQUESTED and len(pending) > 1:
                     self.max_names = min(self.max_names or len(pending), len(pending) // 2)
                 if split and len(pending) > 1:
                     half = len(pending) // 2
-                    await self._get(pending[:half], reading)
-                    await self._get(pending[half:], reading)
+                    await self._get(pending[:half], reading, asked)
+                    await self._get(self._left(pending[half:], reading), reading, asked)
                     return
                 if err.code == TOO_MANY_ITEMS:
                     reading.too_big.add(pending[0].key)
@@ -250,7 +245,7 @@ class TecoApi:
         return True
 
     async def _unknown_ancestor(
-        self, path: VariablePath, pending: Sequence[VariablePath]
+        self, path: VariablePath, asked: Sequence[VariablePath]
     ) -> VariablePath | None:
         """Return the shortest ancestor of an unknown path that others share and the PLC lacks.
 
@@ -260,15 +255,10 @@ class TecoApi:
         """
         for length in range(1, len(path.segments)):
             prefix = VariablePath(path.segments[:length])
-            if not any(other is not path and _under(other, prefix) for other in pending):
+            if not any(other is not path and under(other, prefix) for other in asked):
                 return None
-            try:
-                await self.send("GET", get_uri([prefix.text]))
-            except TecoError as err:
-                if missing_variable(err) is not None:
-                    return prefix
-                if err.code not in (TOO_MANY_REQUESTED, TOO_MANY_ITEMS):
-                    raise request_error(err, self.auth) from None
+            if not await self.exists(prefix):
+                return prefix
         return None
 
     async def put(self, pairs: Sequence[tuple[VariablePath, Any]]) -> dict[int, PlcError]:
@@ -297,13 +287,13 @@ class TecoApi:
                 target = name if name is not None else (refused[1] if refused else None)
                 if target is None:
                     raise request_error(err, self.auth) from None
-                lost = blame([pairs[index][0] for index in pending], target)
-                if lost is None:
+                hit = blame([pairs[index][0] for index in pending], target)
+                if hit is None:
                     half = len(pending) // 2
                     await self._put(pairs, pending[:half], failures)
                     await self._put(pairs, pending[half:], failures)
                     return
-                for position in lost:
+                for position in hit[0]:
                     text = pairs[pending[position]][0].text
                     failures[pending[position]] = (
                         PlcValueError(

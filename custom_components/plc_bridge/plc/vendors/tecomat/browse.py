@@ -37,7 +37,10 @@ async def expand(api: TecoApi, paths: list[VariablePath], listing: Listing) -> N
     reading = await api.get(plan(paths))
     for path in paths:
         if path.key in reading.found:
-            listing.items.extend(browse_items(path, reading.found[path.key]))
+            try:
+                listing.items.extend(list(browse_items(path, reading.found[path.key])))
+            except RecursionError:  # nested deeper than a stack holds: no PLC program is
+                listing.unlisted.append(path.text)
         elif path.key in reading.too_big:
             elements = await array_elements(api, path)
             if elements:

@@ -5,8 +5,8 @@ from __future__ import annotations
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from datetime import datetime
-import time
-from typing import ClassVar
+from time import monotonic
+from typing import Any, ClassVar
 from zoneinfo import ZoneInfo
 
 import aiohttp
@@ -34,9 +34,10 @@ from ...types import (
     Value,
     ValueKind,
 )
-from .api import AUTH_METHODS, Reading, TecoApi
+from .api import AUTH_METHODS, TecoApi
+from .arrays import array_plan, place_arrays
 from .browse import LIST_URI, Listing, expand, listed_names
-from .codec import KINDS, TYPES, check_value, data_type, decode, encode
+from .codec import KINDS, TYPES, check_value, data_type, decode, encode, same_value
 from .info import device_info, plc_status
 from .paths import (
     MAX_VARIABLES,
@@ -46,6 +47,10 @@ from .paths import (
     parse_path,
     plan,
 )
+from .reading import Reading
+from .unknown import UnknownVariables
+
+_ABSENT = object()
 
 
 @dataclass(frozen=True, slots=True)
@@ -87,8 +92,10 @@ class TecomatClient(PlcClient):
         self._plan: tuple[tuple[tuple[str, ...], int | None], list[list[VariablePath]]] | None = (
             None
         )
-        self._unknown: dict[str, PlcError] = {}  # paths the PLC said it does not know (400.005)
-        self._probed_at = -float("inf")
+        self._unknown = UnknownVariables()
+        self._too_big: set[str] = set()  # arrays the PLC cannot answer whole (413.004), by key
+        self._stamp: str | None = None  # the program's stamp (GetInfo, 3.2)
+        self._parsed: dict[Point, tuple[VariablePath, str] | PlcError] = {}  # the last poll's
 
     @classmethod
     def validate_options(cls, options: Mapping[str, object]) -> dict[str, str | int | bool]:
@@ -129,7 +136,8 @@ class TecomatClient(PlcClient):
     @classmethod
     def requests_for(cls, points: Sequence[Point]) -> int:
         """Count the GetObject requests of one poll (URI <= 256 characters, 128 names)."""
-        return len(plan(distinct(points, parse_path, data_type).values()))
+        paths = distinct(points, parse_path, data_type)
+        return len(plan(array_plan(paths, set()).asked.values()))
 
     def _teco(self) -> TecoApi:
         """Return the service layer, made on first use."""
@@ -141,59 +149,95 @@ class TecomatClient(PlcClient):
         """Ask GetInfo: device information, PLC mode, program and clock (checks credentials)."""
         info = await self._teco().ask("GET", SERVICE + "GetInfo")
         device = device_info(info)
-        self._status, self._status_at = plc_status(info, self._zone), time.monotonic()
+        self._take_status(info)
         return device
+
+    def _take_status(self, info: Any) -> None:
+        """Keep a GetInfo answer's status; a new program stamp asks every name and array again."""
+        self._status, self._status_at = plc_status(info, self._zone), monotonic()
+        stamp = self._status.extra.get("program_stamp")
+        if stamp != self._stamp:
+            self._unknown.clear()
+            self._too_big.clear()
+            self._stamp = stamp
 
     async def _poll_status(self) -> PlcStatus:
         """Return the PLC status; GetInfo is asked again once `status_interval` has passed."""
-        if time.monotonic() - self._status_at >= self.status_interval:
-            info = await self._teco().ask("GET", SERVICE + "GetInfo")
-            self._status, self._status_at = plc_status(info, self._zone), time.monotonic()
+        if monotonic() - self._status_at >= self.status_interval:
+            self._take_status(await self._teco().ask("GET", SERVICE + "GetInfo"))
         return self._status
+
+    def _parse(
+        self, points: Sequence[Point], poll: bool
+    ) -> dict[Point, tuple[VariablePath, str] | PlcError]:
+        """Return each point's path and type, or its error; kept for the next poll's points."""
+        last, parsed = self._parsed, {}
+        for point in points:
+            found = last.get(point)
+            if found is None:
+                try:
+                    found = parse_path(point.address), data_type(point.data_type)
+                except PlcError as err:
+                    found = err
+            parsed[point] = found
+        if poll:
+            self._parsed = parsed
+        return parsed
 
     async def _read(self, points: Sequence[Point], *, poll: bool) -> ReadResult:
         """Read every distinct path once, packed into the fewest GetObject requests."""
-        values: dict[Point, PointResult] = {}
-        wanted: list[tuple[Point, VariablePath, str]] = []
+        status = await self._poll_status() if poll else PlcStatus()
+        parsed = self._parse(points, poll)
         paths: dict[str, VariablePath] = {}  # names are case-insensitive: the first spelling
-        for point in points:
-            try:
-                wanted.append((point, parse_path(point.address), data_type(point.data_type)))
-            except PlcError as err:
-                values[point] = PointResult(error=err)
+        for found in parsed.values():
+            if not isinstance(found, PlcError):
+                paths.setdefault(found[0].key, found[0])
+        reading = await self._read_paths(paths, poll)
+        values: dict[Point, PointResult] = {}
+        for point, found in parsed.items():
+            if isinstance(found, PlcError):
+                values[point] = PointResult(error=found)
                 continue
-            paths.setdefault(wanted[-1][1].key, wanted[-1][1])
-        reading = await (self._get(paths) if poll else self._teco().get(plan(paths.values())))
-        for point, path, kind in wanted:
-            if path.key in reading.failed:
+            path, kind = found
+            raw = reading.found.get(path.key, _ABSENT)
+            if raw is _ABSENT:
                 values[point] = PointResult(error=reading.failed[path.key])
                 continue
             try:
-                values[point] = PointResult(
-                    value=decode(kind, reading.found[path.key], self._zone, path.text)
-                )
+                values[point] = PointResult(value=decode(kind, raw, self._zone, path.text))
             except PlcProtocolError as err:
                 values[point] = PointResult(error=err)
-        return ReadResult(values=values, status=await self._poll_status() if poll else PlcStatus())
+        return ReadResult(values=values, status=status)
 
-    async def _get(self, paths: dict[str, VariablePath]) -> Reading:
-        """Read the paths; those the PLC does not know are asked again once a status_interval.
+    async def _read_paths(self, paths: dict[str, VariablePath], poll: bool) -> Reading:
+        """Read paths; an array holding several of them is read whole and indexed here (5.2).
 
-        A renamed variable would otherwise cost a 400.005 answer on every poll.
+        An array too big for one answer (413.004) has its elements asked instead, from then on.
         """
-        self._unknown = {key: error for key, error in self._unknown.items() if key in paths}
-        known = {key: path for key, path in paths.items() if key not in self._unknown}
-        reading = await self._teco().get(self._planned(known))
-        now = time.monotonic()
-        if self._unknown and now - self._probed_at >= self.status_interval:
-            again = await self._teco().get(plan(paths[key] for key in self._unknown))
-            self._unknown = {key: again.failed[key] for key in again.unknown}
-            reading.merge(again)
-            self._probed_at = now
-        reading.failed.update(self._unknown)
-        if reading.unknown - self._unknown.keys():
-            self._probed_at = now
-        self._unknown.update({key: reading.failed[key] for key in reading.unknown})
+        arrays = array_plan(paths, self._too_big)
+        reading = await self._get_paths(arrays.asked, poll)
+        later = place_arrays(arrays, reading, self._too_big if poll else set())
+        if later:
+            reading.merge(await self._get_paths(later, poll))
+        return reading
+
+    async def _get_paths(self, paths: dict[str, VariablePath], poll: bool) -> Reading:
+        """Read paths; a poll skips the variables found unknown, each asked again on its timer."""
+        if not poll:
+            return await self._teco().get(plan(paths.values()))
+        unknown, now = self._unknown, monotonic()
+        skipped: dict[str, PlcError] = {}
+        if unknown:
+            unknown.keep_used(paths.values())
+            for gone in unknown.due(now):
+                if await self._teco().exists(gone.path):
+                    unknown.found(gone.path.key)
+                else:
+                    unknown.still_gone(gone.path.key, now)
+            paths, skipped = unknown.skip(paths)
+        reading = await self._teco().get(self._planned(paths))
+        unknown.add(reading.gone.values(), now, self.status_interval)
+        reading.failed.update(skipped)
         return reading
 
     def _planned(self, paths: dict[str, VariablePath]) -> list[list[VariablePath]]:
@@ -222,7 +266,7 @@ class TecomatClient(PlcClient):
             for index, item in enumerate(group):
                 error = failures.get(index)
                 if error is None:
-                    self._unknown.pop(item.path.key, None)
+                    self._unknown.found(item.path.key)
                 results[item.point] = PointResult(value=None if error else item.value, error=error)
         return results
 
@@ -244,10 +288,7 @@ class TecomatClient(PlcClient):
                 held = decode(item.kind, reading.found[item.path.key], self._zone, item.path.text)
             except (KeyError, PlcError):
                 held = None
-            # Compared as sent: at the PLC's resolution (a DT keeps milliseconds, 4).
-            if held is None or encode(item.kind, held, self._zone) != encode(
-                item.kind, item.value, self._zone
-            ):
+            if held is None or not same_value(item.kind, held, item.value, self._zone):
                 failures[index] = PlcWriteRefusedError(
                     f"{item.path.text}: the PLC answered the write but holds {held!r}, "
                     f"not {item.value!r}"

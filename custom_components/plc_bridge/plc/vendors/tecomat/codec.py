@@ -95,13 +95,17 @@ def _check_text(value: Value, what: str) -> str:
 
 def _check_clock(kind: str, value: Value, what: str) -> int:
     """Return a TIME or TOD as milliseconds: "hh:mm:ss.zzz" text, or a number of seconds."""
-    if isinstance(value, int | float) and not isinstance(value, bool) and math.isfinite(value):
+    high = MAX_TIME_MS if kind == "TIME" else DAY_MS - 1
+    finite = isinstance(value, int) or (isinstance(value, float) and math.isfinite(value))
+    if finite and isinstance(value, int | float) and not isinstance(value, bool):
+        # Checked before round(): 10**400 is no float, and 1e308 * 1000 is infinite.
+        if not -0.5 < value * 1000 < high + 0.5:
+            raise PlcValueError(f"{what}: the number is outside the range of a {kind}")
         millis = round(value * 1000)
     elif isinstance(value, str) and (match := _CLOCK.fullmatch(value.strip())):
         millis = _clock_millis(match)
     else:
         raise PlcValueError(f"{what} takes a {kind} as hh:mm:ss.zzz, not {value!r}")
-    high = MAX_TIME_MS if kind == "TIME" else DAY_MS - 1
     if not 0 <= millis <= high:
         raise PlcValueError(f"{what}: {value!r} is outside the range of a {kind}")
     return millis
@@ -132,6 +136,35 @@ def encode(kind: str, value: Value, zone: tzinfo) -> Any:
     # The spec's DT form ends in "Z", but the PLC prints its own clock digits (chapter 4
     # shows DT#...-11:22:33.456 as "...T11:22:33.456Z"): the digits are the PLC's local time.
     return f"{value:%Y-%m-%dT%H:%M:%S}.{value.microsecond // 1000:03d}Z"
+
+
+def same_value(kind: str, held: Value, sent: Value, zone: tzinfo) -> bool:
+    """True when a value read back is the one written, at the precision the PLC keeps and prints.
+
+    Compared as sent (a DT keeps milliseconds, 4); a REAL as the 32-bit float it is stored in,
+    and a REAL or LREAL also as printed with six decimals (chapter 4: "1000.000000"), so 1e-07
+    reads back as 0.0 and 1234567.123456789 as 1234567.123457 (READINGS.md, "printed reals").
+    """
+    if (
+        kind not in ("REAL", "LREAL")
+        or not isinstance(held, int | float)
+        or not isinstance(sent, int | float)
+    ):
+        return bool(encode(kind, held, zone) == encode(kind, sent, zone))
+    stored, shown = float(sent), float(held)
+    if kind == "REAL":
+        stored, shown = _single(stored), _single(shown)
+    if stored == shown:
+        return True
+    return abs(shown - stored) <= 5e-7 + 2 * math.ulp(max(abs(shown), abs(stored)))
+
+
+def _single(value: float) -> float:
+    """Return a float as the 32-bit float a REAL stores (unchanged when no REAL holds it)."""
+    try:
+        return float(struct.unpack("<f", struct.pack("<f", value))[0])
+    except OverflowError:
+        return value
 
 
 def decode(kind: str, raw: Any, zone: tzinfo, what: str) -> Value:

@@ -48,7 +48,7 @@ class TecoError(Exception):
 def parse_error(status: int, raw: bytes, challenge: str = "") -> TecoError:
     """Return the error of an answer that is not 2xx; its code is "HTTP status.Teco code"."""
     error: Any = None
-    with contextlib.suppress(ValueError, AttributeError):
+    with contextlib.suppress(ValueError, AttributeError, RecursionError):
         error = json.loads(raw).get("error")
     if not isinstance(error, dict) or not isinstance(error.get("code"), str):
         text = raw.decode("utf-8", "replace").strip()[:120]
@@ -68,28 +68,31 @@ def refused_value(error: TecoError) -> tuple[str, str, str] | None:
     return (match[1], match[2], match[3]) if match else None
 
 
-def blame(paths: Sequence[VariablePath], name: str) -> list[int] | None:
-    """Return the positions of the paths an error's variable name points at; None when unsure.
+def blame(paths: Sequence[VariablePath], name: str) -> tuple[list[int], int] | None:
+    """Return the positions of the paths an error's name points at, and its length; or None.
 
-    The PLC names the whole path, or only the item where it stopped walking it: `sport` for
+    The length is how many segments of those paths name the unknown variable. The PLC names
+    the whole path, or only the item where it stopped walking it: `sport` for
     myObject.favorites.sport, `favorites` when that member is gone. A name that fits one
     variable (with all that lies inside it) is sure; fitting none or several, the caller splits
-    the request to find out. A lone path is always the one.
+    the request to find out. A lone path is always the one (the whole of it, unless the name
+    fits one of its items).
     """
-    if len(paths) == 1:
-        return [0]
     try:
         wanted = _folded(parse_path(name).segments)
     except PlcAddressError:
-        return None
+        wanted = ()
     variables: dict[tuple[Segment, ...], list[int]] = {}
     for index, path in enumerate(paths):
         parts = _folded(path.segments)
-        for start in range(len(parts) - len(wanted) + 1):
+        for start in range(len(parts) - len(wanted) + 1 if wanted else 0):
             if parts[start : start + len(wanted)] == wanted:
                 variables.setdefault(parts[: start + len(wanted)], []).append(index)
                 break
-    return next(iter(variables.values())) if len(variables) == 1 else None
+    if len(variables) == 1:
+        prefix, positions = next(iter(variables.items()))
+        return positions, len(prefix)
+    return ([0], len(paths[0].segments)) if len(paths) == 1 else None
 
 
 def _folded(segments: tuple[Segment, ...]) -> tuple[Segment, ...]:

@@ -35,6 +35,7 @@ class VariablePath:
     segments: tuple[Segment, ...]
     text: str = field(init=False, compare=False)  # `myObject.favorites.sport`, `arr2[1][3]`
     key: str = field(init=False, compare=False)  # compared as the PLC does: case-insensitively
+    first_index: int = field(init=False, compare=False)  # where the first index is; 0: none
 
     def __post_init__(self) -> None:
         """Spell the path once: polls use it for every request and answer."""
@@ -44,6 +45,8 @@ class VariablePath:
         )
         object.__setattr__(self, "text", text)
         object.__setattr__(self, "key", text.lower())
+        first = next((at for at, part in enumerate(self.segments) if isinstance(part, int)), 0)
+        object.__setattr__(self, "first_index", first)
 
     def write_keys(self) -> list[str]:
         """The object keys of a PutObject body: a name with the indices that follow it.
@@ -183,9 +186,24 @@ def _fill(counts: dict[int, int], taken: dict[int, int], space: int) -> dict[int
 
 
 def plan(paths: Iterable[VariablePath]) -> list[list[VariablePath]]:
-    """Group distinct paths into GetObject requests (see `pack_names`)."""
+    """Group distinct paths into GetObject requests (see `pack_names`).
+
+    Each request names the elements of one array in index order, so an answer that lists only
+    the asked elements lists them in that order too.
+    """
     by_text = {path.text: path for path in paths}
-    return [[by_text[text] for text in group] for group in pack_names(list(by_text))]
+    groups = [[by_text[text] for text in group] for group in pack_names(list(by_text))]
+    return [
+        sorted(group, key=_order) if any("[" in path.text for path in group) else group
+        for group in groups
+    ]
+
+
+def _order(path: VariablePath) -> tuple[tuple[int, int, str], ...]:
+    """Sort key of a path: names case-insensitively, indices as numbers."""
+    return tuple(
+        (1, part, "") if isinstance(part, int) else (0, 0, part.lower()) for part in path.segments
+    )
 
 
 def get_uri(names: Iterable[str]) -> str:
@@ -205,40 +223,6 @@ def member(node: dict[str, Any], name: str) -> Any:
         if key.lower() == wanted:
             return value
     return MISSING
-
-
-def find(answer: Any, path: VariablePath) -> Any:
-    """Return the value at path in a nested GetObject answer; raise KeyError when absent.
-
-    Members nest as in chapter 5.1. The spec shows no answer for an array element: whole arrays
-    are JSON arrays (5.2), and an element may also come keyed "arr1[2]" in its parent object.
-    """
-    return _walk(answer, path.segments, 0)
-
-
-def _walk(node: Any, segments: tuple[Segment, ...], at: int) -> Any:
-    """Follow segments[at:] down from node."""
-    if at == len(segments):
-        return node
-    part = segments[at]
-    if isinstance(part, int):
-        if isinstance(node, list) and part < len(node):
-            return _walk(node[part], segments, at + 1)
-        raise KeyError(part)
-    if not isinstance(node, dict):
-        raise KeyError(part)
-    end = at + 1
-    while end < len(segments) and isinstance(segments[end], int):
-        end += 1
-    for stop in range(end, at, -1):  # "arr2[1][3]", then "arr2[1]", then "arr2"
-        key = part + "".join(f"[{index}]" for index in segments[at + 1 : stop])
-        value = member(node, key)
-        if value is not MISSING:
-            try:
-                return _walk(value, segments, stop)
-            except KeyError:
-                continue
-    raise KeyError(part)
 
 
 def nest(items: Iterable[tuple[VariablePath, Any]]) -> dict[str, Any]:
@@ -261,49 +245,3 @@ def nest(items: Iterable[tuple[VariablePath, Any]]) -> dict[str, Any]:
                 raise PlcValueError(f"{path.text} lies inside a variable written as a value")
             node = child
     return body
-
-
-def answered(answer: Any, paths: Sequence[VariablePath]) -> dict[str, Any]:
-    """Return each path's value in a GetObject answer, by key; a path it cannot place is absent.
-
-    The spec shows whole arrays as JSON arrays (5.2) and is silent on an answer to some of an
-    array's elements. Real firmware may answer `arr1[1]&arr1[4]` with `{"arr1": ["one",
-    "four"]}`: the asked elements in index order (as public clients for it unwrap). So where an
-    array answers with fewer items than an asked index needs, and exactly as many as indices
-    were asked, they are placed by order; a list that fits neither shape places nobody: a
-    value is never shown under another point's index.
-    """
-    asked: dict[tuple[Segment, ...], set[int]] = {}
-    for path in paths:
-        for at, part in enumerate(path.segments):
-            if isinstance(part, int):
-                asked.setdefault(path.segments[:at], set()).add(part)
-                break
-    compact: dict[tuple[Segment, ...], dict[int, int] | None] = {}
-    for prefix, indices in asked.items():
-        try:
-            node = _walk(answer, prefix, 0)
-        except KeyError:
-            continue
-        if isinstance(node, list) and len(node) <= max(indices):
-            fits = len(node) == len(indices)
-            compact[prefix] = (
-                {index: at for at, index in enumerate(sorted(indices))} if fits else None
-            )
-    found: dict[str, Any] = {}
-    for path in paths:
-        segments = path.segments
-        for prefix, places in compact.items():
-            if segments[: len(prefix)] == prefix and len(segments) > len(prefix):
-                if places is None:
-                    segments = ()
-                    break
-                index = segments[len(prefix)]
-                assert isinstance(index, int)
-                segments = (*prefix, places[index], *segments[len(prefix) + 1 :])
-        try:
-            if segments:
-                found[path.key] = _walk(answer, segments, 0)
-        except KeyError:
-            continue
-    return found

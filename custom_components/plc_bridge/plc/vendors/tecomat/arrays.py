@@ -1,0 +1,212 @@
+"""TecoApi answers: the arrays a poll reads whole (5.2), and where an answer places each path.
+
+The spec shows arrays only whole, as nested JSON arrays (5.2: `arr2` answers `[[0.0, ...], ...]`),
+and no answer to some of an array's elements. So a poll that needs several elements of one array,
+or an element of a multi-dimensional one, reads the array whole and indexes it; only an array too
+big for one answer (413.004) has its elements asked, and their answer places a value only where
+its shape names the index (simulators/tecomat/READINGS.md, "array answers").
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass, field
+from typing import Any
+
+from ...errors import PlcAddressError
+from .paths import VariablePath
+from .reading import Reading, gone_for
+
+_MISSING = object()
+type Walk = list[tuple[VariablePath, int]]  # paths with the number of segments already followed
+
+
+def array_of(path: VariablePath) -> VariablePath | None:
+    """Return the array a path indexes: its segments before the first index; None without one."""
+    return VariablePath(path.segments[: path.first_index]) if path.first_index else None
+
+
+@dataclass(slots=True)
+class ArrayPlan:
+    """What a read asks: paths as they are, and the arrays read whole with the paths inside."""
+
+    asked: dict[str, VariablePath] = field(default_factory=dict)
+    inside: dict[str, list[VariablePath]] = field(default_factory=dict)  # by the array's key
+
+
+def array_plan(paths: dict[str, VariablePath], too_big: set[str]) -> ArrayPlan:
+    """Return what to ask: an array holding two asked paths, or one path of several indices, whole.
+
+    An array known to be too big for one answer (`too_big`) has its paths asked instead.
+    """
+    if not any(path.first_index for path in paths.values()):
+        return ArrayPlan(paths)
+    arrays: dict[str, tuple[VariablePath, list[VariablePath]]] = {}
+    result = ArrayPlan()
+    for key, path in paths.items():
+        array = array_of(path)
+        if array is None or array.key in too_big:
+            result.asked[key] = path
+        else:
+            arrays.setdefault(array.key, (array, []))[1].append(path)
+    for key, (array, inside) in arrays.items():
+        several = sum(1 for part in inside[0].segments if isinstance(part, int)) > 1
+        if len(inside) > 1 or several:
+            result.asked[key] = array
+            result.inside[key] = inside
+        else:
+            result.asked[inside[0].key] = inside[0]
+    return result
+
+
+def place_arrays(plan: ArrayPlan, reading: Reading, too_big: set[str]) -> dict[str, VariablePath]:
+    """Index the arrays read whole into the reading; return the paths of those too big to read.
+
+    Their keys join `too_big`: from then on their elements are asked.
+    """
+    later: dict[str, VariablePath] = {}
+    for key, inside in plan.inside.items():
+        array = plan.asked[key]
+        if key in reading.too_big:
+            too_big.add(key)
+            later.update((path.key, path) for path in inside)
+        elif key in reading.found:
+            placed = elements(reading.found[key], array, inside)
+            reading.found.update(placed)
+            for path in inside:
+                if path.key not in placed:
+                    reading.failed[path.key] = PlcAddressError(  # as 400.005 for it alone
+                        f"{path.text}: the array {array.text} has no such element"
+                    )
+        else:
+            for path in inside:
+                gone = gone_for(path, reading.gone)
+                reading.failed[path.key] = gone.error(path) if gone else reading.failed[key]
+    return later
+
+
+def answered(answer: Any, paths: Sequence[VariablePath]) -> dict[str, Any]:
+    """Return each path's value in a GetObject answer, by key; a path it cannot place is absent.
+
+    Members nest as in 5.1; an element may come keyed in its parent ("arr2[1][3]", "arr2[1,3]"),
+    under index keys ({"arr2": {"1": {"3": ...}}}) or in a nested array. An array holding an
+    asked index is read by position. One shorter than that holds the asked elements only when it
+    has exactly as many items as indices were asked at that level: then in index order (the
+    client asks elements in index order). Any other array places nothing below it.
+    """
+    found: dict[str, Any] = {}
+    _place(answer, [(path, 0) for path in paths], found, whole=False)
+    return found
+
+
+def elements(array: Any, root: VariablePath, paths: Sequence[VariablePath]) -> dict[str, Any]:
+    """Return the values of paths inside an array read whole; an index it lacks is absent."""
+    found: dict[str, Any] = {}
+    _place(array, [(path, len(root.segments)) for path in paths], found, whole=True)
+    return found
+
+
+def _place(node: Any, walk: Walk, found: dict[str, Any], *, whole: bool) -> None:
+    """Follow every path of walk down from node (all at node now), recording where each ends."""
+    names: Walk = []
+    indices: Walk = []
+    for path, at in walk:
+        if at == len(path.segments):
+            found[path.key] = node
+        elif isinstance(path.segments[at], int):
+            indices.append((path, at))
+        else:
+            names.append((path, at))
+    if names and isinstance(node, dict):
+        _by_name(node, names, found, whole=whole)
+    if indices:
+        if isinstance(node, list):
+            _by_position(node, indices, found, whole=whole)
+        elif isinstance(node, dict):
+            _by_index_key(node, indices, found, whole=whole)
+
+
+def _descend(hits: list[tuple[Any, VariablePath, int]], found: dict[str, Any], whole: bool) -> None:
+    """Continue each (child, path, at) below its child; siblings below one node go together."""
+    groups: dict[int, tuple[Any, Walk]] = {}
+    for child, path, at in hits:
+        groups.setdefault(id(child), (child, []))[1].append((path, at))
+    for child, walk in groups.values():
+        _place(child, walk, found, whole=whole)
+
+
+def _by_name(node: dict[str, Any], walk: Walk, found: dict[str, Any], *, whole: bool) -> None:
+    """Follow a member name, with the indices after it when the answer keys them ("arr1[2]")."""
+    folded: dict[str, Any] | None = None
+    hits: list[tuple[Any, VariablePath, int]] = []
+    for path, at in walk:
+        segments = path.segments
+        end = at + 1
+        while end < len(segments) and isinstance(segments[end], int):
+            end += 1
+        name = segments[at]
+        assert isinstance(name, str)
+        for stop in range(end, at, -1):  # "arr2[1][3]" or "arr2[1,3]", then "arr2[1]", "arr2"
+            value = _MISSING
+            for key in _spellings(name, segments[at + 1 : stop]):
+                value = node.get(key, _MISSING)
+                if value is _MISSING:
+                    if folded is None:
+                        folded = {str(k).lower(): v for k, v in node.items()}
+                    value = folded.get(key.lower(), _MISSING)
+                if value is not _MISSING:
+                    break
+            if value is _MISSING:
+                continue
+            if stop == len(segments):  # the common case: a member's own value
+                found[path.key] = value
+            else:
+                hits.append((value, path, stop))
+            break
+    if hits:
+        _descend(hits, found, whole)
+
+
+def _spellings(name: str, indices: tuple[object, ...]) -> tuple[str, ...]:
+    """Return how an answer may key a name with indices: arr2[1][3] and arr2[1,3]."""
+    if not indices:
+        return (name,)
+    brackets = name + "".join(f"[{index}]" for index in indices)
+    if len(indices) == 1:
+        return (brackets,)
+    listed = ",".join(str(index) for index in indices)
+    return brackets, f"{name}[{listed}]", f"{name}[{listed.replace(',', ', ')}]"
+
+
+def _by_position(node: list[Any], walk: Walk, found: dict[str, Any], *, whole: bool) -> None:
+    """Follow an index into a JSON array: by position, or by order when it holds only the asked."""
+    asked = sorted({_index(path, at) for path, at in walk})
+    if whole or len(node) > asked[-1]:
+        places = {index: index for index in asked if index < len(node)}
+    elif len(node) == len(asked):
+        places = {index: position for position, index in enumerate(asked)}
+    else:
+        return  # neither the whole array nor the asked elements only: nothing is placed
+    hits = [
+        (node[places[_index(path, at)]], path, at + 1)
+        for path, at in walk
+        if _index(path, at) in places
+    ]
+    _descend(hits, found, whole)
+
+
+def _by_index_key(node: dict[str, Any], walk: Walk, found: dict[str, Any], *, whole: bool) -> None:
+    """Follow an index into an object keyed by indices ({"1": ...})."""
+    hits = []
+    for path, at in walk:
+        value = node.get(str(path.segments[at]), _MISSING)
+        if value is not _MISSING:
+            hits.append((value, path, at + 1))
+    _descend(hits, found, whole)
+
+
+def _index(path: VariablePath, at: int) -> int:
+    """Return the index segment of a path."""
+    part = path.segments[at]
+    assert isinstance(part, int)
+    return part
