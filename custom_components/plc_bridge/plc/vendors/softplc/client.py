@@ -36,7 +36,7 @@ from ...types import (
 from .address import Address, parse_address
 from .codec import KINDS, TYPES, check_value, data_type, decode, parse_token
 from .document import MAX_REPLY, Item, request_body
-from .exchange import Answers, Refused, exchange, send
+from .exchange import Answers, Busy, Refused, exchange, send
 from .planner import ReadItem, item_of, plan
 from .tls import CERTIFICATE, client_context, has_certificate, pem_options, resolve_material
 from .writing import confirm, write_items
@@ -55,11 +55,17 @@ class _Wanted:
 
 def _key(address: Address) -> Key:
     """Return the key a refused address is remembered by."""
-    return address.type, address.file, address.element, address.suffix or address.name
+    return address.identity
 
 
 def check_writable(address: Address) -> None:
     """Refuse what no PUT of the manual can write: the status word of a T, C or R element."""
+    if address.is_opaque and address.bit is not None:
+        raise PlcAddressError(
+            f"{address.text}: without a colon the PLC decides which word this is, and a bit is "
+            f"written back into the word it was read from; write it as {address.type}"
+            f"{address.file}:<element>/{address.bit}"
+        )
     if address.type in ("T", "C", "R") and address.word == 0:
         raise PlcAddressError(
             f"{address.text}: the manual has no word name for a {address.type} element's status "
@@ -161,7 +167,7 @@ class SoftplcClient(PlcClient):
         client sees only a closed connection. One request without the certificate tells:
         answered, the link is fine and the certificate is what the PLC refuses.
         """
-        if not self._certificate or isinstance(err, PlcTimeoutError | PlcTlsError):
+        if not self._certificate or isinstance(err, PlcTimeoutError | PlcTlsError | Busy):
             return
         bare = HttpTransport(self.config, self.session, self.metrics)
         try:
@@ -260,7 +266,11 @@ class SoftplcClient(PlcClient):
                 pieces.extend(plan(inside, max_gap=-1))
         if pieces:
             await self._send("POST", pieces, answers)
-        split = {item for item in items if isinstance(answers[item], Refused) and item.count != 1}
+        split = {
+            item
+            for item in items
+            if isinstance(answers[item], Refused) and item.count not in (None, 1)
+        }
         final = [*pieces, *(item for item in items if item not in split)]
         if len(final) > 1 and all(isinstance(answers[item], Refused) for item in final):
             raise PlcProtocolError(
@@ -322,7 +332,7 @@ def _result(want: _Wanted, item: ReadItem, answer: Item | PlcError) -> PointResu
             )
         )
     index = 0
-    if not (want.address.is_tag or want.address.is_named_word):
+    if item.kind == "range":
         index = (want.address.element - item.start) * item.words + want.address.word
     if index >= len(tokens):
         return PointResult(
