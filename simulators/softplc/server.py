@@ -12,7 +12,19 @@ answers are the simulator's own inventions, not the client's guesses:
   treats it as a bad item;
 - `foreign_codes`: errors carry invented codes and another shape (status 500, HTML, child);
 - `cert_check`: "request" accepts any certificate in the handshake and refuses a PUT with 403;
-  "handshake" refuses an untrusted certificate in the TLS handshake.
+  "handshake" refuses an untrusted certificate in the TLS handshake;
+- `tag_case`: "blind" finds a tag in any case, "exact" only as the table spells it;
+- `tag_reply`: a tag's item is answered with the tag as the "table" spells it, as "sent", or
+  with the "address" it stands for (normalised when `normalize` is on);
+- `short`: "element" reads I1 (no colon) as I:1, "file" as file I1, element 0;
+- `fixed`: normalised O, I and S files are "short" (O:0000, the manual) or "numbered"
+  (O0000:0000);
+- `extra`: every `<data>` of an answer carries attributes no manual names, one namespaced;
+- `order`: answer items in the "request" order or "reversed";
+- `busy`: HTTP statuses (503...) answered to the next requests, whatever they ask, after
+  `busy_after` more requests answered as usual.
+
+simulators/softplc/READINGS.md lists what each switch answers and where each reading comes from.
 
 The demo (`python -m simulators --demo --certs DIR`) runs it as `DEMO_OPTIONS` say: HTTPS with
 PUT authentication on, and a client certificate the PLC trusts written into DIR at every start
@@ -128,6 +140,14 @@ class SoftplcSimulator(HttpSimulator):
         self.past_end = "truncate"
         self.foreign_codes = False
         self.cert_check = "request"
+        self.tag_case = "blind"
+        self.tag_reply = "table"
+        self.short = "element"
+        self.fixed = "short"
+        self.extra = False
+        self.order = "request"
+        self.busy: deque[int] = deque()
+        self.busy_after = 0  # requests served as usual before the `busy` statuses start
         self.bodies: deque[bytes] = deque(maxlen=HISTORY)
         self.items: deque[int] = deque(maxlen=HISTORY)  # <data> items of each POST
         self.rewrite: Any = None  # bytes -> bytes applied to every 2xx answer (hostile replies)
@@ -178,6 +198,7 @@ class SoftplcSimulator(HttpSimulator):
     # -- HTTP -------------------------------------------------------------------------
 
     def build_app(self, app: web.Application) -> None:
+        app.middlewares.append(self._busy)
         app.router.add_get("/dt", self._listing)
         app.router.add_get("/dt/all", self._all)
         app.router.add_get("/dt/{ad}", self._get)
@@ -201,6 +222,17 @@ class SoftplcSimulator(HttpSimulator):
     async def _get(self, request: web.Request) -> web.Response:
         count = request.query.get("count")
         return self._answer(self._read_items([(unquote(request.match_info["ad"]), count)]))
+
+    @web.middleware
+    async def _busy(self, request: web.Request, handler: web.Handler) -> web.StreamResponse:
+        """Answer a queued BUSY status instead of the request (an overloaded PLC)."""
+        if self.busy and self.busy_after:
+            self.busy_after -= 1
+        elif self.busy:
+            self.bodies.append(await request.read())
+            return web.Response(status=self.busy.popleft(), text="Service Unavailable")
+        response: web.StreamResponse = await handler(request)
+        return response
 
     async def _post(self, request: web.Request) -> web.Response:
         body = await request.read()
@@ -265,11 +297,18 @@ class SoftplcSimulator(HttpSimulator):
 
     def _target(self, ad: str) -> tuple[Target, str]:
         """Return the target of an ad or tag, and the ad the answer carries."""
-        tag = next((name for name in self.tags if name.lower() == ad.strip().lower()), None)
-        target = resolve(self.files, self.tags[tag] if tag else ad)
-        if tag:
-            return target, tag  # "addresses will be switched out with tags"
-        return target, normalised(target) if self.normalize else ad
+        asked = ad.strip()
+        if self.tag_case == "exact":
+            tag = asked if asked in self.tags else None
+        else:
+            tag = next((name for name in self.tags if name.lower() == asked.lower()), None)
+        target = resolve(self.files, self.tags[tag] if tag else ad, self.short)
+        shown = normalised(target, self.fixed) if self.normalize else ad
+        if tag and self.tag_reply == "address":
+            return target, shown if self.normalize else self.tags[tag]
+        if tag:  # "addresses will be switched out with tags"
+            return target, asked if self.tag_reply == "sent" else tag
+        return target, shown
 
     def _read(self, ad: str, count_text: str | None) -> ET.Element:
         target, shown = self._target(ad)
@@ -345,11 +384,14 @@ class SoftplcSimulator(HttpSimulator):
 
     def _document(self, answers: list[ET.Element | Bad]) -> ET.Element:
         root = ET.Element("files")
-        for answer in answers:
-            if isinstance(answer, Bad):
-                root.append(self._bad_element(answer))
-            else:
-                root.append(answer)
+        if self.extra:
+            root.set("xmlns:w", "urn:softplc:web")
+        for answer in reversed(answers) if self.order == "reversed" else answers:
+            element = self._bad_element(answer) if isinstance(answer, Bad) else answer
+            if self.extra:
+                element.set("w:scan", "1734")
+                element.set("quality", "good")
+            root.append(element)
         return root
 
     def _bad_element(self, bad: Bad) -> ET.Element:
