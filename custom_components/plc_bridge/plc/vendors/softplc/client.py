@@ -37,25 +37,34 @@ from .address import Address, parse_address
 from .codec import KINDS, TYPES, check_value, data_type, decode, parse_token
 from .document import MAX_REPLY, Item, request_body
 from .exchange import Answers, Busy, Refused, exchange, send
-from .planner import ReadItem, item_of, plan
+from .planner import Locator, ReadItem, plan
 from .tls import CERTIFICATE, client_context, has_certificate, pem_options, resolve_material
 from .writing import confirm, write_items
 
 type Key = tuple[str, int, int, str]
+MAX_PARSED = 65536
+"""Points whose parsed address a client keeps (a poll parses only what it has not seen)."""
 
 
 @dataclass(frozen=True, slots=True)
 class _Wanted:
-    """A valid point of a read: its address and type."""
+    """A valid point of a read: its address, type, identity and text, parsed once."""
 
     point: Point
     address: Address
     kind: str
+    key: Key
+    text: str
 
 
-def _key(address: Address) -> Key:
-    """Return the key a refused address is remembered by."""
-    return address.identity
+def _wanted(point: Point) -> _Wanted | PlcError:
+    """Return what a read needs of a point, or why it cannot be read."""
+    try:
+        address = parse_address(point.address)
+        kind = data_type(address, point.data_type)
+    except PlcError as err:
+        return err
+    return _Wanted(point, address, kind, address.identity, address.text)
 
 
 def check_writable(address: Address) -> None:
@@ -97,6 +106,7 @@ class SoftplcClient(PlcClient):
         super().__init__(config, session)
         self._http: HttpTransport | None = None
         self._refused: dict[Key, PlcError] = {}
+        self._parsed: dict[Point, _Wanted | PlcError] = {}
         self._probed_at = -float("inf")
         self._certificate = has_certificate(config) and config.tls is not TlsMode.NONE
 
@@ -226,35 +236,42 @@ class SoftplcClient(PlcClient):
         """Read every point with one POST; refused addresses are asked again once a minute."""
         values: dict[Point, PointResult] = {}
         wanted: list[_Wanted] = []
+        parsed = self._parsed
+        if len(parsed) > MAX_PARSED:
+            parsed.clear()
         for point in points:
-            try:
-                address = parse_address(point.address)
-                wanted.append(_Wanted(point, address, data_type(address, point.data_type)))
-            except PlcError as err:
-                values[point] = PointResult(error=err)
+            want = parsed.get(point)
+            if want is None:
+                want = parsed[point] = _wanted(point)
+            if isinstance(want, PlcError):
+                values[point] = PointResult(error=want)
+            else:
+                wanted.append(want)
         refused = dict(self._refused) if poll else {}
         if refused and time.monotonic() - self._probed_at >= self.probe_interval:
             refused = {}
         if poll and not refused:  # this poll asks for every address: it is the probe
             self._refused, self._probed_at = {}, time.monotonic()
-        asked = [want.address for want in wanted if _key(want.address) not in refused]
+        asked = [want.address for want in wanted if not refused or want.key not in refused]
         answers, items = await self.fetch(asked)
+        find = Locator(items).find
         for want in wanted:
-            error = refused.get(_key(want.address))
-            item = None if error else item_of(want.address, items)
+            error = refused.get(want.key) if refused else None
+            item = None if error else find(want.address)
             if item is None:
                 values[want.point] = PointResult(error=error or PlcProtocolError("not planned"))
                 continue
-            values[want.point] = _result(want, item, answers[item])
-            error = values[want.point].error
-            if poll and error and isinstance(answers[item], Refused) and item.count in (None, 1):
-                self._refused[_key(want.address)] = error
+            result = values[want.point] = _result(want, item, answers[item])
+            refusal = isinstance(answers[item], Refused) and item.count in (None, 1)
+            if poll and result.error and refusal:
+                self._refused[want.key] = result.error
         return ReadResult(values=values)
 
     async def fetch(self, addresses: Sequence[Address]) -> tuple[Answers, list[ReadItem]]:
         """Read addresses; a refused range is asked again element by element.
 
-        Returns the answers and the items to look an address up in (the pieces first).
+        Returns the answers and the items to look an address up in (the pieces in place of
+        the ranges they split: no two overlap).
         """
         items = plan(addresses)
         answers: Answers = {}
@@ -262,7 +279,8 @@ class SoftplcClient(PlcClient):
         pieces: list[ReadItem] = []
         for item in items:
             if isinstance(answers[item], Refused) and item.count not in (None, 1):
-                inside = [a for a in addresses if item_of(a, [item]) is not None]
+                holds = Locator([item]).find
+                inside = [a for a in addresses if holds(a) is not None]
                 pieces.extend(plan(inside, max_gap=-1))
         if pieces:
             await self._send("POST", pieces, answers)
@@ -276,7 +294,7 @@ class SoftplcClient(PlcClient):
             raise PlcProtocolError(
                 f"the PLC refused every item of the request: {answers[final[0]]}"
             )
-        return answers, [*pieces, *items]
+        return answers, final
 
     async def _write(self, values: Mapping[Point, Value]) -> dict[Point, PointResult]:
         """Write every value with one PUT (bits: their words are read first, in one POST)."""
@@ -319,9 +337,9 @@ def _result(want: _Wanted, item: ReadItem, answer: Item | PlcError) -> PointResu
     """Return a point's value out of its item's reply."""
     if isinstance(answer, PlcError):
         if isinstance(answer, Refused):
-            return PointResult(error=PlcAddressError(f"{want.address.text}: {answer}"))
+            return PointResult(error=PlcAddressError(f"{want.text}: {answer}"))
         return PointResult(error=answer)
-    what = want.address.text
+    what = want.text
     tokens = answer.tokens
     counted = item.count is not None and answer.count is not None and not want.address.is_tag
     if counted and len(tokens) != (answer.count or 0) * item.words:

@@ -7,6 +7,7 @@ spelled a tag otherwise; an item the reply does not name unambiguously is left u
 
 from __future__ import annotations
 
+import bisect
 from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass, field
 
@@ -81,20 +82,47 @@ def span(
     return ReadItem(element_ad(type_, file, first), count, key, first, words, values)
 
 
+class Locator:
+    """Finds the item holding an address among items that do not overlap (a plan's)."""
+
+    def __init__(self, items: Iterable[ReadItem]) -> None:
+        """Index the items: single ones by their ad, ranges by file and first element."""
+        self._single: dict[str, ReadItem] = {}
+        ranges: dict[tuple[str, int], list[ReadItem]] = {}
+        for item in items:
+            if item.kind != "range":
+                self._single.setdefault(item.ad, item)
+            else:
+                type_, file, _start, _word = next(iter(item.keys))
+                ranges.setdefault((type_, file), []).append(item)
+        self._ranges = {
+            key: (sorted(found, key=_first), sorted(item.start for item in found))
+            for key, found in ranges.items()
+        }
+
+    def find(self, address: Address) -> ReadItem | None:
+        """Return the item holding an address, or None."""
+        if address.is_tag or address.is_opaque or address.is_named_word:
+            return self._single.get(address.ad)
+        found = self._ranges.get(address.range_key)
+        if found is None:
+            return None
+        items, starts = found
+        position = bisect.bisect_right(starts, address.element) - 1
+        if position < 0:
+            return None
+        item = items[position]
+        return item if address.element < item.start + (item.count or 0) else None
+
+
+def _first(item: ReadItem) -> int:
+    """Return a range's first element (a sort key)."""
+    return item.start
+
+
 def item_of(address: Address, items: Sequence[ReadItem]) -> ReadItem | None:
-    """Return the planned item that holds an address."""
-    if address.is_tag or address.is_opaque or address.is_named_word:
-        ad = address.ad
-        return next((item for item in items if item.kind != "range" and item.ad == ad), None)
-    for item in items:
-        if (
-            item.kind == "range"
-            and item.count is not None
-            and item.start <= address.element < item.start + item.count
-            and (address.type, address.file, item.start, "") in item.keys
-        ):
-            return item
-    return None
+    """Return the item of a plan that holds an address."""
+    return Locator(items).find(address)
 
 
 def place(
