@@ -19,6 +19,9 @@ answers are the simulator's own inventions, not the client's guesses:
 - `short`: "element" reads I1 (no colon) as I:1, "file" as file I1, element 0;
 - `fixed`: normalised O, I and S files are "short" (O:0000, the manual) or "numbered"
   (O0000:0000);
+- `reply_forms`: a request's "I:3" (a reply's form: no file number) is "taken" or "refused";
+- `words`: integer words printed as the "manual" shows (O and I in hex, others unsigned
+  decimal), all in "hex", or "signed" decimal;
 - `extra`: every `<data>` of an answer carries attributes no manual names, one namespaced;
 - `order`: answer items in the "request" order or "reversed";
 - `busy`: HTTP statuses (503...) answered to the next requests, whatever they ask, after
@@ -145,6 +148,8 @@ class SoftplcSimulator(HttpSimulator):
         self.short = "element"
         self.fixed = "short"
         self.extra = False
+        self.reply_forms = "taken"
+        self.words = "manual"
         self.order = "request"
         self.busy: deque[int] = deque()
         self.busy_after = 0  # requests served as usual before the `busy` statuses start
@@ -302,6 +307,8 @@ class SoftplcSimulator(HttpSimulator):
             tag = asked if asked in self.tags else None
         else:
             tag = next((name for name in self.tags if name.lower() == asked.lower()), None)
+        if not tag and self.reply_forms == "refused" and asked[:2].upper() in ("O:", "I:", "S:"):
+            raise Bad(f"invalid datatable address '{ad}'")
         target = resolve(self.files, self.tags[tag] if tag else ad, self.short)
         shown = normalised(target, self.fixed) if self.normalize else ad
         if tag and self.tag_reply == "address":
@@ -375,8 +382,10 @@ class SoftplcSimulator(HttpSimulator):
             element.set("count", str(count))
         if file.type in ("F", "PD"):
             texts = [f"{float(v):.7g}" for v in values]
-        elif file.type in ("O", "I"):
+        elif self.words == "hex" or (self.words == "manual" and file.type in ("O", "I")):
             texts = [f"0x{int(v):04x}" for v in values]
+        elif self.words == "signed":
+            texts = [str(int(v) - 0x10000 if int(v) & 0x8000 else int(v)) for v in values]
         else:
             texts = [str(int(v)) for v in values]
         element.text = "\n" + " ".join(texts) + "\n"

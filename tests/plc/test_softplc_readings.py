@@ -135,3 +135,14 @@ async def test_busy_inside_a_search(softplc_reading: Reading) -> None:
     values = (await client.read([*good, bad])).values
     assert [values[point].value for point in good] == [1, 50, 21.5]
     assert isinstance(values[bad].error, PlcAddressError)
+
+
+async def test_words_printed_any_way(softplc_reading: Reading) -> None:
+    """A word is the same value printed unsigned (63293), signed (-2243) or in hex (0xf73d)."""
+    sim, client = softplc_reading
+    sim.files["N", 7].words[1] = 0xF73D
+    sim.files["O", 0].words[1] = 0x8001
+    points = [Point("N7:1", "INT"), Point("N7:1", "UINT"), Point("N7:1", "WORD")]
+    points += [Point("O0:1", "INT"), Point("O0:1/15", "BOOL")]
+    values = (await client.read(points)).values
+    assert [values[point].value for point in points] == [-2243, 63293, 63293, -32767, True]
