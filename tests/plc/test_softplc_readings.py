@@ -146,3 +146,35 @@ async def test_words_printed_any_way(softplc_reading: Reading) -> None:
     points += [Point("O0:1", "INT"), Point("O0:1/15", "BOOL")]
     values = (await client.read(points)).values
     assert [values[point].value for point in points] == [-2243, 63293, 63293, -32767, True]
+
+
+async def test_writes_as_typed(softplc_reading: Reading) -> None:
+    """A PUT carries tags as typed and O3 (no colon) as typed; each result is its own item's."""
+    sim, client = softplc_reading
+    if sim.tag_case == "exact":
+        sim.tags |= {"pump": "N7:20", "Pump": "N7:21"}
+    else:
+        sim.tags |= {"Pump": "N7:21"}
+    values = {Point("pump", "INT"): 5, Point("Pump", "INT"): 6, Point("O3", "INT"): 7}
+    values[Point("I1:2", "INT")] = 8
+    results = await client.write(values)
+    body = b"".join(sim.bodies)  # a refused PUT is sent again in halves (reading 7a)
+    assert b'<data ad="pump" count="1">5</data>' in body
+    assert b'<data ad="Pump" count="1">6</data>' in body
+    assert b'<data ad="O3" count="1">7</data>' in body
+    assert b'<data ad="I1:2" count="1">8</data>' in body
+    assert results[Point("I1:2", "INT")].value == 8
+    assert sim.files["I", 1].words[2] == 8
+    if sim.short == "element":
+        assert results[Point("O3", "INT")].value == 7
+        assert sim.files["O", 0].words[3] == 7
+    else:  # O3 is file O3, which the PLC has not
+        assert not results[Point("O3", "INT")].ok
+    # a case-blind PLC answering both with its own spelling, or with addresses, names two
+    # different answers alike: both writes are reported failed, never confirmed by the other
+    told = sim.tag_reply == "sent" or (sim.tag_case == "exact" and sim.tag_reply == "table")
+    for name, value in {"pump": 5, "Pump": 6}.items():
+        result = results[Point(name, "INT")]
+        assert result.value in ((value,) if told else (value, None))
+    if sim.tag_case == "exact":
+        assert sim.files["N", 7].words[20:22] == [5, 6]
