@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
-from dataclasses import dataclass
 from datetime import datetime
 import time
 from typing import ClassVar
@@ -34,37 +33,16 @@ from ...types import (
     ValueKind,
 )
 from .address import Address, parse_address
-from .codec import KINDS, TYPES, check_value, data_type, decode, parse_token
-from .document import MAX_REPLY, Item, request_body
+from .codec import KINDS, TYPES, check_value, data_type
+from .document import MAX_REPLY, request_body
 from .exchange import Answers, Busy, Refused, exchange, send
-from .planner import Locator, ReadItem, plan
+from .planner import Key, Locator, ReadItem, plan
+from .reading import Wanted, result_of, wanted_of
 from .tls import CERTIFICATE, client_context, has_certificate, pem_options, resolve_material
 from .writing import confirm, write_items
 
-type Key = tuple[str, int, int, str]
 MAX_PARSED = 65536
 """Points whose parsed address a client keeps (a poll parses only what it has not seen)."""
-
-
-@dataclass(frozen=True, slots=True)
-class _Wanted:
-    """A valid point of a read: its address, type, identity and text, parsed once."""
-
-    point: Point
-    address: Address
-    kind: str
-    key: Key
-    text: str
-
-
-def _wanted(point: Point) -> _Wanted | PlcError:
-    """Return what a read needs of a point, or why it cannot be read."""
-    try:
-        address = parse_address(point.address)
-        kind = data_type(address, point.data_type)
-    except PlcError as err:
-        return err
-    return _Wanted(point, address, kind, address.identity, address.text)
 
 
 def check_writable(address: Address) -> None:
@@ -106,7 +84,7 @@ class SoftplcClient(PlcClient):
         super().__init__(config, session)
         self._http: HttpTransport | None = None
         self._refused: dict[Key, PlcError] = {}
-        self._parsed: dict[Point, _Wanted | PlcError] = {}
+        self._parsed: dict[Point, Wanted | PlcError] = {}
         self._probed_at = -float("inf")
         self._certificate = has_certificate(config) and config.tls is not TlsMode.NONE
 
@@ -235,14 +213,14 @@ class SoftplcClient(PlcClient):
     async def _read(self, points: Sequence[Point], *, poll: bool) -> ReadResult:
         """Read every point with one POST; refused addresses are asked again once a minute."""
         values: dict[Point, PointResult] = {}
-        wanted: list[_Wanted] = []
+        wanted: list[Wanted] = []
         parsed = self._parsed
         if len(parsed) > MAX_PARSED:
             parsed.clear()
         for point in points:
             want = parsed.get(point)
             if want is None:
-                want = parsed[point] = _wanted(point)
+                want = parsed[point] = wanted_of(point)
             if isinstance(want, PlcError):
                 values[point] = PointResult(error=want)
             else:
@@ -261,7 +239,7 @@ class SoftplcClient(PlcClient):
             if item is None:
                 values[want.point] = PointResult(error=error or PlcProtocolError("not planned"))
                 continue
-            result = values[want.point] = _result(want, item, answers[item])
+            result = values[want.point] = result_of(want, item, answers[item])
             refusal = isinstance(answers[item], Refused) and item.count in (None, 1)
             if poll and result.error and refusal:
                 self._refused[want.key] = result.error
@@ -331,39 +309,6 @@ class SoftplcClient(PlcClient):
         """Release the client's own session (WEB.TLM has no sessions)."""
         self._http = None
         await self._close_own_session()
-
-
-def _result(want: _Wanted, item: ReadItem, answer: Item | PlcError) -> PointResult:
-    """Return a point's value out of its item's reply."""
-    if isinstance(answer, PlcError):
-        if isinstance(answer, Refused):
-            return PointResult(error=PlcAddressError(f"{want.text}: {answer}"))
-        return PointResult(error=answer)
-    what = want.text
-    tokens = answer.tokens
-    counted = item.count is not None and answer.count is not None and not want.address.is_tag
-    if counted and len(tokens) != (answer.count or 0) * item.words:
-        return PointResult(
-            error=PlcProtocolError(
-                f"{what}: the PLC answered {len(tokens)} values for {answer.count} elements "
-                f"of {item.words} words"
-            )
-        )
-    index = 0
-    if item.kind == "range":
-        index = (want.address.element - item.start) * item.words + want.address.word
-    if index >= len(tokens):
-        return PointResult(
-            error=PlcAddressError(
-                f"{what} lies past the end of its file (the PLC answered "
-                f"{len(tokens) // item.words} elements from {item.ad})"
-            )
-        )
-    try:
-        raw = parse_token(tokens[index], what)
-        return PointResult(value=decode(want.kind, raw, want.address.bit, what))
-    except PlcError as err:
-        return PointResult(error=err)
 
 
 __all__ = ["PlcValueError", "SoftplcClient"]
