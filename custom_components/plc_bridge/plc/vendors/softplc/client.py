@@ -95,7 +95,7 @@ class SoftplcClient(PlcClient):
 
     @classmethod
     def validate_point(cls, point: Point) -> Point:
-        """Return the point with its address spelled as the manual does and its type."""
+        """Return the point in the manual's request form (N7:3, I1:3; tags and I1 as typed)."""
         address = parse_address(point.address)
         return Point(address.text, data_type(address, point.data_type))
 
