@@ -190,7 +190,7 @@ def test_attributes_not_needed_are_ignored() -> None:
     body = (
         b'<files xmlns="urn:a" xmlns:w="urn:w"><data ad="N7:0" count="1" w:scan="5" q="good">'
         b'4</data><data ad="N7:1" count="1" w:errorCode="7"/><data ad="N7:2" count="1">'
-        b"<message>no such file</message></data><data ad=\"N7:3\">5<w:stamp>1</w:stamp></data>"
+        b'<message>no such file</message></data><data ad="N7:3">5<w:stamp>1</w:stamp></data>'
         b"</files>"
     )
     items = parse_reply(body)
