@@ -200,6 +200,7 @@ def bad_pem(sim: SoftplcSimulator, case: str) -> dict[str, str]:
         "key without certificate": {KEY: pair[KEY]},
         "missing file": pair | {CERTIFICATE: "softplc/nowhere.pem"},
         "certificate as key": pair | {KEY: pair[CERTIFICATE]},
+        "NUL in the path": pair | {CERTIFICATE: "softplc/a\x00b.pem"},
     }[case]
 
 
@@ -215,6 +216,8 @@ def bad_pem(sim: SoftplcSimulator, case: str) -> dict[str, str]:
         ("another certificate's key", KEY, "not the unencrypted PEM private key"),
         ("certificate as key", KEY, "not a PEM private key"),
         ("certificate without key", KEY, "needs its key"),
+        ("NUL in the path", CERTIFICATE, "holds a NUL character"),
+        ("huge file", KEY, "larger than 256 KiB"),
     ],
 )
 async def test_unusable_certificate_or_key(  # noqa: PLR0917
@@ -228,7 +231,12 @@ async def test_unusable_certificate_or_key(  # noqa: PLR0917
     """A certificate or key that cannot be used is refused on its own field, never quoted,
     before any request; fixing it goes on."""
     hass.config.config_dir = str(tmp_path)
-    given = bad_pem(softplc_sim, case)
+    if case == "huge file":  # a usable key, padded past the size read
+        given = pem_pair(softplc_sim)
+        (tmp_path / "huge.pem").write_text(given[KEY] + "\n" * (256 * 1024))
+        given[KEY] = "huge.pem"
+    else:
+        given = bad_pem(softplc_sim, case)
     result = await connection_form(hass)
     result = await submit(hass, result, connection(softplc_sim, **given))
     assert result["errors"] == {option: "invalid_pem"}

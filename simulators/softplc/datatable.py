@@ -1,8 +1,9 @@
 """The simulated SoftPLC datatable: files of words, addresses as the runtime reads them.
 
-Written from the manual alone, not from the client: O, I and S are files 0, 1 and 2 and the
-digits after them without a colon are the element ("I1" is I:1); T, C and R elements have 3
-words; a PD element has named float words.
+Written from the manual alone, not from the client: O, I and S are files 0, 1 and 2; the
+digits after them without a colon are the element ("I1" is I:1) or, with `short="file"`, the
+file ("I1" is I1:0, as "N7" is N7:0); T, C and R elements have 3 words; a PD element has named
+float words.
 """
 
 from __future__ import annotations
@@ -80,14 +81,14 @@ def default_files(bench: int = 0) -> dict[tuple[str, int], File]:
     return {(f.type, f.number): f for f in files}
 
 
-def resolve(files: dict[tuple[str, int], File], ad: str) -> Target:
+def resolve(files: dict[tuple[str, int], File], ad: str, short: str = "element") -> Target:
     """Return what an ad names; raise Bad (unknown file, element past the end, bad syntax)."""
     match = _AD.fullmatch(ad.strip().upper())
     if match is None:
         raise Bad(f"invalid datatable address '{ad}'")
     type_, digits, element, word = match.groups()
     if type_ in FIXED:
-        if element is None:
+        if element is None and short == "element":
             element, digits = digits or "0", ""
         number = FIXED[type_] if not digits else int(digits)
     elif not digits:
@@ -111,10 +112,11 @@ def resolve(files: dict[tuple[str, int], File], ad: str) -> Target:
     raise Bad(f"invalid word '{word}' in '{ad}'")
 
 
-def normalised(target: Target) -> str:
-    """Return the runtime's normalised spelling: N0007:0033, O:0000, T0004:0000.PRE."""
+def normalised(target: Target, fixed: str = "short") -> str:
+    """Return the runtime's normalised spelling: N0007:0033, O:0000 (or O0000:0000), T...PRE."""
     file = target.file
-    head = file.type if file.type in FIXED else f"{file.type}{file.number:04d}"
+    short = file.type in FIXED and fixed == "short"
+    head = file.type if short else f"{file.type}{file.number:04d}"
     text = f"{head}:{target.element:04d}"
     if target.pid:
         return f"{text}.{target.pid}"

@@ -12,7 +12,22 @@ answers are the simulator's own inventions, not the client's guesses:
   treats it as a bad item;
 - `foreign_codes`: errors carry invented codes and another shape (status 500, HTML, child);
 - `cert_check`: "request" accepts any certificate in the handshake and refuses a PUT with 403;
-  "handshake" refuses an untrusted certificate in the TLS handshake.
+  "handshake" refuses an untrusted certificate in the TLS handshake;
+- `tag_case`: "blind" finds a tag in any case, "exact" only as the table spells it;
+- `tag_reply`: a tag's item is answered with the tag as the "table" spells it, as "sent", or
+  with the "address" it stands for (normalised when `normalize` is on);
+- `short`: "element" reads I1 (no colon) as I:1, "file" as file I1, element 0;
+- `fixed`: normalised O, I and S files are "short" (O:0000, the manual) or "numbered"
+  (O0000:0000);
+- `reply_forms`: a request's "I:3" (a reply's form: no file number) is "taken" or "refused";
+- `words`: integer words printed as the "manual" shows (O and I in hex, others unsigned
+  decimal), all in "hex", or "signed" decimal;
+- `extra`: every `<data>` of an answer carries attributes no manual names, one namespaced;
+- `order`: answer items in the "request" order or "reversed";
+- `busy`: HTTP statuses (503...) answered to the next requests, whatever they ask, after
+  `busy_after` more requests answered as usual.
+
+simulators/softplc/READINGS.md lists what each switch answers and where each reading comes from.
 
 The demo (`python -m simulators --demo --certs DIR`) runs it as `DEMO_OPTIONS` say: HTTPS with
 PUT authentication on, and a client certificate the PLC trusts written into DIR at every start
@@ -22,7 +37,6 @@ PUT authentication on, and a client certificate the PLC trusts written into DIR 
 from __future__ import annotations
 
 from collections import deque
-import datetime as dt
 import math
 from pathlib import Path
 import ssl
@@ -31,74 +45,14 @@ from urllib.parse import unquote
 from xml.etree import ElementTree as ET  # the simulator parses the client's own requests
 
 from aiohttp import web
-from cryptography import x509
-from cryptography.hazmat.primitives import hashes, serialization
-from cryptography.hazmat.primitives.asymmetric import ec
-from cryptography.x509.oid import NameOID
+from cryptography.hazmat.primitives import serialization
 
 from ..base import HttpSimulator
+from .certificates import issue, pem
 from .datatable import Bad, File, Target, default_files, normalised, resolve
 
 HISTORY = 200
 DEFAULT_TAGS = {"timer1": "T4:0", "important_int": "N7:10", "setpoint": "F8:1"}
-
-
-type Pair = tuple[x509.Certificate, ec.EllipticCurvePrivateKey]
-
-
-def issue(common_name: str, issuer: Pair | None) -> Pair:
-    """Return (certificate, key) signed by issuer, or a self-signed CA when issuer is None."""
-    now = dt.datetime.now(dt.UTC)
-    key = ec.generate_private_key(ec.SECP256R1())
-    name = x509.Name([x509.NameAttribute(NameOID.COMMON_NAME, common_name)])
-    builder = (
-        x509.CertificateBuilder()
-        .subject_name(name)
-        .issuer_name(name if issuer is None else issuer[0].subject)
-        .public_key(key.public_key())
-        .serial_number(x509.random_serial_number())
-        .not_valid_before(now - dt.timedelta(days=1))
-        .not_valid_after(now + dt.timedelta(days=3650))
-        .add_extension(x509.BasicConstraints(ca=issuer is None, path_length=None), critical=True)
-        .add_extension(x509.SubjectKeyIdentifier.from_public_key(key.public_key()), critical=False)
-        .add_extension(
-            x509.AuthorityKeyIdentifier.from_issuer_public_key(
-                (key if issuer is None else issuer[1]).public_key()
-            ),
-            critical=False,
-        )
-        .add_extension(
-            x509.KeyUsage(
-                digital_signature=issuer is not None,
-                content_commitment=False,
-                key_encipherment=False,
-                data_encipherment=False,
-                key_agreement=False,
-                key_cert_sign=issuer is None,
-                crl_sign=issuer is None,
-                encipher_only=False,
-                decipher_only=False,
-            ),
-            critical=True,
-        )
-    )
-    if issuer is not None:
-        builder = builder.add_extension(
-            x509.ExtendedKeyUsage([x509.oid.ExtendedKeyUsageOID.CLIENT_AUTH]), critical=False
-        )
-    return builder.sign(key if issuer is None else issuer[1], hashes.SHA256()), key
-
-
-def pem(certificate: x509.Certificate, key: ec.EllipticCurvePrivateKey) -> tuple[str, str]:
-    """Return (certificate PEM, unencrypted PKCS8 key PEM) as text."""
-    return (
-        certificate.public_bytes(serialization.Encoding.PEM).decode(),
-        key.private_bytes(
-            serialization.Encoding.PEM,
-            serialization.PrivateFormat.PKCS8,
-            serialization.NoEncryption(),
-        ).decode(),
-    )
 
 
 class SoftplcSimulator(HttpSimulator):
@@ -128,6 +82,16 @@ class SoftplcSimulator(HttpSimulator):
         self.past_end = "truncate"
         self.foreign_codes = False
         self.cert_check = "request"
+        self.tag_case = "blind"
+        self.tag_reply = "table"
+        self.short = "element"
+        self.fixed = "short"
+        self.extra = False
+        self.reply_forms = "taken"
+        self.words = "manual"
+        self.order = "request"
+        self.busy: deque[int] = deque()
+        self.busy_after = 0  # requests served as usual before the `busy` statuses start
         self.bodies: deque[bytes] = deque(maxlen=HISTORY)
         self.items: deque[int] = deque(maxlen=HISTORY)  # <data> items of each POST
         self.rewrite: Any = None  # bytes -> bytes applied to every 2xx answer (hostile replies)
@@ -178,6 +142,7 @@ class SoftplcSimulator(HttpSimulator):
     # -- HTTP -------------------------------------------------------------------------
 
     def build_app(self, app: web.Application) -> None:
+        app.middlewares.append(self._busy)
         app.router.add_get("/dt", self._listing)
         app.router.add_get("/dt/all", self._all)
         app.router.add_get("/dt/{ad}", self._get)
@@ -201,6 +166,17 @@ class SoftplcSimulator(HttpSimulator):
     async def _get(self, request: web.Request) -> web.Response:
         count = request.query.get("count")
         return self._answer(self._read_items([(unquote(request.match_info["ad"]), count)]))
+
+    @web.middleware
+    async def _busy(self, request: web.Request, handler: web.Handler) -> web.StreamResponse:
+        """Answer a queued BUSY status instead of the request (an overloaded PLC)."""
+        if self.busy and self.busy_after:
+            self.busy_after -= 1
+        elif self.busy:
+            self.bodies.append(await request.read())
+            return web.Response(status=self.busy.popleft(), text="Service Unavailable")
+        response: web.StreamResponse = await handler(request)
+        return response
 
     async def _post(self, request: web.Request) -> web.Response:
         body = await request.read()
@@ -265,11 +241,20 @@ class SoftplcSimulator(HttpSimulator):
 
     def _target(self, ad: str) -> tuple[Target, str]:
         """Return the target of an ad or tag, and the ad the answer carries."""
-        tag = next((name for name in self.tags if name.lower() == ad.strip().lower()), None)
-        target = resolve(self.files, self.tags[tag] if tag else ad)
-        if tag:
-            return target, tag  # "addresses will be switched out with tags"
-        return target, normalised(target) if self.normalize else ad
+        asked = ad.strip()
+        if self.tag_case == "exact":
+            tag = asked if asked in self.tags else None
+        else:
+            tag = next((name for name in self.tags if name.lower() == asked.lower()), None)
+        if not tag and self.reply_forms == "refused" and asked[:2].upper() in ("O:", "I:", "S:"):
+            raise Bad(f"invalid datatable address '{ad}'")
+        target = resolve(self.files, self.tags[tag] if tag else ad, self.short)
+        shown = normalised(target, self.fixed) if self.normalize else ad
+        if tag and self.tag_reply == "address":
+            return target, shown if self.normalize else self.tags[tag]
+        if tag:  # "addresses will be switched out with tags"
+            return target, asked if self.tag_reply == "sent" else tag
+        return target, shown
 
     def _read(self, ad: str, count_text: str | None) -> ET.Element:
         target, shown = self._target(ad)
@@ -336,8 +321,10 @@ class SoftplcSimulator(HttpSimulator):
             element.set("count", str(count))
         if file.type in ("F", "PD"):
             texts = [f"{float(v):.7g}" for v in values]
-        elif file.type in ("O", "I"):
+        elif self.words == "hex" or (self.words == "manual" and file.type in ("O", "I")):
             texts = [f"0x{int(v):04x}" for v in values]
+        elif self.words == "signed":
+            texts = [str(int(v) - 0x10000 if int(v) & 0x8000 else int(v)) for v in values]
         else:
             texts = [str(int(v)) for v in values]
         element.text = "\n" + " ".join(texts) + "\n"
@@ -345,11 +332,14 @@ class SoftplcSimulator(HttpSimulator):
 
     def _document(self, answers: list[ET.Element | Bad]) -> ET.Element:
         root = ET.Element("files")
-        for answer in answers:
-            if isinstance(answer, Bad):
-                root.append(self._bad_element(answer))
-            else:
-                root.append(answer)
+        if self.extra:
+            root.set("xmlns:w", "urn:softplc:web")
+        for answer in reversed(answers) if self.order == "reversed" else answers:
+            element = self._bad_element(answer) if isinstance(answer, Bad) else answer
+            if self.extra:
+                element.set("w:scan", "1734")
+                element.set("quality", "good")
+            root.append(element)
         return root
 
     def _bad_element(self, bad: Bad) -> ET.Element:

@@ -18,6 +18,7 @@ from simulators.s7_smart import DEFAULT_PASSWORD, DEFAULT_USER, S7SmartSimulator
 from .plcnext_fixtures import plcnext_client, plcnext_config, plcnext_sim  # noqa: F401
 from .softplc_fixtures import (  # noqa: F401
     softplc_client,
+    softplc_reading,
     softplc_settings,
     softplc_sim,
     softplc_tls_sim,

@@ -57,3 +57,53 @@ async def softplc_client(softplc_sim: SoftplcSimulator) -> AsyncGenerator[Softpl
     await client.connect()
     yield client
     await client.close()
+
+
+VARIANTS: dict[str, dict[str, Any]] = {
+    "defaults": {},
+    "normalised": {"normalize": True},
+    "normalised-numbered": {"normalize": True, "fixed": "numbered"},
+    "bad-item-alone": {"bad_item": "item"},
+    "bad-item-child": {"bad_item": "item", "item_error": "child"},
+    "error-html": {"error_style": "html"},
+    "error-text": {"error_style": "text"},
+    "error-404": {"error_status": 404},
+    "past-end-error": {"past_end": "error"},
+    "foreign-codes": {"foreign_codes": True},
+    "foreign-codes-alone": {"foreign_codes": True, "bad_item": "item"},
+    "tags-exact": {"tag_case": "exact"},
+    "tags-as-sent": {"tag_reply": "sent"},
+    "tags-as-address": {"tag_reply": "address"},
+    "tags-as-normalised-address": {"tag_reply": "address", "normalize": True},
+    "short-is-file": {"short": "file"},
+    "short-is-file-normalised": {"short": "file", "normalize": True},
+    "reply-forms-refused": {"reply_forms": "refused"},
+    "words-hex": {"words": "hex"},
+    "words-signed": {"words": "signed"},
+    "extra-attributes": {"extra": True},
+    "extra-attributes-alone": {"extra": True, "bad_item": "item"},
+    "reversed": {"order": "reversed"},
+    "reversed-normalised": {"order": "reversed", "normalize": True},
+}
+"""Every reading of simulators/softplc/READINGS.md as simulator switches, one at a time and in
+the pairs where one switch only shows with another. Tests take `softplc_reading`."""
+
+
+@pytest.fixture(params=list(VARIANTS), ids=list(VARIANTS))
+async def softplc_reading(
+    request: pytest.FixtureRequest,
+) -> AsyncGenerator[tuple[SoftplcSimulator, SoftplcClient]]:
+    """A simulator answering one variant of VARIANTS, and a connected client of it."""
+    switches = dict(VARIANTS[request.param])
+    sim = SoftplcSimulator(normalize=switches.pop("normalize", False), bench=0)
+    for switch, value in switches.items():
+        assert hasattr(sim, switch), switch
+        setattr(sim, switch, value)
+    await sim.start()
+    client = SoftplcClient(softplc_config(sim))
+    try:
+        await client.connect()
+        yield sim, client
+    finally:
+        await client.close()
+        await sim.stop()

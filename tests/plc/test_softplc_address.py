@@ -31,10 +31,12 @@ from custom_components.plc_bridge.plc.vendors.softplc.planner import (
         ("T4:0.DN", "T4:0.DN", "BOOL"),
         ("C5:1.ACC", "C5:1.ACC", "INT"),
         ("R6:0.POS", "R6:0.POS", "INT"),
-        ("O:0", "O:0", "INT"),
-        ("O0:3", "O:3", "INT"),
-        ("I1", "I:1", "INT"),  # the manual's "I1" is answered as I:0001
-        ("S:5/2", "S:5/2", "BOOL"),
+        ("O:0", "O0:0", "INT"),  # a reply's form is sent in the request form
+        ("O0:3", "O0:3", "INT"),
+        ("I1:3", "I1:3", "INT"),  # never rewritten into the reply's I:3
+        ("I1", "I1", "INT"),  # the manual's request form, sent as typed
+        ("i1/2", "I1/2", "BOOL"),
+        ("S:5/2", "S2:5/2", "BOOL"),
         ("PD12:3000.SP", "PD12:3000.SP", "REAL"),
         ("timer1", "timer1", "INT"),
     ],
@@ -46,7 +48,10 @@ def test_addresses(text: str, normal: str, kind: str) -> None:
 
 @pytest.mark.parametrize(
     "text",
-    ["N:3", "N10000:0", "N7:3/16", "F8:0/1", "N7:0.PRE", "T4:0.XX", "PD12:1", "I2:0", "7N", ""],
+    [
+        *("N:3", "N10000:0", "N7:3/16", "F8:0/1", "N7:0.PRE", "T4:0.XX", "PD12:1", "I2:0"),
+        *("7N", "", "I1.PRE", "I1/16"),
+    ],
 )
 def test_bad_addresses(text: str) -> None:
     """Addresses the datatable cannot have are refused with a message."""
@@ -65,12 +70,21 @@ def test_type_must_fit(address: str, data_type: str) -> None:
 
 
 def test_normalised_replies_name_the_same() -> None:
-    """N0007:0033 and N7:33 are one key; O:0000 is O:0; a tag is itself, in any case."""
+    """N0007:0033 and N7:33 are one place, I:0001 and I1:1 too; tags and I1 name none."""
     assert reply_key("N0007:0033") == reply_key("N7:33") == ("N", 7, 33, "")
-    assert reply_key("O:0000") == reply_key("O0") == ("O", 0, 0, "")
+    assert reply_key("O:0000") == reply_key("O0:0") == ("O", 0, 0, "")
+    assert reply_key("I:0001") == reply_key("I1:1") == ("I", 1, 1, "")
     assert reply_key("T0004:0000.PRE") == reply_key("T4:0.PRE")
-    assert reply_key("Timer1") == ("", 0, 0, "timer1")
+    assert reply_key("Timer1") is None
+    assert reply_key("I1") is None
     assert reply_key("<junk>") is None
+
+
+def test_opaque_write_of_a_bit_refused() -> None:
+    """I1/2's word is the PLC's reading: a bit written back might land in another word."""
+    with pytest.raises(PlcAddressError, match="I1:<element>/2"):
+        SoftplcClient.validate_value(Point("I1/2", "BOOL"), True)
+    assert SoftplcClient.validate_value(Point("O3", "INT"), 5) == 5
 
 
 @pytest.mark.parametrize(
@@ -132,6 +146,8 @@ def test_plan_merges_nearby_elements() -> None:
         ("timer1", 1),
         ("PD9:0.SP", None),
     ]
+    cased = plan([parse_address("pump"), parse_address("Pump"), parse_address("pump")])
+    assert [item.ad for item in cased] == ["pump", "Pump"]
     assert item_of(parse_address("N7:5"), items) == items[1]
 
 
@@ -141,19 +157,62 @@ def test_gap_measured_in_words() -> None:
     assert len(items) == 2
 
 
-def test_place_by_name_or_position() -> None:
-    """Replies are placed by what they name (normalised or not), a tag also by position."""
+def test_place_by_name_or_elimination() -> None:
+    """Replies are placed by what they name (normalised or not), whatever their order; one
+    tag left over takes the one reply item left over (a tag answered as its address)."""
     items = plan([parse_address(text) for text in ("N7:33", "O:0", "timer1")])
-    assert [item.ad for item in items] == ["N7:33", "O:0", "timer1"]
+    assert [item.ad for item in items] == ["N7:33", "O0:0", "timer1"]
     reply = [
         Item("O:0000", 1, ("0x0001",)),
         Item("N0007:0033", 1, ("5",)),
-        Item("T0004:0000", 1, ("0", "1", "2")),  # the tag answered as its address
+        Item("T0004:0000", 1, ("0", "1", "2")),
     ]
-    placed = place(items, reply)
+    placed, ambiguous = place(items, reply)
     assert placed[items[0]].tokens == ("5",)
     assert placed[items[1]].tokens == ("0x0001",)
     assert placed[items[2]].ad == "T0004:0000"
+    assert not ambiguous
+
+
+def test_place_never_guesses() -> None:
+    """Two tags answered with their addresses, or I1 beside I1:0 answered normalised (I1 may
+    be I1:0), cannot be told apart: those items are left unplaced, the others placed."""
+    tags = plan([parse_address(text) for text in ("N7:0", "pump", "Pump")])
+    reply = [Item("N7:20", 1, ("1",)), Item("N7:0", 1, ("0",)), Item("N7:21", 1, ("2",))]
+    placed, _ambiguous = place(tags, reply)
+    assert list(placed) == [tags[0]]
+    opaque = plan([parse_address(text) for text in ("I1:0", "I1:1", "I1", "F8:0")])
+    reply = [
+        Item("I:0000", 2, ("1", "2")),
+        Item("I:0000", 1, ("2",)),
+        Item("F0008:0000", 1, ("1.5",)),
+    ]
+    placed, ambiguous = place(opaque, reply)
+    assert list(placed) == [opaque[0]]  # F8:0 (items are sorted: F8, I1, then I1 alone)
+    assert ambiguous == {opaque[1], opaque[2]}
+
+
+def test_place_by_the_one_answer_left() -> None:
+    """I1 beside I1:0 answered I:0001 and I:0000: the range can only be I:0000."""
+    items = plan([parse_address(text) for text in ("I1:0", "I1")])
+    reply = [Item("I:0001", 1, ("7",)), Item("I:0000", 1, ("5",))]
+    placed, ambiguous = place(items, reply)
+    assert placed[items[0]].tokens == ("5",)
+    assert placed[items[1]].tokens == ("7",)
+    assert not ambiguous
+
+
+def test_place_tags_by_exact_name_first() -> None:
+    """pump and Pump echoed are placed by their exact names; spelled as the PLC's table
+    (PUMP for both: one tag to a case-blind PLC), each takes one of the equal answers."""
+    items = plan([parse_address("pump"), parse_address("Pump")])
+    placed, _ = place(items, [Item("Pump", 1, ("2",)), Item("pump", 1, ("1",))])
+    assert [placed[item].tokens for item in items] == [("1",), ("2",)]
+    placed, _ = place(items, [Item("PUMP", 1, ("3",)), Item("PUMP", 1, ("3",))])
+    assert [placed[item].tokens for item in items] == [("3",), ("3",)]
+    placed, ambiguous = place(items, [Item("PUMP", 1, ("3",)), Item("PUMP", 1, ("4",))])
+    assert not placed
+    assert ambiguous == set(items)
 
 
 def test_request_body() -> None:

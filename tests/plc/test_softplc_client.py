@@ -2,8 +2,6 @@
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
-
 import pytest
 
 from custom_components.plc_bridge.plc import (
@@ -14,10 +12,6 @@ from custom_components.plc_bridge.plc import (
 )
 from custom_components.plc_bridge.plc.vendors.softplc import SoftplcClient
 from simulators.softplc import SoftplcSimulator
-
-if TYPE_CHECKING:
-    from .softplc_fixtures import ConfigFactory
-
 
 POINTS = {
     "N7:3": 3,
@@ -35,32 +29,22 @@ POINTS = {
 }
 
 
-@pytest.mark.parametrize("normalize", [False, True])
-async def test_poll_is_one_post(normalize: bool, softplc_settings: ConfigFactory) -> None:
-    """Every point in one POST of merged ranges; replies matched normalised or echoed."""
-    sim = SoftplcSimulator(normalize=normalize)
-    await sim.start()
-    client = SoftplcClient(softplc_settings(sim))
-    try:
-        await client.connect()
-        before = sim.requests
-        result = await client.read([Point(address, "") for address in POINTS])
-        assert {p.address: r.value for p, r in result.values.items()} == POINTS
-        assert sim.requests - before == 1
-        assert client.metrics.last_poll_requests == 1
-        assert sim.items[-1] == 8 == SoftplcClient.items_for([Point(a, "") for a in POINTS])
-    finally:
-        await client.close()
-        await sim.stop()
+async def test_poll_is_one_post(softplc_reading: tuple[SoftplcSimulator, SoftplcClient]) -> None:
+    """Every point in one POST of merged ranges; replies matched under every reading."""
+    sim, client = softplc_reading
+    before = sim.requests
+    result = await client.read([Point(address, "") for address in POINTS])
+    assert {p.address: r.value for p, r in result.values.items()} == POINTS
+    assert sim.requests - before == 1
+    assert client.metrics.last_poll_requests == 1
+    assert sim.items[-1] == 8 == SoftplcClient.items_for([Point(a, "") for a in POINTS])
 
 
-@pytest.mark.parametrize("bad_item", ["request", "item"])
-@pytest.mark.parametrize("foreign", [False, True])
 async def test_bad_address_fails_alone(
-    softplc_client: SoftplcClient, softplc_sim: SoftplcSimulator, bad_item: str, foreign: bool
+    softplc_reading: tuple[SoftplcSimulator, SoftplcClient],
 ) -> None:
     """A bad item fails only its points, however the PLC says so; later polls skip it."""
-    softplc_sim.bad_item, softplc_sim.foreign_codes = bad_item, foreign
+    softplc_sim, softplc_client = softplc_reading
     points = [Point("N7:98", ""), Point("N7:99", ""), Point("N7:100", ""), Point("N99:0", "")]
     points.append(Point("F8:0", ""))
     result = await softplc_client.read(points)

@@ -181,3 +181,22 @@ def test_material_blamed_on_its_option(options: dict[str, object], option: str) 
     with pytest.raises(MaterialError) as raised:
         pem_options(options)
     assert raised.value.option == option
+
+
+def test_attributes_not_needed_are_ignored() -> None:
+    """Extra attributes (namespaced or not) and namespaced elements do not fail an item; an
+    attribute or child whose name says an error does; so does any child of an item with no
+    values."""
+    body = (
+        b'<files xmlns="urn:a" xmlns:w="urn:w"><data ad="N7:0" count="1" w:scan="5" q="good">'
+        b'4</data><data ad="N7:1" count="1" w:errorCode="7"/><data ad="N7:2" count="1">'
+        b'<message>no such file</message></data><data ad="N7:3">5<w:stamp>1</w:stamp></data>'
+        b"</files>"
+    )
+    items = parse_reply(body)
+    assert [(item.tokens, item.error) for item in items] == [
+        (("4",), ""),
+        ((), "errorCode 7"),
+        ((), "no such file"),
+        (("5",), ""),
+    ]

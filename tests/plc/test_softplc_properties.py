@@ -73,3 +73,28 @@ def test_decoder(body: bytes) -> None:
     """The reply decoder refuses with PlcError only."""
     with contextlib.suppress(PlcError):
         document.parse_reply(body)
+
+
+@BOUNDED
+@given(
+    elements=st.lists(
+        st.tuples(st.sampled_from(["N7", "T4", "B3", "I1", "tag", "Tag"]), st.integers(0, 80)),
+        max_size=40,
+    )
+)
+def test_every_address_finds_its_own_item(elements: list[tuple[str, int]]) -> None:
+    """Each planned address finds the one item that holds it, by bisection as by a scan."""
+    addresses = [
+        parse_address(name if name.lower() == "tag" else f"{name}:{element}")
+        for name, element in elements
+    ]
+    items = plan(addresses)
+    for address in addresses:
+        item = item_of(address, items)
+        assert item is not None
+        if item.kind == "range":
+            assert item.count is not None
+            assert item.start <= address.element < item.start + item.count
+            assert item.ad.startswith(address.text.split(":")[0] + ":")
+        else:
+            assert item.ad == address.ad

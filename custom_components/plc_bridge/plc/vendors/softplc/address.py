@@ -1,9 +1,10 @@
-"""SoftPLC datatable addresses and tag names: parse, check, normalise, compare with replies.
+"""SoftPLC datatable addresses and tag names: parse, check, spell as requests, read replies.
 
 The manual (4, "Quick review of the SoftPLC datatable") defines `<type><file>:<element>` with
 the type in one or two letters (N7:3, PD12:3000), a word of a structured element after a period
 (T4:0.PRE, PD12:3000.SP), up to 10,000 files, and normalised replies (N0007:0033, O:0000,
-I:0001). Where it is silent we follow the PLC-5 layout SoftPLC's datatable copies, said so below.
+I:0001). Requests carry the manual's request forms (N7:33, I1:3: file number included), never
+a reply's form (I:3). Where it is silent we follow the PLC-5 layout, said so below.
 """
 
 from __future__ import annotations
@@ -19,7 +20,10 @@ FIXED_FILES: dict[str, int] = {"O": 0, "I": 1, "S": 2}
 """Files at a fixed position, written without their number in replies ("O:0000", "I:0001").
 
 The manual's POST example asks for "O0" and "I1" and is answered "O:0000" with 8 values and
-"I:0001" with 7: the digits after O, I or S without a colon are the element (PLC-5 style).
+"I:0001" with 7: the digits may be the element (I1 is I:1, PLC-5 style) or the file (I1 is
+I1:0, as "N7" is N7:0). Such an address without a colon is sent as typed, alone, and its
+first value taken: whichever the PLC reads, the point is what the PLC calls it
+(simulators/softplc/READINGS.md, "O3, I1 without a colon").
 """
 WORDS_PER_ELEMENT: dict[str, int] = {"T": 3, "C": 3, "R": 3}
 """Timers, counters and controls "consist of 3 words each" (manual 4); every other type one."""
@@ -41,7 +45,7 @@ WORD_TYPES = ("O", "I", "S", "B", "N", "F", "T", "C", "R")
 """Types read as ranges of elements; PD elements (a mix of integers and floats whose layout the
 manual does not give) are read and written one named word at a time (PD12:3000.SP)."""
 EXAMPLES = (
-    "N7:3, N7:3/4, B3:0/5, B3/37, F8:2, T4:0.PRE, T4:0.DN, C5:1.ACC, O:0, I:1, S:5, PD12:3000.SP"
+    "N7:3, N7:3/4, B3:0/5, B3/37, F8:2, T4:0.PRE, T4:0.DN, C5:1.ACC, O0:0, I1:1, S2:5, PD12:3000.SP"
 )
 
 _PATTERN = re.compile(
@@ -62,6 +66,30 @@ class Address:
     bit: int | None = None
     name: str = ""  # the PD word's name (SP), or the tag
     bit_name: str = ""  # T4:0.DN: the status bit's name, kept for the text
+    typed: str = ""  # O3, I1: a fixed file's address without a colon, sent as typed
+
+    @property
+    def is_opaque(self) -> bool:
+        """True for O3 or I1 (no colon): its element is the PLC's reading, so it is sent alone."""
+        return bool(self.typed)
+
+    @property
+    def ad(self) -> str:
+        """The `ad` that reads this address alone: the tag, O3 as typed, or the element."""
+        if self.is_tag:
+            return self.name
+        if self.typed:
+            return self.typed
+        return self.text if self.is_named_word else element_ad(self.type, self.file, self.element)
+
+    @property
+    def identity(self) -> tuple[str, int, int, str]:
+        """What tells two addresses apart: tags by their exact name (case kept)."""
+        if self.is_tag:
+            return "", 0, 0, self.name
+        if self.typed:
+            return "?", 0, 0, self.typed
+        return self.type, self.file, self.element, self.suffix
 
     @property
     def is_tag(self) -> bool:
@@ -74,16 +102,13 @@ class Address:
         return self.type == "PD"
 
     @property
-    def file_text(self) -> str:
-        """The file part of the address as sent: N7, O (fixed files carry no number)."""
-        return self.type if self.type in FIXED_FILES else f"{self.type}{self.file}"
-
-    @property
     def text(self) -> str:
-        """The address spelled as the manual writes it (upper case, no leading zeros)."""
+        """The address in the manual's request form (upper case, file number, no zeros)."""
         if self.is_tag:
             return self.name
-        text = f"{self.file_text}:{self.element}"
+        if self.typed:
+            return self.typed if self.bit is None else f"{self.typed}/{self.bit}"
+        text = element_ad(self.type, self.file, self.element)
         if self.name:
             return f"{text}.{self.name}"
         if self.bit_name:
@@ -109,8 +134,8 @@ class Address:
 
 
 def element_ad(type_: str, file: int, element: int) -> str:
-    """Return the `ad` of an element (N7:33, O:0), as the request carries it."""
-    return f"{type_ if type_ in FIXED_FILES else f'{type_}{file}'}:{element}"
+    """Return the `ad` of an element in the request form (N7:33, O0:0, I1:3)."""
+    return f"{type_}{file}:{element}"
 
 
 def parse_address(text: str) -> Address:
@@ -130,9 +155,13 @@ def _checked(text: str, match: re.Match[str]) -> Address:
     """Turn a pattern match into an Address; refuse what the file type does not allow."""
     type_, file_digits, element_digits = match["type"], match["file"], match["element"]
     word, bit_digits = match["word"], match["bit"]
+    typed = ""
     if type_ in FIXED_FILES:
         fixed = FIXED_FILES[type_]
-        if element_digits is None:  # O3 is O:3 (see FIXED_FILES)
+        if element_digits is None:  # O3: the PLC's reading decides (see FIXED_FILES)
+            if word is not None:
+                raise PlcAddressError(f"{text!r}: write the element, as {type_}{fixed}:0")
+            typed = f"{type_}{file_digits or ''}"
             element_digits, file_digits = file_digits or "0", None
         if file_digits is not None and int(file_digits) != fixed:
             raise PlcAddressError(f"{text!r}: the {type_} file is file {fixed}")
@@ -151,6 +180,8 @@ def _checked(text: str, match: re.Match[str]) -> Address:
         raise PlcAddressError(f"{text!r}: elements are numbered 0 to {MAX_ELEMENT}")
     if bit is not None and bit > 15:
         raise PlcAddressError(f"{text!r}: a word has bits 0 to 15")
+    if typed:
+        return Address(type_, file, element, bit=bit, typed=typed)
     if type_ == "PD":
         if word is None or word.isdigit() or bit is not None:
             raise PlcAddressError(f"{text!r}: a PID element is read by word, as PD12:3000.SP")
@@ -180,18 +211,26 @@ def _structure_word(text: str, base: Address, word: str, bit: int | None) -> Add
 
 
 def reply_key(ad: str) -> tuple[str, int, int, str] | None:
-    """Return what a reply's `ad` names (type, file, element, word name), normalised or not.
+    """Return the datatable place a reply's `ad` names (type, file, element, word name).
 
-    N0007:0033 and N7:33 give the same key; a tag gives ("", 0, 0, name in lower case).
-    None when the text is neither.
+    N0007:0033 and N7:33 give the same key, I:0001 and I1:1 too. None for a tag, for O3 or I1
+    without a colon (their element is the PLC's reading), and for text that is neither.
     """
     try:
         address = parse_address(ad)
     except PlcAddressError:
         return None
-    if address.is_tag:
-        return "", 0, 0, address.name.lower()
+    if address.is_tag or address.is_opaque:
+        return None
     return address.type, address.file, address.element, address.suffix
+
+
+def opaque_keys(address: Address) -> frozenset[tuple[str, int, int, str]]:
+    """Return the places a reply may name for O3 or I1: the element, or the file's element 0."""
+    keys = {(address.type, address.file, address.element, "")}
+    if address.element == address.file:  # I1 read as file I1, element 0
+        keys.add((address.type, address.file, 0, ""))
+    return frozenset(keys)
 
 
 def word_name(type_: str, word: int) -> str:

@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
-from dataclasses import dataclass
 from datetime import datetime
 import time
 from typing import ClassVar
@@ -35,32 +34,26 @@ from ...types import (
     ValueKind,
 )
 from .address import Address, parse_address
-from .codec import KINDS, TYPES, check_value, data_type, decode, parse_token
-from .document import MAX_REPLY, Item, request_body
-from .exchange import Answers, Refused, exchange, send
-from .planner import ReadItem, item_of, plan
+from .codec import KINDS, TYPES, check_value, data_type
+from .document import MAX_REPLY, request_body
+from .exchange import Answers, Busy, Refused, exchange, send
+from .planner import Key, Locator, ReadItem, plan
+from .reading import Wanted, result_of, wanted_of
 from .tls import CERTIFICATE, client_context, has_certificate, pem_options, resolve_material
 from .writing import confirm, write_items
 
-type Key = tuple[str, int, int, str]
-
-
-@dataclass(frozen=True, slots=True)
-class _Wanted:
-    """A valid point of a read: its address and type."""
-
-    point: Point
-    address: Address
-    kind: str
-
-
-def _key(address: Address) -> Key:
-    """Return the key a refused address is remembered by."""
-    return address.type, address.file, address.element, address.suffix or address.name
+MAX_PARSED = 65536
+"""Points whose parsed address a client keeps (a poll parses only what it has not seen)."""
 
 
 def check_writable(address: Address) -> None:
     """Refuse what no PUT of the manual can write: the status word of a T, C or R element."""
+    if address.is_opaque and address.bit is not None:
+        raise PlcAddressError(
+            f"{address.text}: without a colon the PLC decides which word this is, and a bit is "
+            f"written back into the word it was read from; write it as {address.type}"
+            f"{address.file}:<element>/{address.bit}"
+        )
     if address.type in ("T", "C", "R") and address.word == 0:
         raise PlcAddressError(
             f"{address.text}: the manual has no word name for a {address.type} element's status "
@@ -92,6 +85,7 @@ class SoftplcClient(PlcClient):
         super().__init__(config, session)
         self._http: HttpTransport | None = None
         self._refused: dict[Key, PlcError] = {}
+        self._parsed: dict[Point, Wanted | PlcError] = {}
         self._probed_at = -float("inf")
         self._certificate = has_certificate(config) and config.tls is not TlsMode.NONE
 
@@ -102,7 +96,7 @@ class SoftplcClient(PlcClient):
 
     @classmethod
     def validate_point(cls, point: Point) -> Point:
-        """Return the point with its address spelled as the manual does and its type."""
+        """Return the point in the manual's request form (N7:3, I1:3; tags and I1 as typed)."""
         address = parse_address(point.address)
         return Point(address.text, data_type(address, point.data_type))
 
@@ -181,7 +175,7 @@ class SoftplcClient(PlcClient):
         client sees only a closed connection. One request without the certificate tells:
         answered, the link is fine and the certificate is what the PLC refuses.
         """
-        if not self._certificate or isinstance(err, PlcTimeoutError | PlcTlsError):
+        if not self._certificate or isinstance(err, PlcTimeoutError | PlcTlsError | Busy):
             return
         bare = HttpTransport(self.config, self.session, self.metrics)
         try:
@@ -239,36 +233,43 @@ class SoftplcClient(PlcClient):
     async def _read(self, points: Sequence[Point], *, poll: bool) -> ReadResult:
         """Read every point with one POST; refused addresses are asked again once a minute."""
         values: dict[Point, PointResult] = {}
-        wanted: list[_Wanted] = []
+        wanted: list[Wanted] = []
+        parsed = self._parsed
+        if len(parsed) > MAX_PARSED:
+            parsed.clear()
         for point in points:
-            try:
-                address = parse_address(point.address)
-                wanted.append(_Wanted(point, address, data_type(address, point.data_type)))
-            except PlcError as err:
-                values[point] = PointResult(error=err)
+            want = parsed.get(point)
+            if want is None:
+                want = parsed[point] = wanted_of(point)
+            if isinstance(want, PlcError):
+                values[point] = PointResult(error=want)
+            else:
+                wanted.append(want)
         refused = dict(self._refused) if poll else {}
         if refused and time.monotonic() - self._probed_at >= self.probe_interval:
             refused = {}
         if poll and not refused:  # this poll asks for every address: it is the probe
             self._refused, self._probed_at = {}, time.monotonic()
-        asked = [want.address for want in wanted if _key(want.address) not in refused]
+        asked = [want.address for want in wanted if not refused or want.key not in refused]
         answers, items = await self.fetch(asked)
+        find = Locator(items).find
         for want in wanted:
-            error = refused.get(_key(want.address))
-            item = None if error else item_of(want.address, items)
+            error = refused.get(want.key) if refused else None
+            item = None if error else find(want.address)
             if item is None:
                 values[want.point] = PointResult(error=error or PlcProtocolError("not planned"))
                 continue
-            values[want.point] = _result(want, item, answers[item])
-            error = values[want.point].error
-            if poll and error and isinstance(answers[item], Refused) and item.count in (None, 1):
-                self._refused[_key(want.address)] = error
+            result = values[want.point] = result_of(want, item, answers[item])
+            refusal = isinstance(answers[item], Refused) and item.count in (None, 1)
+            if poll and result.error and refusal:
+                self._refused[want.key] = result.error
         return ReadResult(values=values)
 
     async def fetch(self, addresses: Sequence[Address]) -> tuple[Answers, list[ReadItem]]:
         """Read addresses; a refused range is asked again element by element.
 
-        Returns the answers and the items to look an address up in (the pieces first).
+        Returns the answers and the items to look an address up in (the pieces in place of
+        the ranges they split: no two overlap).
         """
         items = plan(addresses)
         answers: Answers = {}
@@ -276,17 +277,22 @@ class SoftplcClient(PlcClient):
         pieces: list[ReadItem] = []
         for item in items:
             if isinstance(answers[item], Refused) and item.count not in (None, 1):
-                inside = [a for a in addresses if item_of(a, [item]) is not None]
+                holds = Locator([item]).find
+                inside = [a for a in addresses if holds(a) is not None]
                 pieces.extend(plan(inside, max_gap=-1))
         if pieces:
             await self._send("POST", pieces, answers)
-        split = {item for item in items if isinstance(answers[item], Refused) and item.count != 1}
+        split = {
+            item
+            for item in items
+            if isinstance(answers[item], Refused) and item.count not in (None, 1)
+        }
         final = [*pieces, *(item for item in items if item not in split)]
         if len(final) > 1 and all(isinstance(answers[item], Refused) for item in final):
             raise PlcProtocolError(
                 f"the PLC refused every item of the request: {answers[final[0]]}"
             )
-        return answers, [*pieces, *items]
+        return answers, final
 
     async def _write(self, values: Mapping[Point, Value]) -> dict[Point, PointResult]:
         """Write every value with one PUT (bits: their words are read first, in one POST)."""
@@ -323,39 +329,6 @@ class SoftplcClient(PlcClient):
         """Release the client's own session (WEB.TLM has no sessions)."""
         self._http = None
         await self._close_own_session()
-
-
-def _result(want: _Wanted, item: ReadItem, answer: Item | PlcError) -> PointResult:
-    """Return a point's value out of its item's reply."""
-    if isinstance(answer, PlcError):
-        if isinstance(answer, Refused):
-            return PointResult(error=PlcAddressError(f"{want.address.text}: {answer}"))
-        return PointResult(error=answer)
-    what = want.address.text
-    tokens = answer.tokens
-    counted = item.count is not None and answer.count is not None and not want.address.is_tag
-    if counted and len(tokens) != (answer.count or 0) * item.words:
-        return PointResult(
-            error=PlcProtocolError(
-                f"{what}: the PLC answered {len(tokens)} values for {answer.count} elements "
-                f"of {item.words} words"
-            )
-        )
-    index = 0
-    if not (want.address.is_tag or want.address.is_named_word):
-        index = (want.address.element - item.start) * item.words + want.address.word
-    if index >= len(tokens):
-        return PointResult(
-            error=PlcAddressError(
-                f"{what} lies past the end of its file (the PLC answered "
-                f"{len(tokens) // item.words} elements from {item.ad})"
-            )
-        )
-    try:
-        raw = parse_token(tokens[index], what)
-        return PointResult(value=decode(want.kind, raw, want.address.bit, what))
-    except PlcError as err:
-        return PointResult(error=err)
 
 
 __all__ = ["PlcValueError", "SoftplcClient"]

@@ -2,7 +2,9 @@
 
 A reply is refused whole (PlcProtocolError) when it is larger than MAX_REPLY, declares a DTD or
 entities, refers to an entity, or is not a `<files>` document: nothing is loaded from a file or
-the network, and no entity is expanded, whatever the reply says.
+the network, and no entity is expanded, whatever the reply says. Elements are known by their
+local name (any namespace); attributes and children the client does not need are ignored,
+except those whose name says an error (FAILURE) or, on an item without values, any at all.
 """
 
 from __future__ import annotations
@@ -30,6 +32,8 @@ _PARSER = etree.XMLParser(
     collect_ids=False,
 )
 _DECLARATION = re.compile(rb"<!(?!--|\[CDATA\[)")
+FAILURE = re.compile(r"err|fault|fail", re.IGNORECASE)
+"""Names of attributes or children that mark an item failed (the manual defines none)."""
 """A markup declaration (DOCTYPE, ENTITY, ELEMENT...): not comments or CDATA."""
 
 
@@ -58,13 +62,13 @@ def request_body(items: Iterable[tuple[str, int | None, str | None]]) -> bytes:
 def parse_reply(body: bytes) -> list[Item]:
     """Return the `<data>` items of a reply; raise PlcProtocolError for anything unsafe or odd."""
     root = _document(body)
-    if root.tag != "files":
+    if _local(root) != "files":
         raise PlcProtocolError(f"the PLC answered a <{_name(root)}> document, not <files>")
     items: list[Item] = []
     for child in root:
         if not isinstance(child.tag, str):
             raise PlcProtocolError("the PLC's reply refers to an entity: refused")
-        if child.tag != "data":
+        if _local(child) != "data":
             continue  # error documents and later additions: what the items lack says it
         items.append(_item(child))
     return items
@@ -103,17 +107,24 @@ def _document(body: bytes) -> etree._Element:
 
 
 def _item(data: etree._Element) -> Item:
-    """Return one reply item; an error attribute, child or text inside it marks it failed."""
+    """Return one reply item; an error attribute or child marks it failed (see FAILURE)."""
     ad = data.get("ad")
     if ad is None:
         raise PlcProtocolError("the PLC's reply has a <data> without an ad")
-    words: list[str] = []
+    tokens = tuple((data.text or "").split())
+    failed: list[str] = []
+    other: list[str] = []
     for child in data:
         if not isinstance(child.tag, str):
             raise PlcProtocolError("the PLC's reply refers to an entity: refused")
-        words.append(" ".join(_text(part) for part in child.itertext()).strip() or child.tag)
-    extra = {key: value for key, value in data.attrib.items() if key not in ("ad", "count")}
-    words.extend(f"{_text(key)} {_text(value)}" for key, value in extra.items())
+        name = _local(child)
+        words = " ".join(_text(part) for part in child.itertext()).strip() or name
+        (failed if FAILURE.search(name) else other).append(words)
+    for key, value in data.attrib.items():
+        name = etree.QName(key).localname
+        if name not in ("ad", "count"):
+            (failed if FAILURE.search(name) else other).append(f"{name} {_text(value)}")
+    error = " ".join(failed or ([] if tokens else other)).strip()
     raw_count = data.get("count")
     try:
         count = None if raw_count is None else int(raw_count)
@@ -121,12 +132,17 @@ def _item(data: etree._Element) -> Item:
         raise PlcProtocolError(
             f"{ad[:40]}: the PLC answered count {str(raw_count)[:20]!r}"
         ) from None
-    return Item(str(ad), count, tuple((data.text or "").split()), " ".join(words).strip())
+    return Item(str(ad), count, tokens, error)
 
 
 def _text(part: str | bytes) -> str:
     """Return lxml text as str (the stubs allow bytes)."""
     return part.decode("utf-8", "replace") if isinstance(part, bytes) else part
+
+
+def _local(element: etree._Element) -> str:
+    """Return an element's tag without its namespace."""
+    return etree.QName(element).localname
 
 
 def _name(element: etree._Element) -> str:

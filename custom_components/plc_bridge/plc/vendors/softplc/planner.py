@@ -1,17 +1,20 @@
 """The read plan of a poll: one `<data>` item per range of nearby elements of one file.
 
-Pure functions, tested without sockets: `plan` merges, `place` finds each item in a reply
-whether the PLC normalised its `ad` (N0007:0033) or echoed it (N7:33), or named a tag.
+Pure functions, tested without sockets: `plan` merges, `place` finds each item in a reply by
+what the reply's ad names, whether the PLC normalised it (N0007:0033), echoed it (N7:33) or
+spelled a tag otherwise; an item the reply does not name unambiguously is left unplaced.
 """
 
 from __future__ import annotations
 
-from collections.abc import Iterable, Sequence
-from dataclasses import dataclass
+import bisect
+from collections.abc import Callable, Iterable, Sequence
+from dataclasses import dataclass, field
 
-from .address import Address, element_ad, reply_key
+from .address import Address, element_ad, opaque_keys, reply_key
 from .document import Item
 
+type Key = tuple[str, int, int, str]
 MAX_GAP_WORDS = 16
 """Words two requested ranges of one file may have between them and still be read as one.
 
@@ -30,88 +33,188 @@ class ReadItem:
 
     ad: str
     count: int | None  # elements; None for a named word (one value)
-    key: tuple[str, int, int, str]  # what a reply's ad must name (see reply_key)
+    keys: frozenset[Key] = field(default_factory=frozenset)  # places a reply's ad may name
     start: int = 0
     words: int = 1  # words per element
     values: str | None = None  # a PUT's values, space-separated
+    kind: str = "range"  # "range", "word" (PD12:3000.SP), "tag" or "opaque" (I1)
+
+
+def single(address: Address, values: str | None = None) -> ReadItem:
+    """Return the item reading (or writing) one address alone, as its ad is sent."""
+    if address.is_tag:
+        return ReadItem(address.ad, 1, values=values, kind="tag")
+    if address.is_opaque:
+        return ReadItem(address.ad, 1, opaque_keys(address), values=values, kind="opaque")
+    key = frozenset({(address.type, address.file, address.element, address.suffix)})
+    return ReadItem(address.ad, None, key, address.element, values=values, kind="word")
 
 
 def plan(addresses: Iterable[Address], max_gap: int = MAX_GAP_WORDS) -> list[ReadItem]:
     """Return the items reading every address: nearby elements of a file merged into ranges."""
-    ranges: dict[tuple[str, int], list[int]] = {}
-    singles: dict[tuple[str, int, int, str], ReadItem] = {}
+    ranges: dict[tuple[str, int], set[int]] = {}
+    singles: dict[tuple[str, str], ReadItem] = {}
     for address in addresses:
-        if address.is_tag:
-            key = ("", 0, 0, address.name.lower())
-            singles.setdefault(key, ReadItem(address.name, 1, key))
-        elif address.is_named_word:
-            key = (address.type, address.file, address.element, address.name)
-            singles.setdefault(key, ReadItem(address.text, None, key, address.element))
+        if address.is_tag or address.is_named_word or address.is_opaque:
+            item = single(address)
+            singles.setdefault((item.kind, item.ad), item)
         else:
-            ranges.setdefault(address.range_key, []).append(address.element)
+            ranges.setdefault(address.range_key, set()).add(address.element)
     items: list[ReadItem] = []
     for (type_, file), elements in sorted(ranges.items()):
         words = Address(type_, file).words
-        ordered = sorted(set(elements))
+        ordered = sorted(elements)
         first = last = ordered[0]
         for element in ordered[1:]:
             if (element - last - 1) * words > max_gap:
-                items.append(_range(type_, file, first, last, words))
+                items.append(span(type_, file, first, last - first + 1, words))
                 first = element
             last = element
-        items.append(_range(type_, file, first, last, words))
+        items.append(span(type_, file, first, last - first + 1, words))
     return items + list(singles.values())
 
 
-def _range(type_: str, file: int, first: int, last: int, words: int) -> ReadItem:
-    """Return the item reading elements first..last of a file."""
-    key = (type_, file, first, "")
-    return ReadItem(element_ad(type_, file, first), last - first + 1, key, first, words)
+def span(
+    type_: str, file: int, first: int, count: int, words: int, *, values: str | None = None
+) -> ReadItem:
+    """Return the item reading (or writing) `count` elements of a file from `first`."""
+    key = frozenset({(type_, file, first, "")})
+    return ReadItem(element_ad(type_, file, first), count, key, first, words, values)
+
+
+class Locator:
+    """Finds the item holding an address among items that do not overlap (a plan's)."""
+
+    def __init__(self, items: Iterable[ReadItem]) -> None:
+        """Index the items: single ones by their ad, ranges by file and first element."""
+        self._single: dict[str, ReadItem] = {}
+        ranges: dict[tuple[str, int], list[ReadItem]] = {}
+        for item in items:
+            if item.kind != "range":
+                self._single.setdefault(item.ad, item)
+            else:
+                type_, file, _start, _word = next(iter(item.keys))
+                ranges.setdefault((type_, file), []).append(item)
+        self._ranges = {
+            key: (sorted(found, key=_first), sorted(item.start for item in found))
+            for key, found in ranges.items()
+        }
+
+    def find(self, address: Address) -> ReadItem | None:
+        """Return the item holding an address, or None."""
+        if address.is_tag or address.is_opaque or address.is_named_word:
+            return self._single.get(address.ad)
+        found = self._ranges.get(address.range_key)
+        if found is None:
+            return None
+        items, starts = found
+        position = bisect.bisect_right(starts, address.element) - 1
+        if position < 0:
+            return None
+        item = items[position]
+        return item if address.element < item.start + (item.count or 0) else None
+
+
+def _first(item: ReadItem) -> int:
+    """Return a range's first element (a sort key)."""
+    return item.start
 
 
 def item_of(address: Address, items: Sequence[ReadItem]) -> ReadItem | None:
-    """Return the planned item that holds an address."""
-    for item in items:
-        if address.is_tag:
-            if item.key == ("", 0, 0, address.name.lower()):
-                return item
-        elif address.is_named_word:
-            if item.key == (address.type, address.file, address.element, address.name):
-                return item
-        elif (
-            item.key[:2] == address.range_key
-            and not item.key[3]
-            and item.count is not None
-            and item.start <= address.element < item.start + item.count
-        ):
-            return item
-    return None
+    """Return the item of a plan that holds an address."""
+    return Locator(items).find(address)
 
 
-def place(items: Sequence[ReadItem], reply: Sequence[Item]) -> dict[ReadItem, Item]:
-    """Return the reply item answering each planned item; the unanswered ones are missing.
+def place(
+    items: Sequence[ReadItem], reply: Sequence[Item]
+) -> tuple[dict[ReadItem, Item], set[ReadItem]]:
+    """Return the reply item answering each planned item, and the items told apart from none.
 
-    By what the reply's ad names first; an item left over takes the reply item at its own
-    position when the reply has exactly one per request and that one is not claimed (a PLC
-    answering a tag with the address it stands for).
+    First by the ad echoed exactly, then by the place it names (normalised or not; a tag in
+    another case). Within a group of items and reply items that name each other, an item is
+    placed where only one reply item can be its own (one answer per item, counted), or where
+    every candidate answer is the same; otherwise the group's items are ambiguous. Last, one
+    tag left over takes the one reply item left over (a tag answered with its address).
     """
-    by_key: dict[tuple[str, int, int, str], int] = {}
-    for index, answer in enumerate(reply):
-        key = reply_key(answer.ad)
-        if key is not None:
-            by_key.setdefault(key, index)
+    keys = [reply_key(answer.ad) for answer in reply]
+    texts = [answer.ad.strip() for answer in reply]
+
+    def exact(item: ReadItem, index: int) -> bool:
+        return texts[index] == item.ad
+
+    def same_place(item: ReadItem, index: int) -> bool:
+        if item.kind == "tag":
+            return texts[index].casefold() == item.ad.casefold()
+        return keys[index] in item.keys
+
     placed: dict[ReadItem, Item] = {}
-    claimed: set[int] = set()
+    ambiguous: set[ReadItem] = set()
+    free = set(range(len(reply)))
+    for matches in (exact, same_place):
+        pending = [item for item in items if item not in placed and item not in ambiguous]
+        for group, answers in _groups(pending, free, matches):
+            found = _match(group, answers, reply, matches)
+            if found is None:
+                ambiguous.update(group)
+                free -= set(answers)
+            else:
+                placed.update((item, reply[index]) for item, index in found.items())
+                free -= set(found.values())
+    left = [item for item in items if item not in placed and item not in ambiguous]
+    if len(left) == 1 and len(free) == 1 and left[0].kind == "tag":
+        placed[left[0]] = reply[free.pop()]
+    return placed, ambiguous
+
+
+def _groups(
+    items: list[ReadItem], free: set[int], matches: Callable[[ReadItem, int], bool]
+) -> list[tuple[list[ReadItem], list[int]]]:
+    """Return the connected groups of items and free reply positions that match each other."""
+    links = {item: [index for index in sorted(free) if matches(item, index)] for item in items}
+    owner: dict[int, int] = {}  # reply position -> group number
+    groups: list[tuple[list[ReadItem], list[int]]] = []
     for item in items:
-        found = by_key.get(item.key)
-        if found is not None and found not in claimed:
-            placed[item] = reply[found]
-            claimed.add(found)
-    if len(reply) == len(items):
-        for position, item in enumerate(items):
-            if item not in placed and position not in claimed:
-                known = reply_key(reply[position].ad)
-                if known is None or known[0] == "" or item.key[0] == "":
-                    placed[item] = reply[position]
-                    claimed.add(position)
-    return placed
+        if not links[item]:
+            continue
+        joined = sorted({owner[i] for i in links[item] if i in owner})
+        group: tuple[list[ReadItem], list[int]] = ([item], [])
+        for number in joined:
+            group[0].extend(groups[number][0])
+            group[1].extend(groups[number][1])
+            groups[number] = ([], [])
+        group[1].extend(i for i in links[item] if i not in owner)
+        groups.append(group)
+        for index in group[1]:
+            owner[index] = len(groups) - 1
+    return [group for group in groups if group[0]]
+
+
+def _match(
+    items: list[ReadItem],
+    answers: list[int],
+    reply: Sequence[Item],
+    matches: Callable[[ReadItem, int], bool],
+) -> dict[ReadItem, int] | None:
+    """Return each item's reply position in a group, or None when it cannot be told."""
+    found: dict[ReadItem, int] = {}
+    if len(items) == len(answers):  # one answer per item: an item with one candidate left takes it
+        progress = True
+        while progress:
+            progress = False
+            taken = set(found.values())
+            for item in items:
+                if item in found:
+                    continue
+                options = [i for i in answers if i not in taken and matches(item, i)]
+                if len(options) == 1:
+                    found[item] = options[0]
+                    taken.add(options[0])
+                    progress = True
+    rest = [item for item in items if item not in found]
+    spare = [i for i in answers if i not in found.values()]
+    if not rest:
+        return found
+    same = {(reply[i].count, reply[i].tokens, reply[i].error) for i in spare}
+    if len(same) != 1 or len(spare) < len(rest):
+        return None
+    return found | dict(zip(rest, spare, strict=False))

@@ -3,6 +3,7 @@
 The certificate and key come as pasted PEM or as absolute file paths (options
 `client_certificate` and `client_key`); an encrypted key is not supported. Nothing here logs or
 quotes either of them (nor what was given as a path: it may be PEM without its first line).
+A file is read by this module, at most MAX_PEM bytes, never by OpenSSL from its path.
 """
 
 from __future__ import annotations
@@ -40,6 +41,8 @@ _REFUSALS = (
 )
 """TLS alerts a server sends about the client's certificate (RFC 8446 6.2)."""
 _WHAT = {CERTIFICATE: ("client certificate", "CERTIFICATE"), KEY: ("client key", "PRIVATE KEY")}
+MAX_PEM = 256 * 1024
+"""Bytes a certificate or key file may have: a chain of ten certificates is about 20 KB."""
 
 
 class MaterialError(PlcOptionError):
@@ -56,9 +59,26 @@ def check_material(value: object, option: str) -> str:
         if marker not in text or "-----END" not in text:
             raise MaterialError(f"the {what} is not a PEM {marker.lower()}", option)
         return text + "\n"
+    if "\x00" in text:
+        raise MaterialError(f"the {what} holds a NUL character", option)
     if not text or "\n" in text or not os.path.isabs(text):
         raise MaterialError(f"the {what} is pasted PEM text or an absolute file path", option)
     return text
+
+
+def read_pem(path: str, option: str) -> str:
+    """Return a PEM file's text, read up to MAX_PEM bytes; raise MaterialError on the option."""
+    what = _WHAT[option][0]
+    if not Path(path).is_file():  # also a NUL in the path; a FIFO would block the read
+        raise MaterialError(f"the {what} file is missing or not a regular file", option)
+    try:
+        with Path(path).open("rb") as file:
+            data = file.read(MAX_PEM + 1)
+    except (OSError, ValueError):
+        raise MaterialError(f"the {what} file cannot be read", option) from None
+    if len(data) > MAX_PEM:
+        raise MaterialError(f"the {what} file is larger than {MAX_PEM // 1024} KiB", option)
+    return data.decode("ascii", "replace")
 
 
 def resolve_material(
@@ -78,7 +98,12 @@ def resolve_material(
             if value:
                 resolved[option] = value
             continue
-        path = Path(root, value).resolve()
+        if "\x00" in value:
+            raise MaterialError(f"the {what} holds a NUL character", option)
+        try:
+            path = Path(root, value).resolve()
+        except (OSError, ValueError):
+            raise MaterialError(f"the {what} file cannot be found", option) from None
         if not path.is_relative_to(root):
             raise MaterialError(
                 f"the {what} file is outside the configuration folder", option, outside=True
@@ -102,10 +127,12 @@ def resolve_material(
 def check_pair(certificate: str, key: str) -> None:
     """Load a certificate and its key as a connection would (blocking); blame the one at fault."""
     context = ssl.SSLContext(ssl.PROTOCOL_TLS_CLIENT)
+    text = certificate
+    if not certificate.startswith("-----BEGIN"):
+        text = read_pem(certificate, CERTIFICATE)
+    if not key.startswith("-----BEGIN"):
+        read_pem(key, KEY)
     try:
-        text = certificate
-        if not certificate.startswith("-----BEGIN"):
-            text = Path(certificate).read_text(encoding="ascii", errors="replace")
         context.load_verify_locations(cadata=text)
     except (ssl.SSLError, OSError, ValueError):
         raise MaterialError(
@@ -152,17 +179,21 @@ def _build(config: ConnectionConfig, pinned: bytes | None) -> ssl.SSLContext:
 
 
 def _load(context: ssl.SSLContext, certificate: str, key: str) -> None:
-    """Load the certificate and key into the context; pasted PEM goes through private files."""
+    """Load the certificate and key into the context, both through private files (bounded)."""
     with contextlib.ExitStack() as stack:
         paths = []
-        for material in (certificate, key):
-            if material.lstrip().startswith("-----BEGIN"):
-                folder = stack.enter_context(tempfile.TemporaryDirectory())  # mode 0700
-                path = Path(folder) / "pem"
-                path.write_text(material, encoding="ascii", errors="replace")
-                paths.append(str(path))
-            else:
-                paths.append(material)
+        for material, option in ((certificate, CERTIFICATE), (key, KEY)):
+            if not material.lstrip().startswith("-----BEGIN"):
+                try:
+                    material = read_pem(material, option)  # noqa: PLW2901
+                except MaterialError as err:
+                    raise PlcAuthenticationError(
+                        f"the client certificate and key cannot be used ({err})"
+                    ) from None
+            folder = stack.enter_context(tempfile.TemporaryDirectory())  # mode 0700
+            path = Path(folder) / "pem"
+            path.write_text(material, encoding="ascii", errors="replace")
+            paths.append(str(path))
         try:
             context.load_cert_chain(paths[0], paths[1])
         except (ssl.SSLError, OSError, ValueError) as err:

@@ -15,7 +15,7 @@ from typing import TYPE_CHECKING
 
 from ...errors import PlcError, PlcProtocolError, PlcWriteRefusedError
 from ...types import Point, PointResult, Value
-from .address import Address, element_ad, parse_address, reply_key
+from .address import Address, parse_address
 from .codec import (
     data_type,
     encode_float,
@@ -25,7 +25,7 @@ from .codec import (
     word_of,
 )
 from .document import Item
-from .planner import ReadItem, item_of
+from .planner import ReadItem, item_of, single, span
 
 if TYPE_CHECKING:
     from .client import SoftplcClient
@@ -53,11 +53,15 @@ async def write_items(
     for point, value in values.items():
         address = parse_address(point.address)
         kind = data_type(address, point.data_type)
-        if address.is_tag or address.is_named_word or address.word:
+        if address.is_tag or address.is_named_word or address.is_opaque or address.word:
             token = _token(kind, value)
-            count = 1 if address.is_tag else None
-            ad = address.name if address.is_tag else address.text
-            item = ReadItem(ad, count, _key(ad), values=token)
+            if address.is_tag or address.is_named_word or address.is_opaque:
+                item = single(address, token)
+            else:  # T4:0.PRE: by its word's name (manual 4.2.1, "Word level")
+                keys = frozenset({address.identity})
+                item = ReadItem(
+                    address.text, None, keys, address.element, values=token, kind="word"
+                )
             named.setdefault(item, []).append(Sent(point, value, 0, token))
         elif address.bit is not None:
             bits.append((point, address, value))
@@ -77,17 +81,11 @@ def _token(kind: str, value: Value) -> str:
     return encode_word(word_of(kind, value))
 
 
-def _key(ad: str) -> tuple[str, int, int, str]:
-    """Return the key a reply item must carry for ad."""
-    key = reply_key(ad)
-    return key if key is not None else ("", 0, 0, ad.lower())
-
-
 def _merge(named: dict[ReadItem, list[Sent]]) -> dict[ReadItem, list[Sent]]:
     """Return named items, the same word written twice keeping the last value."""
-    kept: dict[tuple[str, int, int, str], tuple[ReadItem, list[Sent]]] = {}
+    kept: dict[tuple[str, str], tuple[ReadItem, list[Sent]]] = {}
     for item, sent in named.items():
-        kept[item.key] = (item, sent)
+        kept[item.kind, item.ad] = (item, sent)
     return dict(kept.values())
 
 
@@ -147,8 +145,7 @@ def _ranges(
             return
         type_, file, first, _word = run[0]
         tokens = [words[cell][0] for cell in run]
-        ad = element_ad(type_, file, first)
-        item = ReadItem(ad, len(run), (type_, file, first, ""), first, 1, " ".join(tokens))
+        item = span(type_, file, first, len(run), 1, values=" ".join(tokens))
         items[item] = [
             Sent(point, value, index, tokens[index])
             for index, cell in enumerate(run)
