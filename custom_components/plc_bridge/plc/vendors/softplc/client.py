@@ -102,10 +102,14 @@ class SoftplcClient(PlcClient):
 
     @classmethod
     def footprint(cls, point: Point) -> Footprint:
-        """The file and word a point covers (a bit its word); a tag or PD word its name as typed."""
+        """The file and word a point covers (a bit its word); a tag or PD word its name.
+
+        Names are folded: whether the descriptor table folds case is open (READINGS.md), and a
+        fold only makes the write guard refuse more.
+        """
         address = parse_address(point.address)
         if address.is_tag or address.is_named_word:
-            return Footprint(address.text, 0, 1)
+            return Footprint(address.text.casefold(), 0, 1)
         word = address.element * address.words + address.word
         return Footprint(f"{address.type}{address.file}", word, word + 1)
 
