@@ -32,6 +32,8 @@ from .connection_form import (
     form_values,
     on_form,
     option_error,
+    port_answers,
+    refused_on,
     second_page,
     vendor_options,
     vendor_schema,
@@ -53,7 +55,8 @@ from .subentry_flow import DeviceSubentryFlowHandler
 from .vendor_steps import Input, VendorSteps
 
 CERTIFICATE_TIMEOUT = 10.0
-"""Seconds to wait for the PLC's TLS handshake when fetching its certificate."""
+"""Seconds to wait for the PLC's TLS handshake when fetching its certificate (or a TCP link)."""
+SESSION_FAILURES = ("cannot_connect", "timeout")
 
 
 def device_unique_id(device: DeviceInfo, data: Mapping[str, Any]) -> str:
@@ -266,6 +269,9 @@ class PlcBridgeConfigFlow(VendorSteps, ConfigFlow, domain=DOMAIN):
     async def _finish(self) -> ConfigFlowResult:
         """Connect with the gathered settings, then ask the name or update the entry."""
         device, errors = await self._connect(self._data)
+        if device is None and await self._session_refused(errors):
+            field = refused_on(self._vendor, self._data[CONF_OPTIONS])
+            return self._second_form({field: "session_refused"})
         if device is None:
             return self._connection_form(errors)
         await self.async_set_unique_id(
@@ -282,6 +288,13 @@ class PlcBridgeConfigFlow(VendorSteps, ConfigFlow, domain=DOMAIN):
             # Without a serial or MAC the address is the identity: it may move, not collide.
             self._abort_if_unique_id_configured()
         return self._store(entry, "reconfigure_successful", self._data, unique_id=self.unique_id)
+
+    async def _session_refused(self, errors: Mapping[str, str]) -> bool:
+        """True when the PLC's port takes a TCP link but the PLC refused the second page's way."""
+        if self._vendor not in SECOND_PAGES or errors.get(CONF_HOST) not in SESSION_FAILURES:
+            return False
+        host, port = self._data[CONF_HOST], self._data[CONF_PORT]
+        return await port_answers(host, port, CERTIFICATE_TIMEOUT)
 
     def _store(
         self, entry: ConfigEntry, reason: str, data: dict[str, Any], **changes: Any

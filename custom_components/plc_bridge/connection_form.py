@@ -6,7 +6,9 @@ so that strings.json words each form for its PLC family alone.
 
 from __future__ import annotations
 
+import asyncio
 from collections.abc import Mapping, Sequence
+import contextlib
 from dataclasses import dataclass
 from typing import Any
 
@@ -55,6 +57,7 @@ class SecondPage:
 
     choice: str  # the first page's field that chooses
     ways: Mapping[str, tuple[VendorField, ...]]  # its values: the first one is the default
+    refused_on: Mapping[str, str]  # per way, the field blamed when the PLC refuses the session
 
 
 def _choice(key: str, options: list[str]) -> SelectSelector:
@@ -111,6 +114,7 @@ SECOND_PAGES: dict[str, SecondPage] = {
                 VendorField("remote_tsap", TextSelector()),
             ),
         },
+        {"rack_slot": "slot", "tsap": "remote_tsap"},
     ),
 }
 """Vendors whose connection takes a second page: only the fields of the way chosen are asked."""
@@ -144,6 +148,25 @@ def second_page(vendor: str, options: Mapping[str, Any]) -> tuple[str, tuple[Ven
     if way not in page.ways:
         way = next(iter(page.ways))
     return f"{vendor}_{way}", page.ways[way]
+
+
+def refused_on(vendor: str, options: Mapping[str, Any]) -> str:
+    """Return the second page's field to blame when the PLC takes the TCP link but no session."""
+    page = SECOND_PAGES[vendor]
+    return page.refused_on[second_page(vendor, options)[0].removeprefix(f"{vendor}_")]
+
+
+async def port_answers(host: str, port: int, timeout: float) -> bool:
+    """True when something at host:port accepts a TCP connection (closed again at once)."""
+    try:
+        async with asyncio.timeout(timeout):
+            _, writer = await asyncio.open_connection(host, port)
+    except OSError:  # TimeoutError is one
+        return False
+    writer.close()
+    with contextlib.suppress(OSError):
+        await writer.wait_closed()
+    return True
 
 
 def fields_schema(fields: Sequence[VendorField]) -> dict[vol.Marker, Any]:
