@@ -23,7 +23,6 @@ import voluptuous as vol
 from .const import (
     CONF_ADDRESS,
     CONF_AREA,
-    CONF_DATA_TYPE,
     CONF_PLATFORM,
     CONF_POINTS,
     CONF_VENDOR,
@@ -34,6 +33,7 @@ from .flow_lists import (
     MAX_LISTED,
     listing,
     matching,
+    menu_listing,
     pick_schema,
     picked_points,
     point_choice,
@@ -139,17 +139,13 @@ class DeviceSubentryFlowHandler(ConfigSubentryFlow):
         options.append("device")
         if self._points:
             options.append("save")
-        listed = [
-            f"{data[CONF_NAME]}: {data[CONF_ADDRESS]} ({data[CONF_DATA_TYPE]})"
-            for data in self._points.values()
-        ]
         return self.async_show_menu(
             step_id="menu",
             menu_options=options,
             description_placeholders={
                 "name": self._name,
                 "count": str(len(self._points)),
-                "points": listing(listed),
+                "points": menu_listing(self._points),
             },
         )
 
@@ -255,8 +251,11 @@ class DeviceSubentryFlowHandler(ConfigSubentryFlow):
                 self._published = await entry.runtime_data.client.browse()
         except PlcError as err:
             return self._pick_form({"base": "browse_failed"}, {"error": str(err)})
-        self._items = matching(self._published, str(user_input.get(CONF_FILTER, "")), self._taken())
-        unlisted = entry.runtime_data.client.unlisted
+        needle = str(user_input.get(CONF_FILTER, ""))
+        self._items = matching(self._published, needle, self._taken())
+        unlisted = [
+            name for name in entry.runtime_data.client.unlisted if needle.lower() in name.lower()
+        ]
         if unlisted:  # said on the form, not left out in silence
             return self._pick_form({"base": "browse_unlisted"}, {"error": ", ".join(unlisted)})
         return self._pick_form()
@@ -264,9 +263,12 @@ class DeviceSubentryFlowHandler(ConfigSubentryFlow):
     def _pick_form(
         self, errors: dict[str, str] | None = None, placeholders: dict[str, str] | None = None
     ) -> SubentryFlowResult:
-        """List the variables that matched the filter, any number to tick (ticks kept)."""
+        """List the variables that matched the filter, any number to tick (ticks kept).
+
+        `pick_first` lists the first MAX_LISTED of more, and says how to see the others.
+        """
         return self.async_show_form(
-            step_id="pick",
+            step_id="pick" if len(self._items) <= MAX_LISTED else "pick_first",
             data_schema=self.add_suggested_values_to_schema(
                 pick_schema(self._items), {CONF_VARIABLES: self._ticked}
             ),
@@ -288,6 +290,8 @@ class DeviceSubentryFlowHandler(ConfigSubentryFlow):
             return self._pick_form({"base": "pick_failed"}, {"error": listing(refused)})
         self._points |= {secrets.token_hex(6): data for data in points}
         return await self.async_step_menu()
+
+    async_step_pick_first = async_step_pick  # the first MAX_LISTED of a longer list
 
     async def async_step_import_points(
         self, user_input: dict[str, Any] | None = None
