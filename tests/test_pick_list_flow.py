@@ -24,6 +24,7 @@ PUBLISHED = [
     BrowseItem(address="Boiler.temp", data_type="REAL"),
     BrowseItem(address="Main.obj.value", data_type="REAL", name="Outside temperature"),
     BrowseItem(address="Tank.temp", data_type="REAL"),
+    BrowseItem(address="Main.fan.value", data_type="BOOL"),
 ]
 
 
@@ -68,6 +69,7 @@ async def test_titled_variables_first_and_paths_said_once(
         "Arp.Plc.Eclr/plcData.varBool0 (BOOL)",
         "Boiler.temp (REAL)",
         "Tank.temp (REAL)",
+        "Main.fan.value (BOOL)",
     ]
 
 
@@ -96,6 +98,7 @@ async def test_picked_points_get_readable_distinct_names(
         "Main.obj.value": "Outside temperature",
         "Boiler.temp": "Boiler temp",
         "Tank.temp": "Tank temp",
+        "Main.fan.value": "Fan",  # a TecoApi object's value is named after the object
     }
 
 
@@ -131,3 +134,33 @@ def test_import_header_is_copyable() -> None:
     """The import form shows its header row as a code block: one line, copied as it is."""
     description = STEPS["import_points"]["description"]
     assert "```\nname,address,data_type,platform," in description
+
+
+async def test_no_pick_list_once_the_plc_is_unloaded(
+    hass: HomeAssistant, tecomat_entry: MockConfigEntry
+) -> None:
+    """The PLC was unloaded after the menu offered the pick list: the menu comes back."""
+    menu = await menu_of(hass, tecomat_entry)
+    assert await hass.config_entries.async_unload(tecomat_entry.entry_id)
+    result = await step(hass, menu, {"next_step_id": "browse"})
+    assert result["step_id"] == "menu"
+
+
+async def test_a_stored_point_the_parser_refuses_still_counts_as_taken(
+    hass: HomeAssistant, tecomat_entry: MockConfigEntry
+) -> None:
+    """A stored address the vendor's parser now refuses is compared as it was stored."""
+    (machine,) = tecomat_entry.subentries.values()
+    points = dict(machine.data[CONF_POINTS]) | {
+        "odd": {"name": "Odd", "platform": "sensor", "address": "set time", "data_type": "INT"}
+    }
+    hass.config_entries.async_update_subentry(
+        tecomat_entry, machine, data={**machine.data, CONF_POINTS: points}
+    )
+    await hass.async_block_till_done()
+    menu = await menu_of(hass, tecomat_entry, "Other")
+    result = await step(hass, menu, {"next_step_id": "point"})
+    result = await step(
+        hass, result, {"name": "x", "platform": "sensor", "address": "setTime", "data_type": "DT"}
+    )
+    assert result["step_id"] == "details"

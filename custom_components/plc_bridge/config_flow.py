@@ -52,7 +52,7 @@ from .plc import DeviceInfo, PlcError, PlcOptionError, PlcValueError, TlsMode
 from .plc.http import fetch_fingerprint, format_fingerprint
 from .plc.vendors import client_class
 from .subentry_flow import DeviceSubentryFlowHandler
-from .vendor_steps import Input, VendorSteps
+from .vendor_steps import Input, with_vendor_steps
 
 CERTIFICATE_TIMEOUT = 10.0
 """Seconds to wait for the PLC's TLS handshake when fetching its certificate (or a TCP link)."""
@@ -68,11 +68,12 @@ def device_unique_id(device: DeviceInfo, data: Mapping[str, Any]) -> str:
     return f"{data[CONF_HOST]}:{data[CONF_PORT]}"
 
 
-class PlcBridgeConfigFlow(VendorSteps, ConfigFlow, domain=DOMAIN):
+@with_vendor_steps
+class PlcBridgeConfigFlow(ConfigFlow, domain=DOMAIN):
     """Add a PLC: vendor, connection, certificate, name; reauth and reconfigure reuse the checks.
 
     Each vendor's connection pages have step ids of their own, worded for its PLC family in
-    strings.json; their steps below all lead to the same checks.
+    strings.json; `with_vendor_steps` binds them to the shared steps below (the same checks).
     """
 
     VERSION = 2
@@ -150,7 +151,7 @@ class PlcBridgeConfigFlow(VendorSteps, ConfigFlow, domain=DOMAIN):
             return await self._reauth_options(None)
         return await self.async_step_reauth_confirm()
 
-    async def _reauth_options(self, user_input: Input) -> ConfigFlowResult:
+    async def _reauth_options(self, user_input: Input = None) -> ConfigFlowResult:
         """Ask again for the vendor fields that authenticate (not a user); check, then store."""
         entry = self._get_reauth_entry()
         vendor = entry.data[CONF_VENDOR]
@@ -205,7 +206,7 @@ class PlcBridgeConfigFlow(VendorSteps, ConfigFlow, domain=DOMAIN):
             description_placeholders={"name": entry.title, "problem": self._problem},
         )
 
-    async def _connection_step(self, user_input: Input) -> ConfigFlowResult:
+    async def _connection_step(self, user_input: Input = None) -> ConfigFlowResult:
         """Take a vendor's connection page; go on to its second page, if it has one.
 
         Options that name files (SoftPLC's client certificate and key) are resolved in the
@@ -227,7 +228,7 @@ class PlcBridgeConfigFlow(VendorSteps, ConfigFlow, domain=DOMAIN):
             return self._second_form({})
         return await self._check_and_connect()
 
-    async def _second_page_step(self, user_input: Input) -> ConfigFlowResult:
+    async def _second_page_step(self, user_input: Input = None) -> ConfigFlowResult:
         """Take the fields of the way chosen on the connection page, then connect."""
         if user_input is None:
             return self._second_form({})
