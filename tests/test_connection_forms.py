@@ -100,11 +100,10 @@ def test_second_pages_ask_only_their_way() -> None:
 
 
 def test_shared_texts_name_no_family() -> None:
-    """Texts every vendor's forms share (TLS choices, errors, name, reauth) name no family."""
+    """Texts every vendor's forms share (TLS choices, errors, reauth) name no family."""
     shared = [
         *strings_at("selector", "tls", "options").values(),
         *strings_at("config", "error").values(),
-        texts(strings_at(*STEPS, "name")),
         texts(strings_at(*STEPS, "reauth_confirm")),
         texts(strings_at(*STEPS, "certificate") | {"data_description": {}}),
     ]

@@ -14,7 +14,7 @@ from pytest_homeassistant_custom_component.common import MockConfigEntry
 
 from custom_components.plc_bridge.const import CONF_VENDOR, DOMAIN
 from simulators.s7 import S7Simulator
-from tests.flow_fixtures import error_message, suggested, through_name, translated
+from tests.flow_fixtures import error_message, suggested, translated
 
 from .s7_ha_fixtures import SimFactory, s7_data
 
@@ -47,7 +47,7 @@ async def submit(hass: HomeAssistant, result: dict[str, Any], values: dict[str, 
         result = translated(
             await hass.config_entries.flow.async_configure(result["flow_id"], second), *CONFIG
         )
-    return await through_name(hass, result)
+    return result
 
 
 def where(sim: S7Simulator, **fields: Any) -> dict[str, Any]:

@@ -14,7 +14,7 @@ import pytest
 
 from custom_components.plc_bridge.const import CONF_TLS, CONF_VENDOR, DOMAIN, SUBENTRY_DEVICE
 from simulators.tecomat import DEFAULT_PASSWORD, DEFAULT_USER, TecomatSimulator
-from tests.flow_fixtures import error_message, through_name, translated
+from tests.flow_fixtures import error_message, translated
 from tests.ha_fixtures import point
 from tests.tecomat_ha_fixtures import TECOMAT_SERIAL, make_tecomat_entry
 
@@ -82,8 +82,6 @@ async def test_creates_entry(
     result = await hass.config_entries.flow.async_configure(
         result["flow_id"], connection(auth_sim, method)
     )
-    assert result["step_id"] == "name"
-    result = await through_name(hass, result)
     assert result["type"] is FlowResultType.CREATE_ENTRY
     assert result["title"] == "Fx2 CP2080"
     assert result["result"].unique_id == TECOMAT_SERIAL
@@ -126,7 +124,7 @@ async def test_wrong_credentials(
     result = await hass.config_entries.flow.async_configure(
         result["flow_id"], connection(auth_sim, method)
     )
-    assert (await through_name(hass, result))["type"] is FlowResultType.CREATE_ENTRY
+    assert result["type"] is FlowResultType.CREATE_ENTRY
 
 
 async def test_wrong_method(

@@ -1,4 +1,4 @@
-"""Config flow of PLC Bridge: vendor, connection and certificate, name; reauth and reconfigure."""
+"""Config flow of PLC Bridge: vendor, connection and certificate; reauth and reconfigure."""
 
 from __future__ import annotations
 
@@ -13,10 +13,9 @@ from homeassistant.config_entries import (
     ConfigFlowResult,
     ConfigSubentryFlow,
 )
-from homeassistant.const import CONF_HOST, CONF_NAME, CONF_PASSWORD, CONF_PORT, CONF_USERNAME
+from homeassistant.const import CONF_HOST, CONF_PASSWORD, CONF_PORT, CONF_USERNAME
 from homeassistant.core import callback
 from homeassistant.helpers.device_registry import format_mac
-from homeassistant.helpers.selector import TextSelector
 import voluptuous as vol
 
 from .connection import create_client
@@ -70,7 +69,7 @@ def device_unique_id(device: DeviceInfo, data: Mapping[str, Any]) -> str:
 
 @with_vendor_steps
 class PlcBridgeConfigFlow(ConfigFlow, domain=DOMAIN):
-    """Add a PLC: vendor, connection, certificate, name; reauth and reconfigure reuse the checks.
+    """Add a PLC: vendor, connection, certificate; reauth and reconfigure reuse the checks.
 
     Each vendor's connection pages have step ids of their own, worded for its PLC family in
     strings.json; `with_vendor_steps` binds them to the shared steps below (the same checks).
@@ -85,7 +84,6 @@ class PlcBridgeConfigFlow(ConfigFlow, domain=DOMAIN):
         self._entered: dict[str, Any] = {}  # every value the pages took, suggested again
         self._trusted: set[str] = set()
         self._problem = ""  # the protocol layer's words for the last failure, shown in errors
-        self._name = ""  # what the PLC calls itself, offered as the entry's name
 
     @staticmethod
     @callback
@@ -108,18 +106,6 @@ class PlcBridgeConfigFlow(ConfigFlow, domain=DOMAIN):
             self._data = {CONF_VENDOR: self._vendor, CONF_USERNAME: "", CONF_PASSWORD: ""}
             return self._connection_form({})
         return self.async_show_form(step_id="user", data_schema=vendor_schema())
-
-    async def async_step_name(self, user_input: Input = None) -> ConfigFlowResult:
-        """Name the PLC (prefilled from what it reports): its device and entity ids take it."""
-        if user_input is not None and str(user_input.get(CONF_NAME, "")).strip():
-            return self.async_create_entry(
-                title=str(user_input[CONF_NAME]).strip(), data=self._data
-            )
-        schema = vol.Schema({vol.Required(CONF_NAME): TextSelector()})
-        return self.async_show_form(
-            step_id="name",
-            data_schema=self.add_suggested_values_to_schema(schema, {CONF_NAME: self._name}),
-        )
 
     async def async_step_reconfigure(self, user_input: Input = None) -> ConfigFlowResult:
         """Show a configured PLC's connection page, filled in; its name stays as it is."""
@@ -268,7 +254,7 @@ class PlcBridgeConfigFlow(ConfigFlow, domain=DOMAIN):
         return await self._finish()
 
     async def _finish(self) -> ConfigFlowResult:
-        """Connect with the gathered settings, then ask the name or update the entry."""
+        """Connect with the gathered settings, then create or update the entry."""
         device, errors = await self._connect(self._data)
         if device is None and await self._session_refused(errors):
             field = refused_on(self._vendor, self._data[CONF_OPTIONS])
@@ -280,8 +266,9 @@ class PlcBridgeConfigFlow(ConfigFlow, domain=DOMAIN):
         )
         if self.source != SOURCE_RECONFIGURE:
             self._abort_if_unique_id_configured()
-            self._name = device.name or device.model
-            return await self.async_step_name()
+            # Named after what the PLC reports: Home Assistant's own dialog then asks the device's
+            # name and area (and renames the entity ids), so the name is asked once.
+            return self.async_create_entry(title=device.name or device.model, data=self._data)
         entry = self._get_reconfigure_entry()
         if device.serial or device.mac:
             self._abort_if_unique_id_mismatch()
