@@ -8,15 +8,17 @@ import re
 from typing import Any
 
 from homeassistant.const import CONF_NAME
+from homeassistant.core import HomeAssistant
 from homeassistant.helpers.selector import (
     SelectOptionDict,
     SelectSelector,
     SelectSelectorConfig,
     SelectSelectorMode,
 )
+from homeassistant.helpers.translation import async_get_translations
 import voluptuous as vol
 
-from .const import CONF_ADDRESS, CONF_DATA_TYPE
+from .const import CONF_ADDRESS, CONF_DATA_TYPE, DOMAIN
 from .plc import BrowseItem, PlcClient, Point
 from .point_form import browse_values, point_data
 from .point_table import Describe
@@ -52,13 +54,21 @@ def natural(text: str) -> list[Any]:
     return [int(part) if part.isdigit() else part.casefold() for part in re.split(r"(\d+)", text)]
 
 
-def menu_listing(points: Mapping[str, Mapping[str, Any]]) -> str:
-    """Return the menu's list of a machine's first points, by name."""
+def menu_listing(points: Mapping[str, Mapping[str, Any]], types: Mapping[str, str]) -> str:
+    """Return the menu's list of a machine's first points, by name, with their types' names."""
     lines = [
-        f"{data[CONF_NAME]}: {data[CONF_ADDRESS]} ({data[CONF_DATA_TYPE]})"
+        f"{data[CONF_NAME]}: {data[CONF_ADDRESS]} "
+        f"({types.get(data[CONF_DATA_TYPE], data[CONF_DATA_TYPE])})"
         for _, data in in_order(points)
     ]
     return listing(lines, MENU_SHOWN)
+
+
+async def async_type_names(hass: HomeAssistant) -> dict[str, str]:
+    """Return the data types' names in Home Assistant's language (an IEC type is its own)."""
+    texts = await async_get_translations(hass, hass.config.language, "selector", [DOMAIN])
+    prefix = f"component.{DOMAIN}.selector.{CONF_DATA_TYPE}.options."
+    return {key.removeprefix(prefix): text for key, text in texts.items() if key.startswith(prefix)}
 
 
 def point_choice(points: Mapping[str, Mapping[str, Any]], *, multiple: bool) -> SelectSelector:

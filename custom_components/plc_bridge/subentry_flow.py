@@ -31,6 +31,7 @@ from .flow_lists import (
     CONF_FILTER,
     CONF_VARIABLES,
     MAX_LISTED,
+    async_type_names,
     listing,
     matching,
     menu_listing,
@@ -145,7 +146,7 @@ class DeviceSubentryFlowHandler(ConfigSubentryFlow):
             description_placeholders={
                 "name": self._name,
                 "count": str(len(self._points)),
-                "points": menu_listing(self._points),
+                "points": menu_listing(self._points, await async_type_names(self.hass)),
             },
         )
 
