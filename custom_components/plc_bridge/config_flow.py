@@ -31,8 +31,7 @@ from .connection_form import (
     form_values,
     on_form,
     option_error,
-    port_answers,
-    refused_on,
+    refused_field,
     second_page,
     vendor_options,
     vendor_schema,
@@ -54,8 +53,7 @@ from .subentry_flow import DeviceSubentryFlowHandler
 from .vendor_steps import Input, with_vendor_steps
 
 CERTIFICATE_TIMEOUT = 10.0
-"""Seconds to wait for the PLC's TLS handshake when fetching its certificate (or a TCP link)."""
-SESSION_FAILURES = ("cannot_connect", "timeout")
+"""Seconds to wait for the PLC's TLS handshake when fetching its certificate."""
 
 
 def device_unique_id(device: DeviceInfo, data: Mapping[str, Any]) -> str:
@@ -256,8 +254,7 @@ class PlcBridgeConfigFlow(ConfigFlow, domain=DOMAIN):
     async def _finish(self) -> ConfigFlowResult:
         """Connect with the gathered settings, then create or update the entry."""
         device, errors = await self._connect(self._data)
-        if device is None and await self._session_refused(errors):
-            field = refused_on(self._vendor, self._data[CONF_OPTIONS])
+        if device is None and (field := await refused_field(self._vendor, self._data, errors)):
             return self._second_form({field: "session_refused"})
         if device is None:
             return self._connection_form(errors)
@@ -277,22 +274,13 @@ class PlcBridgeConfigFlow(ConfigFlow, domain=DOMAIN):
             self._abort_if_unique_id_configured()
         return self._store(entry, "reconfigure_successful", self._data, unique_id=self.unique_id)
 
-    async def _session_refused(self, errors: Mapping[str, str]) -> bool:
-        """True when the PLC's port takes a TCP link but the PLC refused the second page's way."""
-        if self._vendor not in SECOND_PAGES or errors.get(CONF_HOST) not in SESSION_FAILURES:
-            return False
-        host, port = self._data[CONF_HOST], self._data[CONF_PORT]
-        return await port_answers(host, port, CERTIFICATE_TIMEOUT)
-
     def _store(
         self, entry: ConfigEntry, reason: str, data: dict[str, Any], **changes: Any
     ) -> ConfigFlowResult:
         """Update the entry, have it set up again exactly once, and end the flow.
 
-        The update listener of a loaded entry reloads it when its data changed. Any other entry
-        is reloaded here: one whose setup failed has no listener yet, and one whose data stayed
-        the same must still log in anew, as this flow's own login (S7-200 SMART: one session
-        per user) may have ended Home Assistant's session.
+        By its update listener when loaded and changed; else here, as this flow's own login
+        (S7-200 SMART: one session per user) may have ended Home Assistant's session.
         """
         # Asked before the update: the listener starts the reload at once (not loaded after).
         listener_reloads = entry.state is ConfigEntryState.LOADED and entry.data != data

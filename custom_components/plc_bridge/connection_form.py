@@ -40,6 +40,9 @@ from .plc import (
 )
 from .plc.vendors import implemented
 
+PROBE_TIMEOUT = 10.0
+"""Seconds to wait for the PLC's port to take a TCP link, after the PLC refused a session."""
+
 
 @dataclass(frozen=True, slots=True)
 class VendorField:
@@ -150,10 +153,20 @@ def second_page(vendor: str, options: Mapping[str, Any]) -> tuple[str, tuple[Ven
     return f"{vendor}_{way}", page.ways[way]
 
 
-def refused_on(vendor: str, options: Mapping[str, Any]) -> str:
-    """Return the second page's field to blame when the PLC takes the TCP link but no session."""
-    page = SECOND_PAGES[vendor]
-    return page.refused_on[second_page(vendor, options)[0].removeprefix(f"{vendor}_")]
+async def refused_field(
+    vendor: str, data: Mapping[str, Any], errors: Mapping[str, str]
+) -> str | None:
+    """Return the second page's field to blame for a connection the PLC refused, if any.
+
+    That is where the PLC's port takes a TCP link but the PLC refused the way chosen on the
+    second page (a wrong slot or TSAP); None where nothing answers at the host and port.
+    """
+    page = SECOND_PAGES.get(vendor)
+    if page is None or errors.get(CONF_HOST) not in ("cannot_connect", "timeout"):
+        return None
+    if not await port_answers(data[CONF_HOST], data[CONF_PORT], PROBE_TIMEOUT):
+        return None
+    return page.refused_on[second_page(vendor, data[CONF_OPTIONS])[0].removeprefix(f"{vendor}_")]
 
 
 async def port_answers(host: str, port: int, timeout: float) -> bool:
