@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import asyncio
+import contextlib
 from typing import Any
 from unittest.mock import AsyncMock
 
@@ -159,6 +161,27 @@ async def test_tsap_wrong_remote(hass: HomeAssistant, s7_ha_sims: SimFactory) ->
     )
     result = await submit(hass, result, {"remote_tsap": "10.01"})
     assert result["type"] is FlowResultType.CREATE_ENTRY
+
+
+async def refuse_by_disconnect(reader: asyncio.StreamReader, writer: asyncio.StreamWriter) -> None:
+    """Answer a COTP connection request with a disconnect request, as a CPU may for a bad TSAP."""
+    with contextlib.suppress(OSError, asyncio.IncompleteReadError):
+        await reader.readexactly(4)
+        writer.write(bytes([3, 0, 0, 11, 6, 0x80, 0, 0, 0, 1, 0]))  # TPKT, COTP DR
+        await writer.drain()
+    writer.close()
+
+
+async def test_slot_refused_with_a_disconnect_request(hass: HomeAssistant) -> None:
+    """A CPU that refuses a slot with a COTP disconnect request: the slot is blamed too."""
+    server = await asyncio.start_server(refuse_by_disconnect, "127.0.0.1", 0)
+    port = server.sockets[0].getsockname()[1]
+    async with server:
+        result = await submit(
+            hass, await connection_form(hass), {CONF_HOST: "127.0.0.1", CONF_PORT: port, "slot": 3}
+        )
+    assert result["step_id"] == "s7_rack_slot"
+    assert result["errors"] == {"slot": "session_refused"}
 
 
 async def test_nothing_at_the_port(hass: HomeAssistant, unused_tcp_port: int) -> None:
