@@ -44,3 +44,9 @@ def leaves(value: Any) -> list[str]:
 def test_no_text_says_subentry() -> None:
     """ "Subentry" is Home Assistant's word for the code, never shown to a user."""
     assert not [text for text in leaves(STRINGS) if re.search(r"subentr", text, re.IGNORECASE)]
+
+
+def test_no_count_before_a_plural() -> None:
+    """A number the code fills in never stands before a plural noun ("1 points")."""
+    counts = re.compile(r"\{(count|points|requests|shown)\} [a-z]+s\b")
+    assert not [text for text in leaves(STRINGS) if counts.search(text)]
