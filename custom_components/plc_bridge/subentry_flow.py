@@ -13,11 +13,7 @@ from typing import Any
 
 from homeassistant.config_entries import ConfigEntryState, ConfigSubentryFlow, SubentryFlowResult
 from homeassistant.const import CONF_DEVICE_CLASS, CONF_NAME
-from homeassistant.helpers.selector import (
-    AreaSelector,
-    TextSelector,
-    TextSelectorConfig,
-)
+from homeassistant.helpers.selector import AreaSelector, TextSelector, TextSelectorConfig
 import voluptuous as vol
 
 from .const import (
@@ -264,10 +260,7 @@ class DeviceSubentryFlowHandler(ConfigSubentryFlow):
     def _pick_form(
         self, errors: dict[str, str] | None = None, placeholders: dict[str, str] | None = None
     ) -> SubentryFlowResult:
-        """List the variables that matched the filter, any number to tick (ticks kept).
-
-        `pick_first` lists the first MAX_LISTED of more, and says how to see the others.
-        """
+        """List the matching variables to tick (ticks kept); `pick_first`: the first of more."""
         return self.async_show_form(
             step_id="pick" if len(self._items) <= MAX_LISTED else "pick_first",
             data_schema=self.add_suggested_values_to_schema(
