@@ -110,7 +110,12 @@ async def test_add_two_points_and_save(hass: HomeAssistant, smart_entry: MockCon
     ("base", "field", "key", "text"),
     [
         ({**TEMPERATURE, "address": "VX7"}, "address", "invalid_address", "Invalid address"),
-        ({**TEMPERATURE, "platform": "switch"}, "platform", "needs_bool", "VD100 as float"),
+        (
+            {**TEMPERATURE, "platform": "switch"},
+            "platform",
+            "needs_bool",
+            "VD100 as Floating point (REAL) is not",  # the type's name, not its key
+        ),
         (
             {**TEMPERATURE, "address": "VW10", "data_type": "signed"},
             "address",

@@ -19,6 +19,7 @@ import voluptuous as vol
 from .const import (
     CONF_ADDRESS,
     CONF_AREA,
+    CONF_DATA_TYPE,
     CONF_PLATFORM,
     CONF_POINTS,
     CONF_VENDOR,
@@ -154,6 +155,8 @@ class DeviceSubentryFlowHandler(ConfigSubentryFlow):
         placeholders: dict[str, str] = {}
         if user_input is not None:
             point, _, errors, placeholders = check_point(self._client, user_input)
+            if kind := placeholders.get(CONF_DATA_TYPE):  # named as the data-type list names it
+                placeholders[CONF_DATA_TYPE] = (await async_type_names(self.hass)).get(kind, kind)
             if point is not None and point in self._taken():
                 errors[CONF_ADDRESS] = "already_configured"
             if not errors:
