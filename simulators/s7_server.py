@@ -68,7 +68,8 @@ class CpuServer(Server):
             if self.sim.accepts(_peek_called_tsap(client_socket)):
                 self.sim.connections += 1
             else:  # a CPU refuses a rack/slot or TSAP it does not have
-                client_socket.shutdown(socket.SHUT_RDWR)
+                with contextlib.suppress(OSError):  # a client that is gone already
+                    client_socket.shutdown(socket.SHUT_RDWR)
             super()._handle_client(client_socket, address)
         finally:
             with self.guard:

@@ -196,13 +196,3 @@ def error_message(result: Any, field: str, *section: str) -> str:
     """Return the English message of a form error, with its placeholders filled in."""
     text: str = strings_at(*section, "error", result["errors"][field])
     return text.format(**(result["description_placeholders"] or {}))
-
-
-async def through_name(hass: HomeAssistant, result: Any) -> Any:
-    """Take the name the flow suggests for a PLC it reached (the PLC's own), as a user would."""
-    if result.get("type") is FlowResultType.FORM and result.get("step_id") == "name":
-        translated(result, "config")
-        result = await hass.config_entries.flow.async_configure(
-            result["flow_id"], {"name": suggested(result, "name")}
-        )
-    return result

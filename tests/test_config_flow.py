@@ -30,8 +30,6 @@ from tests.flow_fixtures import (
     error_message,
     smart_data,
     strings_at,
-    suggested,
-    through_name,
     translated,
 )
 
@@ -61,11 +59,8 @@ def connection(sim: S7SmartSimulator, **changes: Any) -> dict[str, Any]:
 
 async def submit(hass: HomeAssistant, result: dict[str, Any], values: dict[str, Any]) -> Any:
     """Submit a form and check the answer is translated."""
-    return await through_name(
-        hass,
-        translated(
-            await hass.config_entries.flow.async_configure(result["flow_id"], values), *CONFIG
-        ),
+    return translated(
+        await hass.config_entries.flow.async_configure(result["flow_id"], values), *CONFIG
     )
 
 
@@ -84,20 +79,18 @@ async def test_only_implemented_vendors_listed(hass: HomeAssistant) -> None:
     assert set(selector["options"]) <= set(strings_at("selector", CONF_VENDOR, "options"))
 
 
-async def test_name_asked_and_kept_out_of_entity_ids(
+async def test_name_asked_once(
     hass: HomeAssistant, flow_sim: S7SmartSimulator, mock_setup_entry: AsyncMock
 ) -> None:
-    """The PLC is named by the user (prefilled with what it reports); the host is no part."""
+    """The entry takes the name the PLC reports (never its host): no name page of our own, as
+    Home Assistant's own dialog asks the new device's name and area next."""
     result = await start(hass)
     result = await hass.config_entries.flow.async_configure(
         result["flow_id"], connection(flow_sim, tls="off")
     )
-    assert translated(result, *CONFIG)["step_id"] == "name"
-    assert suggested(result, "name") == "S7-200 SMART"
-    result = await hass.config_entries.flow.async_configure(
-        result["flow_id"], {"name": "Boiler room"}
-    )
-    assert result["title"] == "Boiler room"
+    assert result["type"] is FlowResultType.CREATE_ENTRY
+    assert result["title"] == "S7-200 SMART"
+    assert "name" not in strings_at("config", "step")
 
 
 async def test_pin_mode_shows_and_stores_fingerprint(
@@ -241,7 +234,6 @@ async def test_vendor_without_tls_choice_or_credentials(
     result = await hass.config_entries.flow.async_configure(
         result["flow_id"], {CONF_HOST: " plc.local ", CONF_PORT: 8080.0, "rack": 2.0}
     )
-    result = await through_name(hass, result)
     assert result["type"] is FlowResultType.CREATE_ENTRY
     assert result["title"] == "Fake PLC"
     assert result["result"].unique_id == "FAKE-1"

@@ -4,6 +4,9 @@ from __future__ import annotations
 
 import re
 
+from homeassistant.config_entries import SOURCE_USER
+from homeassistant.const import CONF_HOST, CONF_PORT
+from homeassistant.core import HomeAssistant
 import pytest
 
 from custom_components.plc_bridge.config_flow import PlcBridgeConfigFlow
@@ -14,6 +17,7 @@ from custom_components.plc_bridge.connection_form import (
     fields_schema,
     second_page,
 )
+from custom_components.plc_bridge.const import CONF_VENDOR, DOMAIN
 from custom_components.plc_bridge.plc.vendors import client_class, implemented
 from tests.flow_fixtures import strings_at
 
@@ -65,6 +69,20 @@ def test_every_page_worded_for_its_fields(vendor: str) -> None:
         assert hasattr(PlcBridgeConfigFlow, f"async_step_{step_id}"), step_id
 
 
+async def test_vendor_pages_shown_again_without_input(hass: HomeAssistant) -> None:
+    """A vendor page's step called without input shows that page again (nothing is checked)."""
+    flow = PlcBridgeConfigFlow()
+    flow.hass, flow.handler, flow.flow_id = hass, DOMAIN, "pages"
+    flow.context = {"source": SOURCE_USER}
+    await flow.async_step_user({CONF_VENDOR: "s7"})
+    assert (await flow.async_step_connection_s7())["step_id"] == "connection_s7"
+    result = await flow.async_step_connection_s7(
+        {CONF_HOST: "plc", CONF_PORT: 102, "connection": "tsap"}
+    )
+    assert result["step_id"] == "s7_tsap"
+    assert (await flow.async_step_s7_tsap())["step_id"] == "s7_tsap"
+
+
 @pytest.mark.parametrize("vendor", implemented())
 def test_pages_name_no_other_family(vendor: str) -> None:
     """A vendor's pages carry none of another family's words, nor words of what it lacks."""
@@ -82,11 +100,10 @@ def test_second_pages_ask_only_their_way() -> None:
 
 
 def test_shared_texts_name_no_family() -> None:
-    """Texts every vendor's forms share (TLS choices, errors, name, reauth) name no family."""
+    """Texts every vendor's forms share (TLS choices, errors, reauth) name no family."""
     shared = [
         *strings_at("selector", "tls", "options").values(),
         *strings_at("config", "error").values(),
-        texts(strings_at(*STEPS, "name")),
         texts(strings_at(*STEPS, "reauth_confirm")),
         texts(strings_at(*STEPS, "certificate") | {"data_description": {}}),
     ]

@@ -233,7 +233,7 @@ async def test_migration_keeps_entities(
     assert entry.version == 2
     (device,) = entry.subentries.values()
     assert device.subentry_type == SUBENTRY_DEVICE
-    assert device.title == "S7-200 SMART"
+    assert device.title == "S7-200 SMART points"  # told apart from the PLC's own device
     assert set(device.data[CONF_POINTS]) == {point_id for point_id, _ in POINTS}
     for entity_id, unique_id in stored.items():
         registered = entity_registry.async_get(entity_id)
@@ -242,7 +242,9 @@ async def test_migration_keeps_entities(
         assert registered.config_subentry_id == device.subentry_id
         assert hass.states.get(entity_id) is not None
     assert hass.states.get("sensor.my_temperature").state == "21.5"
-    assert hass.states.get("sensor.my_temperature").name == "S7-200 SMART Temperature"
+    assert hass.states.get("sensor.my_temperature").name == "S7-200 SMART points Temperature"
+    names = [d.name for d in dr.async_entries_for_config_entry(dr.async_get(hass), entry.entry_id)]
+    assert sorted(names) == ["S7-200 SMART", "S7-200 SMART points"]
     assert device_registry.async_get(plc.id) is not None
 
 

@@ -110,7 +110,12 @@ async def test_add_two_points_and_save(hass: HomeAssistant, smart_entry: MockCon
     ("base", "field", "key", "text"),
     [
         ({**TEMPERATURE, "address": "VX7"}, "address", "invalid_address", "Invalid address"),
-        ({**TEMPERATURE, "platform": "switch"}, "platform", "needs_bool", "VD100 as float"),
+        (
+            {**TEMPERATURE, "platform": "switch"},
+            "platform",
+            "needs_bool",
+            "VD100 as Floating point (REAL) is not",  # the type's name, not its key
+        ),
         (
             {**TEMPERATURE, "address": "VW10", "data_type": "signed"},
             "address",
@@ -213,7 +218,7 @@ async def test_a_new_entity_type_drops_the_old_class(
 
 
 async def test_import_500_lines(hass: HomeAssistant, smart_entry: MockConfigEntry) -> None:
-    """500 pasted lines become 500 points in one step; the menu lists the first 20."""
+    """500 pasted lines become 500 points in one step; the menu lists the first 5, by name."""
     lines = ["name\taddress\tdata_type"] + [
         f"Word {i}\tVW{100 + 2 * i}\tsigned" for i in range(500)
     ]
@@ -221,8 +226,10 @@ async def test_import_500_lines(hass: HomeAssistant, smart_entry: MockConfigEntr
     result = await paste(hass, menu, "\n".join(lines))
     assert result["type"] is FlowResultType.MENU
     assert result["description_placeholders"]["count"] == "500"
-    assert result["description_placeholders"]["points"].count("\n") == 20
-    assert result["description_placeholders"]["points"].endswith("(+480)")
+    assert result["description_placeholders"]["points"].splitlines() == [
+        *(f"- Word {i}: VW{100 + 2 * i} (Signed integer)" for i in range(5)),  # named type
+        "- … (+495)",
+    ]
     result = await step(hass, result, {"next_step_id": "save"})
     assert len(saved(smart_entry, "Line 1")) == 500
 

@@ -311,3 +311,15 @@ def test_icons() -> None:
         return
     icons = ICONS_SCHEMA(json.loads(path.read_text(encoding="utf-8")))
     assert set(icons.get("services", {})) == set(SERVICES)
+
+
+def test_docs_name_every_action_as_admin_only() -> None:
+    """README and quality_scale.yaml name every action of services.yaml, and say who may call."""
+    readme = (INTEGRATION.parent.parent / "README.md").read_text(encoding="utf-8")
+    scale = (INTEGRATION / "quality_scale.yaml").read_text(encoding="utf-8")
+    for action in SERVICES:
+        assert f"plc_bridge.{action}" in readme, action
+        assert action in scale, action
+        assert STRINGS["services"][action]["description"].endswith("Administrators only.")
+    assert "for administrators only" in readme
+    assert "admin-only" in scale

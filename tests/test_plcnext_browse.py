@@ -23,8 +23,8 @@ MAIN = "Arp.Plc.Eclr/MainInstance."
 
 
 def label(path: str, kind: str) -> str:
-    """Return the pick list's label of a variable: its name in its component, path, type."""
-    return f"{path.partition('/')[2]} – {path} ({kind})"
+    """Return the pick list's label of a variable: its path and type (the path said once)."""
+    return f"{path} ({kind})"
 
 
 async def step(hass: HomeAssistant, result: Any, values: dict[str, Any] | None = None) -> Any:
@@ -113,11 +113,11 @@ async def test_picks_keep_types_and_read_only_flags(
     assert len(added) == 5
     states = {entity_id: hass.states.get(entity_id).state for entity_id in added}
     assert STATE_UNAVAILABLE not in states.values(), states
-    assert states["binary_sensor.oven_maininstance_alarm"] == "on"
-    assert states["sensor.oven_maininstance_counter"] == "799244562"
-    assert states["number.oven_maininstance_speed"] == "-1200"
-    assert states["text.oven_maininstance_label"] == "Grüße ✓"
-    assert states["datetime.oven_maininstance_today"].startswith("2026-11-2")
+    assert states["binary_sensor.oven_alarm"] == "on"  # named "Alarm", not by its path
+    assert states["sensor.oven_counter"] == "799244562"
+    assert states["number.oven_speed"] == "-1200"
+    assert states["text.oven_label"] == "Grüße ✓"
+    assert states["datetime.oven_today"].startswith("2026-11-2")
     await poll(hass, freezer)  # the first poll registered the new group; now one read
     assert plcnext_entry.runtime_data.client.metrics.last_poll_requests == 1
 

@@ -96,11 +96,8 @@ async def test_pin_name_and_entry(hass: HomeAssistant, plcnext_sim: PlcnextSimul
         plcnext_sim.fingerprint or ""
     )
     result = await submit(hass, result, {})
-    assert result["step_id"] == "name"
-    assert suggested(result, "name") == "PLCnext Control"
-    result = await submit(hass, result, {"name": "Bakery line"})
     assert result["type"] is FlowResultType.CREATE_ENTRY
-    assert result["title"] == "Bakery line"
+    assert result["title"] == "PLCnext Control"
     assert result["result"].unique_id == f"{plcnext_sim.host}:{plcnext_sim.port}"
     assert result["data"] == plcnext_data(plcnext_sim)
     assert plcnext_sim.access.logins == 1
@@ -112,8 +109,6 @@ async def test_without_user_authentication(hass: HomeAssistant, open_sim: Plcnex
     result = await connection_form(hass)
     values = connection(open_sim, username=None, password=None, tls="off", clock_variable=None)
     result = await submit(hass, result, values)
-    assert result["step_id"] == "name"
-    result = await submit(hass, result, {"name": "Open PLC"})
     assert result["type"] is FlowResultType.CREATE_ENTRY
     assert result["data"] == plcnext_data(
         open_sim, username="", password="", tls="off", fingerprint="", vendor_options={}
@@ -144,7 +139,7 @@ async def test_refused_credentials(
     assert result["errors"] == {CONF_PASSWORD: "invalid_auth"}
     assert error_message(result, CONF_PASSWORD, *CONFIG).startswith("The PLC refused the login: ")
     result = await submit(hass, result, connection(plcnext_sim))
-    assert result["step_id"] == "name"
+    assert result["type"] is FlowResultType.CREATE_ENTRY
 
 
 @flow_only

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import asyncio
+import contextlib
 from typing import Any
 from unittest.mock import AsyncMock
 
@@ -14,7 +16,7 @@ from pytest_homeassistant_custom_component.common import MockConfigEntry
 
 from custom_components.plc_bridge.const import CONF_VENDOR, DOMAIN
 from simulators.s7 import S7Simulator
-from tests.flow_fixtures import error_message, suggested, through_name, translated
+from tests.flow_fixtures import error_message, suggested, translated
 
 from .s7_ha_fixtures import SimFactory, s7_data
 
@@ -47,7 +49,7 @@ async def submit(hass: HomeAssistant, result: dict[str, Any], values: dict[str, 
         result = translated(
             await hass.config_entries.flow.async_configure(result["flow_id"], second), *CONFIG
         )
-    return await through_name(hass, result)
+    return result
 
 
 def where(sim: S7Simulator, **fields: Any) -> dict[str, Any]:
@@ -102,14 +104,15 @@ async def test_rack_slot_default(
 
 
 async def test_slot_two(hass: HomeAssistant, s7_ha_sims: SimFactory) -> None:
-    """A CPU in slot 2 (S7-400) refuses slot 1 on the host field, then takes slot 2."""
+    """A CPU in slot 2 (S7-400) refuses slot 1 on the slot field of its page, then takes slot 2."""
     sim = await s7_ha_sims(slot=2)
     form = await connection_form(hass)
     result = await submit(hass, form, where(sim, rack=0, slot=1))
     assert result["type"] is FlowResultType.FORM
-    assert result["errors"] == {CONF_HOST: "cannot_connect"}
+    assert result["step_id"] == "s7_rack_slot"
+    assert result["errors"] == {"slot": "session_refused"}
     assert sim.connections == 0
-    result = await submit(hass, result, where(sim, rack=0.0, slot=2.0))  # as the UI sends
+    result = await submit(hass, result, {"rack": 0.0, "slot": 2.0})  # as the UI sends
     assert result["type"] is FlowResultType.CREATE_ENTRY
     assert result["data"] == s7_data(sim, slot=2, family="s7_300_1500")
     assert result["result"].unique_id == SERIAL
@@ -145,11 +148,47 @@ async def test_s7_200_by_tsap(hass: HomeAssistant, s7_ha_sims: SimFactory) -> No
 
 
 async def test_tsap_wrong_remote(hass: HomeAssistant, s7_ha_sims: SimFactory) -> None:
-    """A TSAP the CPU does not serve is a connection failure on the host field."""
+    """A TSAP the CPU does not serve is refused on the remote TSAP field of the TSAP page."""
     sim = await s7_ha_sims(remote_tsap=0x1001)
     result = await submit(
         hass, await connection_form(hass), where(sim, connection="tsap", remote_tsap="10.02")
     )
+    assert result["step_id"] == "s7_tsap"
+    assert result["errors"] == {"remote_tsap": "session_refused"}
+    assert error_message(result, "remote_tsap", *CONFIG).startswith(
+        f"The PLC answers at this host and port but refused the connection with this setting: "
+        f"cannot connect to {sim.host}:{sim.port} (TSAP 10.02)"
+    )
+    result = await submit(hass, result, {"remote_tsap": "10.01"})
+    assert result["type"] is FlowResultType.CREATE_ENTRY
+
+
+async def refuse_by_disconnect(reader: asyncio.StreamReader, writer: asyncio.StreamWriter) -> None:
+    """Answer a COTP connection request with a disconnect request, as a CPU may for a bad TSAP."""
+    with contextlib.suppress(OSError, asyncio.IncompleteReadError):
+        await reader.readexactly(4)
+        writer.write(bytes([3, 0, 0, 11, 6, 0x80, 0, 0, 0, 1, 0]))  # TPKT, COTP DR
+        await writer.drain()
+    writer.close()
+
+
+async def test_slot_refused_with_a_disconnect_request(hass: HomeAssistant) -> None:
+    """A CPU that refuses a slot with a COTP disconnect request: the slot is blamed too."""
+    server = await asyncio.start_server(refuse_by_disconnect, "127.0.0.1", 0)
+    port = server.sockets[0].getsockname()[1]
+    async with server:
+        result = await submit(
+            hass, await connection_form(hass), {CONF_HOST: "127.0.0.1", CONF_PORT: port, "slot": 3}
+        )
+    assert result["step_id"] == "s7_rack_slot"
+    assert result["errors"] == {"slot": "session_refused"}
+
+
+async def test_nothing_at_the_port(hass: HomeAssistant, unused_tcp_port: int) -> None:
+    """Where nothing answers at the host and port, page 1 says so on the host field."""
+    form = await connection_form(hass)
+    result = await submit(hass, form, {CONF_HOST: "127.0.0.1", CONF_PORT: unused_tcp_port})
+    assert result["step_id"] == "connection_s7"
     assert result["errors"] == {CONF_HOST: "cannot_connect"}
 
 
@@ -197,9 +236,11 @@ async def test_reconfigure_to_tsap(hass: HomeAssistant, s7_ha_sims: SimFactory) 
     result = translated(await entry.start_reconfigure_flow(hass), *CONFIG)
     assert result["step_id"] == "reconfigure_s7"
     result = await submit(hass, result, where(sim))
-    assert result["errors"] == {CONF_HOST: "cannot_connect"}
+    assert result["errors"] == {"slot": "session_refused"}
     result = await submit(
-        hass, result, where(sim, connection="tsap", local_tsap="10.00", remote_tsap="0x0302")
+        hass,
+        await entry.start_reconfigure_flow(hass),
+        where(sim, connection="tsap", local_tsap="10.00", remote_tsap="0x0302"),
     )
     assert result["type"] is FlowResultType.ABORT
     assert result["reason"] == "reconfigure_successful"

@@ -68,6 +68,8 @@ async def test_clock_drift_is_quiet(
     state = hass.states.get(DRIFT)
     assert state.state == "20"
     assert state.attributes["unit_of_measurement"] == "s"
+    registered = er.async_get(hass).async_get(DRIFT)
+    assert registered.options["sensor"]["suggested_display_precision"] == 0  # "20 s", not "20.00"
     for ahead in (20.9, 19.6, 21.0):  # a clock keeping time, read at whatever fraction
         s7_smart_sim.clock = plc_time(10 + ahead)
         await poll(hass, freezer)

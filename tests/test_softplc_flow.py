@@ -21,7 +21,7 @@ from custom_components.plc_bridge.const import (
 )
 from custom_components.plc_bridge.plc.http import format_fingerprint
 from simulators.softplc import SoftplcSimulator
-from tests.flow_fixtures import error_message, suggested, through_name, translated
+from tests.flow_fixtures import error_message, suggested, translated
 from tests.softplc_ha_fixtures import make_softplc_entry, pem_pair
 
 CONFIG = ("config",)
@@ -65,15 +65,12 @@ async def test_connection_form_fields(hass: HomeAssistant) -> None:
 
 @flow_only
 async def test_plain_http(hass: HomeAssistant, softplc_http_sim: SoftplcSimulator) -> None:
-    """Over plain HTTP with no certificate: one GET /dt, then the name step, then the entry."""
+    """Over plain HTTP with no certificate: one GET /dt, then the entry, named "SoftPLC"."""
     result = await connection_form(hass)
     result = await submit(hass, result, connection(softplc_http_sim))
-    assert result["step_id"] == "name"
-    assert suggested(result, "name") == "SoftPLC"
     assert softplc_http_sim.requests == 1  # GET /dt; no certificate, so no PUT
-    result = await submit(hass, result, {"name": "Packaging line"})
     assert result["type"] is FlowResultType.CREATE_ENTRY
-    assert result["title"] == "Packaging line"
+    assert result["title"] == "SoftPLC"
     assert result["result"].unique_id == f"{softplc_http_sim.host}:{softplc_http_sim.port}"
     assert result["data"] == {
         CONF_VENDOR: "softplc",
@@ -88,15 +85,11 @@ async def test_plain_http(hass: HomeAssistant, softplc_http_sim: SoftplcSimulato
 
 
 @flow_only
-async def test_name_step_needs_a_name(
-    hass: HomeAssistant, softplc_http_sim: SoftplcSimulator
-) -> None:
-    """A blank name shows the name step again; the same PLC twice aborts."""
+async def test_same_plc_twice(hass: HomeAssistant, softplc_http_sim: SoftplcSimulator) -> None:
+    """The same PLC twice aborts."""
     result = await connection_form(hass)
     result = await submit(hass, result, connection(softplc_http_sim))
-    result = await submit(hass, result, {"name": "   "})
-    assert result["step_id"] == "name"
-    assert (await through_name(hass, result))["type"] is FlowResultType.CREATE_ENTRY
+    assert result["type"] is FlowResultType.CREATE_ENTRY
     result = await connection_form(hass)
     result = await submit(hass, result, connection(softplc_http_sim))
     assert result["type"] is FlowResultType.ABORT
@@ -117,8 +110,6 @@ async def test_https_pin_with_pasted_certificate(
     assert placeholders[CONF_FINGERPRINT] == format_fingerprint(softplc_sim.fingerprint or "")
     assert placeholders[CONF_PORT] == str(softplc_sim.port)
     result = await submit(hass, result, {})
-    assert result["step_id"] == "name"
-    result = await through_name(hass, result)
     assert result["type"] is FlowResultType.CREATE_ENTRY
     assert result["data"][CONF_TLS] == "pin"
     assert result["data"][CONF_FINGERPRINT] == softplc_sim.fingerprint
@@ -152,7 +143,6 @@ async def test_pem_paths_in_the_config_folder(
     result = await connection_form(hass)
     result = await submit(hass, result, connection(softplc_sim, **given))
     result = await submit(hass, result, {})
-    result = await through_name(hass, result)
     assert result["type"] is FlowResultType.CREATE_ENTRY
     assert result["data"][CONF_OPTIONS] == {key: str(path) for key, path in paths.items()}
 

@@ -14,7 +14,7 @@ import pytest
 
 from custom_components.plc_bridge.const import CONF_TLS, CONF_VENDOR, DOMAIN, SUBENTRY_DEVICE
 from simulators.tecomat import DEFAULT_PASSWORD, DEFAULT_USER, TecomatSimulator
-from tests.flow_fixtures import error_message, through_name, translated
+from tests.flow_fixtures import error_message, translated
 from tests.ha_fixtures import point
 from tests.tecomat_ha_fixtures import TECOMAT_SERIAL, make_tecomat_entry
 
@@ -82,8 +82,6 @@ async def test_creates_entry(
     result = await hass.config_entries.flow.async_configure(
         result["flow_id"], connection(auth_sim, method)
     )
-    assert result["step_id"] == "name"
-    result = await through_name(hass, result)
     assert result["type"] is FlowResultType.CREATE_ENTRY
     assert result["title"] == "Fx2 CP2080"
     assert result["result"].unique_id == TECOMAT_SERIAL
@@ -126,7 +124,7 @@ async def test_wrong_credentials(
     result = await hass.config_entries.flow.async_configure(
         result["flow_id"], connection(auth_sim, method)
     )
-    assert (await through_name(hass, result))["type"] is FlowResultType.CREATE_ENTRY
+    assert result["type"] is FlowResultType.CREATE_ENTRY
 
 
 async def test_wrong_method(
@@ -188,8 +186,9 @@ async def test_browse_lists_leaves_and_picks(
     )
     assert await hass.config_entries.async_setup(entry.entry_id)
     await hass.async_block_till_done()
-    result = await open_pick(hass, entry)
-    labels = labels_of(result)
+    labels: dict[str, str] = {}
+    for text in ("myObject.", "arr", "plcData.", "Main.", "setTime"):  # 50 listed at most
+        labels |= labels_of(await open_pick(hass, entry, text))
     for label in (
         "myObject.favorites.color (STRING?)",
         "myObject.interests[2] (STRING?)",
@@ -253,3 +252,31 @@ async def test_same_plc_aborts(hass: HomeAssistant, tecomat_sim: TecomatSimulato
     )
     assert result["type"] is FlowResultType.ABORT
     assert result["reason"] == "already_configured"
+
+
+async def test_reconfigure(
+    hass: HomeAssistant, tecomat_sim: TecomatSimulator, mock_setup_entry: AsyncMock
+) -> None:
+    """Reconfigure shows the TecoApi page without credentials, filled in; the same PLC is kept."""
+    entry = make_tecomat_entry(hass, tecomat_sim)
+    result = translated(await entry.start_reconfigure_flow(hass), *CONFIG)
+    assert result["step_id"] == "reconfigure_tecomat"
+    fields = [str(marker) for marker in result["data_schema"].schema]
+    assert fields == [CONF_HOST, CONF_PORT, CONF_TLS, "auth", "clock_variable"]
+    result = await hass.config_entries.flow.async_configure(
+        result["flow_id"],
+        {CONF_HOST: tecomat_sim.host, CONF_PORT: tecomat_sim.port, CONF_TLS: "none"}
+        | {"auth": tecomat_sim.auth.method, "clock_variable": "set time"},
+    )
+    assert translated(result, *CONFIG)["errors"] == {"base": "invalid_options"}
+    assert result["step_id"] == "reconfigure_tecomat"
+    assert tecomat_sim.requests == 0
+    result = await hass.config_entries.flow.async_configure(
+        result["flow_id"],
+        {CONF_HOST: tecomat_sim.host, CONF_PORT: tecomat_sim.port, CONF_TLS: "none"}
+        | {"auth": tecomat_sim.auth.method, "clock_variable": "setTime"},
+    )
+    assert result["type"] is FlowResultType.ABORT
+    assert result["reason"] == "reconfigure_successful"
+    assert entry.data[CONF_USERNAME] == DEFAULT_USER  # the credentials stay as they were
+    assert entry.data["vendor_options"]["clock_variable"] == "setTime"

@@ -1,4 +1,4 @@
-"""Config flow of PLC Bridge: vendor, connection and certificate, name; reauth and reconfigure."""
+"""Config flow of PLC Bridge: vendor, connection and certificate; reauth and reconfigure."""
 
 from __future__ import annotations
 
@@ -13,10 +13,9 @@ from homeassistant.config_entries import (
     ConfigFlowResult,
     ConfigSubentryFlow,
 )
-from homeassistant.const import CONF_HOST, CONF_NAME, CONF_PASSWORD, CONF_PORT, CONF_USERNAME
+from homeassistant.const import CONF_HOST, CONF_PASSWORD, CONF_PORT, CONF_USERNAME
 from homeassistant.core import callback
 from homeassistant.helpers.device_registry import format_mac
-from homeassistant.helpers.selector import TextSelector
 import voluptuous as vol
 
 from .connection import create_client
@@ -32,6 +31,7 @@ from .connection_form import (
     form_values,
     on_form,
     option_error,
+    refused_field,
     second_page,
     vendor_options,
     vendor_schema,
@@ -50,7 +50,7 @@ from .plc import DeviceInfo, PlcError, PlcOptionError, PlcValueError, TlsMode
 from .plc.http import fetch_fingerprint, format_fingerprint
 from .plc.vendors import client_class
 from .subentry_flow import DeviceSubentryFlowHandler
-from .vendor_steps import Input, VendorSteps
+from .vendor_steps import Input, with_vendor_steps
 
 CERTIFICATE_TIMEOUT = 10.0
 """Seconds to wait for the PLC's TLS handshake when fetching its certificate."""
@@ -65,11 +65,12 @@ def device_unique_id(device: DeviceInfo, data: Mapping[str, Any]) -> str:
     return f"{data[CONF_HOST]}:{data[CONF_PORT]}"
 
 
-class PlcBridgeConfigFlow(VendorSteps, ConfigFlow, domain=DOMAIN):
-    """Add a PLC: vendor, connection, certificate, name; reauth and reconfigure reuse the checks.
+@with_vendor_steps
+class PlcBridgeConfigFlow(ConfigFlow, domain=DOMAIN):
+    """Add a PLC: vendor, connection, certificate; reauth and reconfigure reuse the checks.
 
     Each vendor's connection pages have step ids of their own, worded for its PLC family in
-    strings.json; their steps below all lead to the same checks.
+    strings.json; `with_vendor_steps` binds them to the shared steps below (the same checks).
     """
 
     VERSION = 2
@@ -81,7 +82,6 @@ class PlcBridgeConfigFlow(VendorSteps, ConfigFlow, domain=DOMAIN):
         self._entered: dict[str, Any] = {}  # every value the pages took, suggested again
         self._trusted: set[str] = set()
         self._problem = ""  # the protocol layer's words for the last failure, shown in errors
-        self._name = ""  # what the PLC calls itself, offered as the entry's name
 
     @staticmethod
     @callback
@@ -104,18 +104,6 @@ class PlcBridgeConfigFlow(VendorSteps, ConfigFlow, domain=DOMAIN):
             self._data = {CONF_VENDOR: self._vendor, CONF_USERNAME: "", CONF_PASSWORD: ""}
             return self._connection_form({})
         return self.async_show_form(step_id="user", data_schema=vendor_schema())
-
-    async def async_step_name(self, user_input: Input = None) -> ConfigFlowResult:
-        """Name the PLC (prefilled from what it reports): its device and entity ids take it."""
-        if user_input is not None and str(user_input.get(CONF_NAME, "")).strip():
-            return self.async_create_entry(
-                title=str(user_input[CONF_NAME]).strip(), data=self._data
-            )
-        schema = vol.Schema({vol.Required(CONF_NAME): TextSelector()})
-        return self.async_show_form(
-            step_id="name",
-            data_schema=self.add_suggested_values_to_schema(schema, {CONF_NAME: self._name}),
-        )
 
     async def async_step_reconfigure(self, user_input: Input = None) -> ConfigFlowResult:
         """Show a configured PLC's connection page, filled in; its name stays as it is."""
@@ -147,7 +135,7 @@ class PlcBridgeConfigFlow(VendorSteps, ConfigFlow, domain=DOMAIN):
             return await self._reauth_options(None)
         return await self.async_step_reauth_confirm()
 
-    async def _reauth_options(self, user_input: Input) -> ConfigFlowResult:
+    async def _reauth_options(self, user_input: Input = None) -> ConfigFlowResult:
         """Ask again for the vendor fields that authenticate (not a user); check, then store."""
         entry = self._get_reauth_entry()
         vendor = entry.data[CONF_VENDOR]
@@ -202,7 +190,7 @@ class PlcBridgeConfigFlow(VendorSteps, ConfigFlow, domain=DOMAIN):
             description_placeholders={"name": entry.title, "problem": self._problem},
         )
 
-    async def _connection_step(self, user_input: Input) -> ConfigFlowResult:
+    async def _connection_step(self, user_input: Input = None) -> ConfigFlowResult:
         """Take a vendor's connection page; go on to its second page, if it has one.
 
         Options that name files (SoftPLC's client certificate and key) are resolved in the
@@ -224,7 +212,7 @@ class PlcBridgeConfigFlow(VendorSteps, ConfigFlow, domain=DOMAIN):
             return self._second_form({})
         return await self._check_and_connect()
 
-    async def _second_page_step(self, user_input: Input) -> ConfigFlowResult:
+    async def _second_page_step(self, user_input: Input = None) -> ConfigFlowResult:
         """Take the fields of the way chosen on the connection page, then connect."""
         if user_input is None:
             return self._second_form({})
@@ -264,8 +252,10 @@ class PlcBridgeConfigFlow(VendorSteps, ConfigFlow, domain=DOMAIN):
         return await self._finish()
 
     async def _finish(self) -> ConfigFlowResult:
-        """Connect with the gathered settings, then ask the name or update the entry."""
+        """Connect with the gathered settings, then create or update the entry."""
         device, errors = await self._connect(self._data)
+        if device is None and (field := await refused_field(self._vendor, self._data, errors)):
+            return self._second_form({field: "session_refused"})
         if device is None:
             return self._connection_form(errors)
         await self.async_set_unique_id(
@@ -273,8 +263,9 @@ class PlcBridgeConfigFlow(VendorSteps, ConfigFlow, domain=DOMAIN):
         )
         if self.source != SOURCE_RECONFIGURE:
             self._abort_if_unique_id_configured()
-            self._name = device.name or device.model
-            return await self.async_step_name()
+            # Named after what the PLC reports: Home Assistant's own dialog then asks the device's
+            # name and area (and renames the entity ids), so the name is asked once.
+            return self.async_create_entry(title=device.name or device.model, data=self._data)
         entry = self._get_reconfigure_entry()
         if device.serial or device.mac:
             self._abort_if_unique_id_mismatch()
@@ -288,10 +279,8 @@ class PlcBridgeConfigFlow(VendorSteps, ConfigFlow, domain=DOMAIN):
     ) -> ConfigFlowResult:
         """Update the entry, have it set up again exactly once, and end the flow.
 
-        The update listener of a loaded entry reloads it when its data changed. Any other entry
-        is reloaded here: one whose setup failed has no listener yet, and one whose data stayed
-        the same must still log in anew, as this flow's own login (S7-200 SMART: one session
-        per user) may have ended Home Assistant's session.
+        By its update listener when loaded and changed; else here, as this flow's own login
+        (S7-200 SMART: one session per user) may have ended Home Assistant's session.
         """
         # Asked before the update: the listener starts the reload at once (not loaded after).
         listener_reloads = entry.state is ConfigEntryState.LOADED and entry.data != data

@@ -6,7 +6,9 @@ so that strings.json words each form for its PLC family alone.
 
 from __future__ import annotations
 
+import asyncio
 from collections.abc import Mapping, Sequence
+import contextlib
 from dataclasses import dataclass
 from typing import Any
 
@@ -38,6 +40,9 @@ from .plc import (
 )
 from .plc.vendors import implemented
 
+PROBE_TIMEOUT = 10.0
+"""Seconds to wait for the PLC's port to take a TCP link, after the PLC refused a session."""
+
 
 @dataclass(frozen=True, slots=True)
 class VendorField:
@@ -55,6 +60,7 @@ class SecondPage:
 
     choice: str  # the first page's field that chooses
     ways: Mapping[str, tuple[VendorField, ...]]  # its values: the first one is the default
+    refused_on: Mapping[str, str]  # per way, the field blamed when the PLC refuses the session
 
 
 def _choice(key: str, options: list[str]) -> SelectSelector:
@@ -111,6 +117,7 @@ SECOND_PAGES: dict[str, SecondPage] = {
                 VendorField("remote_tsap", TextSelector()),
             ),
         },
+        {"rack_slot": "slot", "tsap": "remote_tsap"},
     ),
 }
 """Vendors whose connection takes a second page: only the fields of the way chosen are asked."""
@@ -144,6 +151,35 @@ def second_page(vendor: str, options: Mapping[str, Any]) -> tuple[str, tuple[Ven
     if way not in page.ways:
         way = next(iter(page.ways))
     return f"{vendor}_{way}", page.ways[way]
+
+
+async def refused_field(
+    vendor: str, data: Mapping[str, Any], errors: Mapping[str, str]
+) -> str | None:
+    """Return the second page's field to blame for a connection the PLC refused, if any.
+
+    That is where the PLC's port takes a TCP link but the PLC refused the way chosen on the
+    second page (a wrong slot or TSAP); None where nothing answers at the host and port.
+    """
+    page = SECOND_PAGES.get(vendor)
+    if page is None or errors.get(CONF_HOST) not in ("cannot_connect", "timeout"):
+        return None
+    if not await port_answers(data[CONF_HOST], data[CONF_PORT], PROBE_TIMEOUT):
+        return None
+    return page.refused_on[second_page(vendor, data[CONF_OPTIONS])[0].removeprefix(f"{vendor}_")]
+
+
+async def port_answers(host: str, port: int, timeout: float) -> bool:
+    """True when something at host:port accepts a TCP connection (closed again at once)."""
+    try:
+        async with asyncio.timeout(timeout):
+            _, writer = await asyncio.open_connection(host, port)
+    except OSError:  # TimeoutError is one
+        return False
+    writer.close()
+    with contextlib.suppress(OSError):
+        await writer.wait_closed()
+    return True
 
 
 def fields_schema(fields: Sequence[VendorField]) -> dict[vol.Marker, Any]:

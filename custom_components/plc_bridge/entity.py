@@ -7,16 +7,17 @@ from decimal import Decimal
 from enum import StrEnum
 from typing import Any
 
-from homeassistant.const import CONF_DEVICE_CLASS
+from homeassistant.const import CONF_DEVICE_CLASS, CONF_HOST, CONF_PORT
 from homeassistant.core import HomeAssistant, callback
 from homeassistant.helpers import entity_registry as er
 from homeassistant.helpers.device_registry import CONNECTION_NETWORK_MAC, DeviceInfo, format_mac
 from homeassistant.helpers.entity import EntityDescription
 from homeassistant.helpers.update_coordinator import CoordinatorEntity
+from yarl import URL
 
-from .const import CONF_OFFSET, CONF_SCALE, DOMAIN
+from .const import CONF_OFFSET, CONF_SCALE, CONF_TLS, DOMAIN
 from .coordinator import PlcBridgeConfigEntry, PlcCoordinator
-from .plc import PlcError, Point, PointResult, Value, ValueKind
+from .plc import PlcError, Point, PointResult, TlsMode, Value, ValueKind
 from .points import PointConfig
 
 MANUFACTURERS = {
@@ -107,12 +108,28 @@ def device_key(entry: PlcBridgeConfigEntry) -> str:
     """Return what identifies the PLC's device and entities for as long as the entry exists.
 
     The unique id where the PLC reports a serial or MAC (it is that); else the entry id, as the
-    unique id is then host:port and changes when the PLC is moved with Reconfigure.
+    unique id is then host:port and changes when the PLC is moved with Reconfigure. An entry made
+    by address stays keyed by its id when a new firmware starts reporting a serial.
     """
     device = entry.runtime_data.device
-    if (device.serial or device.mac) and entry.unique_id:
-        return entry.unique_id
+    address = f"{entry.data.get(CONF_HOST)}:{entry.data.get(CONF_PORT)}"
+    if (device.serial or device.mac) and entry.unique_id not in (None, address):
+        return str(entry.unique_id)
     return entry.entry_id
+
+
+def web_page(entry: PlcBridgeConfigEntry) -> str | None:
+    """Return the address of the PLC's web server that Home Assistant talks to, if it has one."""
+    if not entry.runtime_data.client.uses_http:
+        return None
+    secure = entry.data.get(CONF_TLS, TlsMode.NONE) != TlsMode.NONE
+    url = URL.build(
+        scheme="https" if secure else "http",
+        host=entry.data[CONF_HOST],
+        port=int(entry.data[CONF_PORT]),
+        path="/",
+    )
+    return str(url)
 
 
 def device_info(entry: PlcBridgeConfigEntry) -> DeviceInfo:
@@ -127,6 +144,7 @@ def device_info(entry: PlcBridgeConfigEntry) -> DeviceInfo:
         sw_version=str(device.firmware) if device.firmware else None,
         serial_number=str(device.serial) if device.serial else None,
         connections=connections,
+        configuration_url=web_page(entry),
     )
 
 

@@ -13,14 +13,19 @@ from homeassistant.helpers import device_registry as dr, entity_registry as er
 from .const import CONF_POINTS, LOGGER, SUBENTRY_DEVICE, SUBENTRY_POINT
 
 
+def migrated_name(plc: str) -> str:
+    """Return the name of the machine that takes a version 1 PLC's points."""
+    return f"{plc} points"
+
+
 @callback
 def async_migrate_points(hass: HomeAssistant, entry: ConfigEntry[Any]) -> None:
-    """Move every version 1 point subentry into one device subentry named after the PLC.
+    """Move every version 1 point subentry into one machine, "<PLC> points".
 
     A point keeps its old subentry id as its point id, so its entity keeps its unique id, its
-    entity id, its name and its history; the device takes the PLC's name, so friendly names
-    stay as they were too (rename it afterwards). Entities are moved before the old subentries
-    are removed, as removing a subentry removes what still belongs to it.
+    entity id, its name and its history. The machine's name tells its device apart from the
+    PLC's own (rename it afterwards). Entities are moved before the old subentries are removed,
+    as removing a subentry removes what still belongs to it.
     """
     old = {
         subentry.subentry_id: subentry
@@ -34,7 +39,7 @@ def async_migrate_points(hass: HomeAssistant, entry: ConfigEntry[Any]) -> None:
         device = ConfigSubentry(
             data=MappingProxyType({CONF_POINTS: points}),
             subentry_type=SUBENTRY_DEVICE,
-            title=entry.title,
+            title=migrated_name(entry.title),
             unique_id=None,
         )
         hass.config_entries.async_add_subentry(entry, device)
@@ -52,5 +57,5 @@ def async_migrate_points(hass: HomeAssistant, entry: ConfigEntry[Any]) -> None:
                 devices.async_update_device(plc.id, new_config_subentry_id=None)
         for subentry_id in old:
             hass.config_entries.async_remove_subentry(entry, subentry_id)
-        LOGGER.info("%s: %d points moved into the device %s", entry.title, len(old), entry.title)
+        LOGGER.info("%s: %d points moved into the machine %s", entry.title, len(old), device.title)
     hass.config_entries.async_update_entry(entry, version=2)

@@ -103,6 +103,7 @@ DRIFT = SensorEntityDescription(
     translation_key="clock_drift",
     device_class=SensorDeviceClass.DURATION,
     native_unit_of_measurement=UnitOfTime.SECONDS,
+    suggested_display_precision=0,  # whole seconds: "-133 s", not "-133.00 s"
     state_class=SensorStateClass.MEASUREMENT,
     entity_category=EntityCategory.DIAGNOSTIC,
 )

@@ -13,11 +13,7 @@ from typing import Any
 
 from homeassistant.config_entries import ConfigEntryState, ConfigSubentryFlow, SubentryFlowResult
 from homeassistant.const import CONF_DEVICE_CLASS, CONF_NAME
-from homeassistant.helpers.selector import (
-    AreaSelector,
-    TextSelector,
-    TextSelectorConfig,
-)
+from homeassistant.helpers.selector import AreaSelector, TextSelector, TextSelectorConfig
 import voluptuous as vol
 
 from .const import (
@@ -32,8 +28,10 @@ from .flow_lists import (
     CONF_FILTER,
     CONF_VARIABLES,
     MAX_LISTED,
+    async_type_names,
     listing,
     matching,
+    menu_listing,
     pick_schema,
     picked_points,
     point_choice,
@@ -140,17 +138,13 @@ class DeviceSubentryFlowHandler(ConfigSubentryFlow):
         options.append("device")
         if self._points:
             options.append("save")
-        listed = [
-            f"{data[CONF_NAME]}: {data[CONF_ADDRESS]} ({data[CONF_DATA_TYPE]})"
-            for data in self._points.values()
-        ]
         return self.async_show_menu(
             step_id="menu",
             menu_options=options,
             description_placeholders={
                 "name": self._name,
                 "count": str(len(self._points)),
-                "points": listing(listed),
+                "points": menu_listing(self._points, await async_type_names(self.hass)),
             },
         )
 
@@ -162,6 +156,8 @@ class DeviceSubentryFlowHandler(ConfigSubentryFlow):
         placeholders: dict[str, str] = {}
         if user_input is not None:
             point, _, errors, placeholders = check_point(self._client, user_input)
+            if kind := placeholders.get(CONF_DATA_TYPE):  # named as the data-type list names it
+                placeholders[CONF_DATA_TYPE] = (await async_type_names(self.hass)).get(kind, kind)
             if point is not None and point in self._taken():
                 errors[CONF_ADDRESS] = "already_configured"
             if not errors:
@@ -256,8 +252,11 @@ class DeviceSubentryFlowHandler(ConfigSubentryFlow):
                 self._published = await entry.runtime_data.client.browse()
         except PlcError as err:
             return self._pick_form({"base": "browse_failed"}, {"error": str(err)})
-        self._items = matching(self._published, str(user_input.get(CONF_FILTER, "")), self._taken())
-        unlisted = entry.runtime_data.client.unlisted
+        needle = str(user_input.get(CONF_FILTER, ""))
+        self._items = matching(self._published, needle, self._taken())
+        unlisted = [
+            name for name in entry.runtime_data.client.unlisted if needle.lower() in name.lower()
+        ]
         if unlisted:  # said on the form, not left out in silence
             return self._pick_form({"base": "browse_unlisted"}, {"error": ", ".join(unlisted)})
         return self._pick_form()
@@ -265,9 +264,9 @@ class DeviceSubentryFlowHandler(ConfigSubentryFlow):
     def _pick_form(
         self, errors: dict[str, str] | None = None, placeholders: dict[str, str] | None = None
     ) -> SubentryFlowResult:
-        """List the variables that matched the filter, any number to tick (ticks kept)."""
+        """List the matching variables to tick (ticks kept); `pick_first`: the first of more."""
         return self.async_show_form(
-            step_id="pick",
+            step_id="pick" if len(self._items) <= MAX_LISTED else "pick_first",
             data_schema=self.add_suggested_values_to_schema(
                 pick_schema(self._items), {CONF_VARIABLES: self._ticked}
             ),
@@ -289,6 +288,8 @@ class DeviceSubentryFlowHandler(ConfigSubentryFlow):
             return self._pick_form({"base": "pick_failed"}, {"error": listing(refused)})
         self._points |= {secrets.token_hex(6): data for data in points}
         return await self.async_step_menu()
+
+    async_step_pick_first = async_step_pick  # the first MAX_LISTED of a longer list
 
     async def async_step_import_points(
         self, user_input: dict[str, Any] | None = None

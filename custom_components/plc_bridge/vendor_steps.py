@@ -1,83 +1,41 @@
-"""The vendors' pages of the config flow: a step id of its own for each, the same checks behind.
+"""The step ids of the vendors' pages, each bound to the config flow's shared step behind it.
 
 Home Assistant finds a step by its id (`async_step_<id>`), and strings.json words each page for
-its PLC family alone: so every vendor has its own one-line steps here, leading to the flow's
-shared ones (`_connection_step`, `_second_page_step`, `_reauth_options`).
+its PLC family alone (`connection_s7`, `reconfigure_s7`, `s7_tsap`, `reauth_softplc`): every
+such id is bound here, for every implemented vendor, to `_connection_step`, `_second_page_step`
+or `_reauth_options`.
 """
 
 from __future__ import annotations
 
 from typing import Any
 
-from homeassistant.config_entries import ConfigFlowResult
+from homeassistant.config_entries import ConfigFlow
+
+from .connection_form import SECOND_PAGES, connection_step, second_page
+from .plc.vendors import client_class, implemented
 
 type Input = dict[str, Any] | None
 """What a form step receives: the submitted values, or None to show the form."""
 
 
-class VendorSteps:
-    """The per-vendor steps; the config flow that mixes this in does the work."""
+def vendor_pages(vendor: str) -> dict[str, str]:
+    """Return the step ids of a vendor's pages and the name of the shared step taking each."""
+    pages = {
+        connection_step(vendor, reconfigure=reconfigure): "_connection_step"
+        for reconfigure in (False, True)
+    }
+    if (page := SECOND_PAGES.get(vendor)) is not None:
+        for way in page.ways:
+            pages[second_page(vendor, {page.choice: way})[0]] = "_second_page_step"
+    if client_class(vendor).credential_option is not None:
+        pages[f"reauth_{vendor}"] = "_reauth_options"
+    return pages
 
-    async def _connection_step(self, user_input: Input) -> ConfigFlowResult:
-        """Take a vendor's connection page (the config flow's)."""
-        raise NotImplementedError
 
-    async def _second_page_step(self, user_input: Input) -> ConfigFlowResult:
-        """Take a vendor's second connection page (the config flow's)."""
-        raise NotImplementedError
-
-    async def _reauth_options(self, user_input: Input) -> ConfigFlowResult:
-        """Take the vendor fields that authenticate again (the config flow's)."""
-        raise NotImplementedError
-
-    async def async_step_connection_s7_smart(self, user_input: Input = None) -> ConfigFlowResult:
-        """Take the S7-200 SMART's address, certificate check and Web server user."""
-        return await self._connection_step(user_input)
-
-    async def async_step_connection_tecomat(self, user_input: Input = None) -> ConfigFlowResult:
-        """Take the Tecomat's address, certificate check, TecoApi user and clock variable."""
-        return await self._connection_step(user_input)
-
-    async def async_step_connection_plcnext(self, user_input: Input = None) -> ConfigFlowResult:
-        """Take the PLCnext Control's address, certificate check, user and clock variable."""
-        return await self._connection_step(user_input)
-
-    async def async_step_connection_softplc(self, user_input: Input = None) -> ConfigFlowResult:
-        """Take the SoftPLC's address, certificate check and client certificate for writes."""
-        return await self._connection_step(user_input)
-
-    async def async_step_connection_s7(self, user_input: Input = None) -> ConfigFlowResult:
-        """Take the S7 CPU's address, family and way to connect (rack/slot or TSAPs)."""
-        return await self._connection_step(user_input)
-
-    async def async_step_reconfigure_s7_smart(self, user_input: Input = None) -> ConfigFlowResult:
-        """Take a configured S7-200 SMART's new address or certificate check."""
-        return await self._connection_step(user_input)
-
-    async def async_step_reconfigure_tecomat(self, user_input: Input = None) -> ConfigFlowResult:
-        """Take a configured Tecomat's new address, certificate check or TecoApi settings."""
-        return await self._connection_step(user_input)
-
-    async def async_step_reconfigure_plcnext(self, user_input: Input = None) -> ConfigFlowResult:
-        """Take a configured PLCnext Control's new address, certificate check or clock variable."""
-        return await self._connection_step(user_input)
-
-    async def async_step_reconfigure_softplc(self, user_input: Input = None) -> ConfigFlowResult:
-        """Take a configured SoftPLC's new address, certificate check or client certificate."""
-        return await self._connection_step(user_input)
-
-    async def async_step_reconfigure_s7(self, user_input: Input = None) -> ConfigFlowResult:
-        """Take a configured S7 CPU's new address, family or way to connect."""
-        return await self._connection_step(user_input)
-
-    async def async_step_s7_rack_slot(self, user_input: Input = None) -> ConfigFlowResult:
-        """Take the S7 CPU's rack and slot."""
-        return await self._second_page_step(user_input)
-
-    async def async_step_s7_tsap(self, user_input: Input = None) -> ConfigFlowResult:
-        """Take the TSAPs of the S7 connection (S7-200 with a CP 243-1, LOGO!)."""
-        return await self._second_page_step(user_input)
-
-    async def async_step_reauth_softplc(self, user_input: Input = None) -> ConfigFlowResult:
-        """Take the client certificate and key a SoftPLC trusts now; check them before storing."""
-        return await self._reauth_options(user_input)
+def with_vendor_steps[F: type[ConfigFlow]](flow: F) -> F:
+    """Give the flow a step for each page of each implemented vendor; return it."""
+    for vendor in implemented():
+        for step_id, shared in vendor_pages(vendor).items():
+            setattr(flow, f"async_step_{step_id}", getattr(flow, shared))
+    return flow

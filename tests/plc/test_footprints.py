@@ -69,9 +69,10 @@ def test_separate_points(vendor: str, first: tuple[str, str], second: tuple[str,
     assert not overlap(vendor, first, second)
 
 
-def test_softplc_tags_as_typed() -> None:
-    """SoftPLC tag names are compared as typed (the manual does not say they fold)."""
-    assert not overlap("softplc", ("pump", "INT"), ("Pump", "INT"))
+def test_softplc_tags_folded() -> None:
+    """SoftPLC tag names are folded: whether the PLC folds them is open, and a guard errs safe."""
+    assert overlap("softplc", ("pump", "INT"), ("Pump", "INT"))
+    assert not overlap("softplc", ("pump", "INT"), ("pumps", "INT"))
     assert overlap("softplc", ("pump", "INT"), ("pump", "REAL"))
 
 

@@ -84,17 +84,18 @@ async def test_pick_published_variables(
 async def test_long_lists_are_cut_and_browsed_once(
     hass: HomeAssistant, tecomat_entry: MockConfigEntry, monkeypatch: pytest.MonkeyPatch
 ) -> None:
-    """301 matches list 200 (the form says so); a second filter asks the PLC nothing more."""
+    """301 matches list 50 (the form says so); a second filter asks the PLC nothing more."""
     items = [BrowseItem(address=f"big.v{i}", data_type="REAL") for i in range(301)]
     browsed = AsyncMock(return_value=items)
     monkeypatch.setattr(tecomat_entry.runtime_data.client, "browse", browsed)
     result = await browse(hass, tecomat_entry, "")
+    assert result["step_id"] == "pick_first"
     assert result["description_placeholders"] | {"error": ""} == {
         "count": "301",
-        "shown": "200",
+        "shown": "50",
         "error": "",
     }
-    assert len(listed(result)) == 200
+    assert len(listed(result)) == 50
     menu = await step(hass, result, {})  # nothing ticked: back to the menu
     result = await step(hass, menu, {"next_step_id": "browse"})
     result = await step(hass, result, {"filter": "v30"})
@@ -149,12 +150,15 @@ async def test_no_pick_list_while_not_loaded(
 async def test_variables_too_big_to_list_are_named(
     hass: HomeAssistant, tecomat_sim: TecomatSimulator, tecomat_entry: MockConfigEntry
 ) -> None:
-    """A structure the PLC cannot answer whole is said on the pick form; arrays are listed."""
+    """A structure the PLC cannot answer whole is said on a pick form it matches; arrays are
+    listed. A list the filter keeps apart from it says nothing about it."""
     tecomat_sim.variables["recipe"] = {f"step{i}": Var("INT", i) for i in range(200)}
     tecomat_sim.variables["big"] = [Var("INT", i) for i in range(200)]
     result = await browse(hass, tecomat_entry, "big[19")
+    assert not result["errors"]
+    assert set(listed(result)) == {"big[19] (DINT?)", *(f"big[19{i}] (DINT?)" for i in range(10))}
+    result = await browse(hass, tecomat_entry, "RECI")
     assert result["errors"] == {"base": "browse_unlisted"}
     assert error_message(result, "base", *DEVICE).startswith(
         "The PLC cannot list these variables here: recipe. "
     )
-    assert set(listed(result)) == {"big[19] (DINT?)", *(f"big[19{i}] (DINT?)" for i in range(10))}

@@ -1,0 +1,63 @@
+"""Every translation parses as the ICU message format the frontend reads it in.
+
+The frontend formats each string with intl-messageformat: a literal `{` (a JSON example) is taken
+for a placeholder and the form shows "Translation error: MALFORMED_ARGUMENT". A literal brace is
+written quoted, `'{…}'`; a placeholder is a plain `{name}` (Home Assistant passes strings only).
+"""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+import re
+from typing import Any
+
+from pyicumessageformat import Parser
+import pytest
+
+INTEGRATION = Path(__file__).resolve().parent.parent / "custom_components" / "plc_bridge"
+STRINGS: dict[str, Any] = json.loads((INTEGRATION / "strings.json").read_text(encoding="utf-8"))
+PARSERS = {"tags ignored": Parser({"allow_tags": False}), "tags read": Parser({"allow_tags": True})}
+QUOTED = re.compile(r"'([{}][^']*)'")
+
+
+def leaves(value: Any, path: str = "") -> list[tuple[str, str]]:
+    """Return (path, text) of every string of a JSON tree."""
+    if isinstance(value, dict):
+        return [leaf for key, item in value.items() for leaf in leaves(item, f"{path}.{key}")]
+    return [(path, value)] if isinstance(value, str) else []
+
+
+TEXTS = leaves(STRINGS)
+
+
+def render(nodes: list[Any]) -> str:
+    """Return the text a parsed message shows, with each placeholder written `{name}`."""
+    return "".join(node if isinstance(node, str) else f"{{{node['name']}}}" for node in nodes)
+
+
+@pytest.mark.parametrize("mode", PARSERS)
+@pytest.mark.parametrize(("path", "text"), TEXTS, ids=[path for path, _ in TEXTS])
+def test_string_is_a_message(path: str, text: str, mode: str) -> None:
+    """The string parses; its placeholders are plain names; no text is quoted by accident."""
+    try:
+        nodes = PARSERS[mode].parse(text)
+    except SyntaxError as err:
+        pytest.fail(f"{path}: {err}")
+    placeholders = [node for node in nodes if not isinstance(node, str)]
+    assert all(set(node) == {"name"} for node in placeholders), placeholders
+    assert all(re.fullmatch(r"[a-z_][a-z0-9_]*", node["name"]) for node in placeholders)
+    assert render(nodes) == QUOTED.sub(r"\1", text).replace("''", "'")
+
+
+@pytest.mark.parametrize(
+    "text",
+    ['for example `[{"address": "VW100"}]`', "{count, plural, one {# point} other {# points}}"],
+)
+def test_checks_catch_what_the_frontend_refuses(text: str) -> None:
+    """A JSON example unquoted fails to parse, and a formatted argument is not a plain name."""
+    try:
+        nodes = PARSERS["tags ignored"].parse(text)
+    except SyntaxError:
+        return
+    assert any(set(node) != {"name"} for node in nodes if not isinstance(node, str))
