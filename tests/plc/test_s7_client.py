@@ -1,4 +1,4 @@
-"""The S7 client against python-snap7's server (extended in simulators/s7.py): reads, writes.
+"""The S7 client against python-snap7's server (extended in simulators/s7/): reads, writes.
 
 python-snap7 3.3.0's own server answers every read here, with its real per-item return codes
 (0x0A, 0x05). Writes, bits, clock, CPU state and SZL 0x001C/0x0424 use the simulator's

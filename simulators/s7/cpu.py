@@ -1,6 +1,6 @@
 """A Siemens S7 CPU on loopback: python-snap7's own server, extended where a real CPU differs.
 
-The server and its extensions are in simulators/s7_server.py; this is the CPU around it:
+The server and its extensions are in simulators/s7/server.py; this is the CPU around it:
 memory by area, clock, state, identity, counters of requests and connections, and `animate` for
 the demo. The server's threads are python-snap7's; start/stop run in a worker thread.
 """
@@ -19,7 +19,7 @@ import time
 from snap7.datatypes import S7Area
 from snap7.type import SrvArea
 
-from .s7_server import CpuServer
+from .server import CpuServer
 
 _AREAS = {"DB": S7Area.DB, "V": S7Area.DB, "M": S7Area.MK, "I": S7Area.PE, "Q": S7Area.PA}
 _AREAS |= {"T": S7Area.TM, "C": S7Area.CT}

@@ -1,4 +1,4 @@
-"""python-snap7's S7 server, extended where a real CPU differs (used by simulators/s7.py).
+"""python-snap7's S7 server, extended where a real CPU differs (used by simulators/s7/cpu.py).
 
 The stock python-snap7 3.3.0 server answers reads with real per-item codes (0x0A, 0x05) and
 serves setup, SZL 0x0011 and the clock. Added here: multi-variable writes with a code per item
@@ -24,7 +24,7 @@ from snap7.server import Server
 from snap7.util import get_date_time_object, set_dt
 
 if TYPE_CHECKING:
-    from .s7 import S7Simulator
+    from .cpu import S7Simulator
 
 _WRONG_FRAMES = 0x8500
 _NOT_AVAILABLE = 0x8104
