@@ -70,7 +70,7 @@ class S7Client(PlcClient):
 
     @classmethod
     def validate_options(cls, options: Mapping[str, object]) -> dict[str, str | int | bool]:
-        """Return the vendor options normalized; raise PlcValueError (a ValueError)."""
+        """Return the vendor options normalized; raise PlcOptionError naming the field at fault."""
         return validate_options(options)
 
     @classmethod
