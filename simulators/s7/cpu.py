@@ -40,7 +40,7 @@ class S7Simulator:
         slot: int = 1,
         remote_tsap: int | None = None,
         pdu_size: int = 480,
-        max_items: int = 20,
+        max_items: int | None = None,
         max_clients: int = 8,
         szl: bool = True,
         dbs: dict[int, int] | None = None,
@@ -55,6 +55,10 @@ class S7Simulator:
         """
         self.rack, self.slot, self.remote_tsap = rack, slot, remote_tsap
         self.pdu_size, self.max_items, self.szl = pdu_size, max_items, szl
+        # A job of more than `max_items` (None: whatever the PDU carries) is refused with the
+        # header error `too_many_error` ("refuse"), answered for its first items only
+        # ("truncate"), or answered with `too_many_code` past them ("item_codes"): READINGS.md
+        self.too_many, self.too_many_error, self.too_many_code = "refuse", 0x8500, 0x0A
         self.family, self.has_clock = family, has_clock
         self.host, self.port = "127.0.0.1", 0
         self.requests = 0
