@@ -225,16 +225,24 @@ def extract(
     return {need: assemble(need, [got[position] for position in where[need]]) for need in needs}
 
 
-def failed_needs(needs: Iterable[Span], got: Sequence[tuple[Span, bytes | int]]) -> set[Span]:
-    """The needs that shared a failed item with other needs: each must be read on its own."""
-    suspects: set[Span] = set()
-    needs = list(needs)
-    for span, item in got:
-        if isinstance(item, int):
-            inside = [need for need in needs if need.overlaps(span)]
-            if len(inside) > 1:
-                suspects.update(inside)
-    return suspects
+def failed_needs(
+    needs: Iterable[Span],
+    got: Sequence[tuple[Span, bytes | int]],
+    where: dict[Span, list[int]] | None = None,
+) -> set[Span]:
+    """The needs that shared a failed item with other needs: each must be read on its own.
+
+    `where` is `locate(needs, spans read)` where the caller has it (linear, not needs x items).
+    """
+    if where is None:
+        needs = list(needs)
+        where = locate(needs, [span for span, _ in got])
+    sharing: dict[int, list[Span]] = defaultdict(list)
+    for need, positions in where.items():
+        for position in positions:
+            if isinstance(got[position][1], int):
+                sharing[position].append(need)
+    return {need for inside in sharing.values() if len(inside) > 1 for need in inside}
 
 
 def plan_writes(

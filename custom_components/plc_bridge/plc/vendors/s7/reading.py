@@ -82,7 +82,7 @@ class Reader:
         plan, where = self._plan(needs, link.pdu_size)
         got = await read_plan(link, plan, self._limit)
         fetched = {need: assemble(need, [got[p] for p in where[need]]) for need in needs}
-        retry = failed_needs(needs, got) - self._alone
+        retry = failed_needs(needs, got, where) - self._alone
         if retry:
             again = plan_reads(retry, link.pdu_size, alone=retry, max_items=self._limit.count)
             fetched |= extract(retry, await read_plan(link, again, self._limit))
