@@ -127,3 +127,24 @@ async def test_refused_whatever_the_count(s7_sim: S7Simulator, s7_client: S7Clie
     before = s7_sim.calls["read"]
     assert all(outcome.ok for outcome in (await s7_client.read(points)).values.values())
     assert s7_sim.calls["read"] - before == 1
+
+
+async def test_errors_stay_with_their_points(cpu: S7Simulator, s7_config: ConfigFactory) -> None:
+    """Missing DBs and out-of-range words among 30 good items: in every reading, each point
+    gets its own value or its own error, at the first poll and after."""
+    client = S7Client(s7_config(port=cpu.port))
+    bad = {
+        Point("DB40.DBW0", "INT"): "no such object",  # no DB40, sorted last
+        Point("DB3.DBW4", "INT"): "out of range",  # DB3 has 4 bytes
+        Point("MW300", "INT"): "out of range",  # M has 256 bytes; sorted first
+    }
+    points = [*bad, *POINTS]
+    try:
+        await client.connect()
+        for _ in range(3):
+            result = await client.read(points)
+            assert [result.values[point].value for point in POINTS] == list(range(1, COUNT + 1))
+            for point, message in bad.items():
+                assert message in str(result.values[point].error)
+    finally:
+        await client.close()
