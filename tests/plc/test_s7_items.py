@@ -18,6 +18,7 @@ from simulators.s7 import S7Simulator
 
 from . import s7_fixtures
 from .s7_fixtures import ITEM_READINGS, ConfigFactory, item_reading
+from .test_s7_client import VALUES
 
 s7_sim = s7_fixtures.s7_sim
 s7_config = s7_fixtures.s7_config
@@ -146,5 +147,24 @@ async def test_errors_stay_with_their_points(cpu: S7Simulator, s7_config: Config
             assert [result.values[point].value for point in POINTS] == list(range(1, COUNT + 1))
             for point, message in bad.items():
                 assert message in str(result.values[point].error)
+    finally:
+        await client.close()
+
+
+async def test_every_type_in_every_reading(cpu: S7Simulator, s7_config: ConfigFactory) -> None:
+    """Bits, bytes, T/C, strings (their headers read first) and dates, 35 points written and
+    read back under each reading: every value in place."""
+    cpu.add_db(1, 512)  # the layout of test_s7_client (V memory is DB1)
+    cpu.add_db(3, 300)
+    values = {Point(address, data_type): value for address, data_type, value in VALUES}
+    cpu.set_db(1, 34, b"\x0c")  # STRING[12]
+    client = S7Client(s7_config(port=cpu.port))
+    try:
+        await client.connect()
+        written = await client.write(values)
+        assert {point: result.value for point, result in written.items()} == values
+        for _ in range(2):
+            read = (await client.read(list(values))).values
+            assert {point: outcome.value for point, outcome in read.items()} == values
     finally:
         await client.close()
