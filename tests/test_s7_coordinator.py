@@ -23,7 +23,7 @@ MODE = "sensor.s7_300_operating_mode"
 PUMP = "switch.s7_300_pump"
 
 
-@pytest.mark.parametrize(("pdu_size", "expected"), [(240, 3), (480, 3), (960, 2)])
+@pytest.mark.parametrize(("pdu_size", "expected"), [(240, 2), (480, 1), (960, 1)])
 async def test_requests_per_poll_as_planned(
     hass: HomeAssistant,
     s7_ha_sims: SimFactory,
@@ -41,7 +41,7 @@ async def test_requests_per_poll_as_planned(
     planned = client.requests_for(
         [config.point for config in entry_points(entry).values()], client.pdu_size
     )
-    assert planned == expected  # the reads, plus one for the CPU state
+    assert planned == expected  # the reads; the CPU state and clock once a minute
     before = sim.requests
     await poll(hass, freezer)
     assert sim.requests - before == planned
@@ -57,16 +57,22 @@ async def test_cpu_state(
     s7_setup: MockConfigEntry,
     freezer: FrozenDateTimeFactory,
 ) -> None:
-    """The operating mode sensor follows the CPU's RUN/STOP switch (SZL 0x0424)."""
+    """The operating mode sensor follows the CPU's RUN/STOP switch (SZL 0x0424), read with the
+    clock once a minute: not a request at every poll."""
     state = hass.states.get(MODE)
     assert state.state == "run"
     assert state.attributes["options"][:2] == ["run", "stop"]
     s7_ha_sim.cpu_state = "STOP"
-    await poll(hass, freezer)
+    szl = s7_ha_sim.calls["szl"]
+    await poll(hass, freezer, times=5)  # 50 s
+    assert s7_ha_sim.calls["szl"] == szl
+    assert hass.states.get(MODE).state == "run"
+    await poll(hass, freezer)  # 60 s
+    assert s7_ha_sim.calls["szl"] == szl + 1
     assert hass.states.get(MODE).state == "stop"
     assert hass.states.get(TEMPERATURE).state == "21.5"  # memory stays readable in STOP
     s7_ha_sim.cpu_state = "RUN"
-    await poll(hass, freezer)
+    await poll(hass, freezer, times=6)
     assert hass.states.get(MODE).state == "run"
 
 

@@ -142,4 +142,4 @@ async def test_diagnostics_plan_for_negotiated_pdu(
     before = sim.requests
     await poll(hass, freezer)
     result = await get_diagnostics_for_config_entry(hass, hass_client, entry)
-    assert result["poll"]["planned_requests"] == sim.requests - before == 2
+    assert result["poll"]["planned_requests"] == sim.requests - before == 1

@@ -18,6 +18,22 @@ type Answer = Callable[[bytes], bytes | None]
 
 DBS = {1: 512, 2: 64, 3: 300, 4: 300}
 
+ITEM_READINGS: dict[str, dict[str, Any]] = {
+    "takes_all": {},  # python-snap7's own server: whatever the PDU carries
+    "refuses_8500": {"max_items": 5, "too_many": "refuse", "too_many_error": 0x8500},
+    "refuses_8104": {"max_items": 5, "too_many": "refuse", "too_many_error": 0x8104},
+    "answers_fewer": {"max_items": 5, "too_many": "truncate"},  # Snap7's C server, at 20
+    "fails_the_rest": {"max_items": 5, "too_many": "item_codes"},
+}
+"""How a CPU meets a job of more items than it takes (simulators/s7/READINGS.md, row 1)."""
+
+
+def item_reading(sim: S7Simulator, reading: str) -> S7Simulator:
+    """Make the simulator answer too many items per job as `reading` says."""
+    for name, value in ITEM_READINGS[reading].items():
+        setattr(sim, name, value)
+    return sim
+
 
 @pytest.fixture
 async def s7_sim() -> AsyncGenerator[S7Simulator]:

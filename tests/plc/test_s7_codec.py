@@ -35,6 +35,7 @@ from custom_components.plc_bridge.plc.vendors.s7.codec import (
 )
 from custom_components.plc_bridge.plc.vendors.s7.planner import Span, WriteItem
 from custom_components.plc_bridge.plc.vendors.s7.protocol import (
+    ShortAnswer,
     address_spec,
     cpu_mode,
     identity,
@@ -186,6 +187,9 @@ def test_read_items() -> None:
     assert read_items(reply(4, 1, b"\xff\x03\x00\x01\x01"), 1) == [b"\x01"]  # a bit
     with pytest.raises(PlcProtocolError, match="answered a 2-item request with 3 items"):
         read_items(reply(4, 3, data), 2)
+    with pytest.raises(ShortAnswer, match="answered 3 of 5 items") as short:
+        read_items(reply(4, 3, data), 5)  # fewer items than asked: none of them is used
+    assert short.value.answered == 3
     with pytest.raises(PlcProtocolError, match="ends before item 2"):
         read_items(reply(4, 2, b"\xff\x04\x00\x10ab"), 2)
     with pytest.raises(PlcProtocolError, match="cuts item 1 short"):
@@ -196,6 +200,8 @@ def test_write_codes() -> None:
     assert write_codes(reply(5, 3, b"\xff\x0a\xff"), 3) == [0xFF, 0x0A, 0xFF]
     with pytest.raises(PlcProtocolError, match="acknowledged 2 of 3"):
         write_codes(reply(5, 3, b"\xff\x0a"), 3)
+    with pytest.raises(ShortAnswer, match="answered 2 of 3 items"):
+        write_codes(reply(5, 2, b"\xff\x0a"), 3)
 
 
 def test_item_errors() -> None:

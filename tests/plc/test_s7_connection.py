@@ -51,7 +51,7 @@ async def test_s7_200_by_tsap(s7_config: ConfigFactory) -> None:
         result = await client.read(points)
         assert [result.values[p].value for p in points] == [True, -7, -7]
         assert result.status.mode is None
-        assert client.metrics.last_poll_requests == 2  # the read, and the state it refuses
+        assert client.metrics.last_poll_requests == 3  # the read, the state it refuses, clock
         await client.read(points)
         assert client.metrics.last_poll_requests == 1  # not asked again
     finally:

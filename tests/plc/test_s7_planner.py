@@ -104,9 +104,14 @@ def test_split() -> None:
 
 def test_pack_item_cap() -> None:
     spans = [db(n, 0, 1) for n in range(1, 26)]
-    plan = pack(spans, 480)
+    assert [len(request) for request in pack(spans, 480)] == [25]  # no cap but the PDU's
+    plan = pack(spans, 480, max_items=20)  # a CPU that showed it takes 20
     assert [len(request) for request in plan] == [20, 5]
-    check_budgets(plan, 480)
+    check_budgets(plan, 480, 20)
+    assert [len(request) for request in pack([db(n, 0, 1) for n in range(1, 100)], 960)] == [
+        79,
+        20,
+    ]  # at PDU 960 the request's address specs bind: 12 + 79 * 12 <= 960
 
 
 def test_pack_reply_budget() -> None:
@@ -127,18 +132,19 @@ def test_pack_request_budget_on_a_small_pdu() -> None:
 
 
 def test_plan_reads_a_poll_of_100_points() -> None:
-    assert S7Client.requests_for(poll_of_100()) == 2  # one read, one CPU state
-    assert S7Client.requests_for(poll_of_100(), pdu_size=240) == 3
-    assert S7Client.requests_for([Point("nonsense", "INT")]) == 1
-    assert S7Client.requests_for([]) == 1
+    assert S7Client.requests_for(poll_of_100()) == 1  # one read (the status: once a minute)
+    assert S7Client.requests_for(poll_of_100(), pdu_size=240) == 2
+    assert S7Client.requests_for([Point("nonsense", "INT")]) == 0
+    assert S7Client.requests_for([]) == 0
 
 
 def test_plan_reads_picks_the_gap_that_saves_requests() -> None:
     words = [db(1, 15 * i, 2) for i in range(30)]  # 30 words, 13 bytes apart
-    plan = plan_reads(words, 480)
+    assert plan_reads(words, 480) == [words]  # 30 items fit one request: fewer bytes
+    plan = plan_reads(words, 480, max_items=20)
     assert plan == [[db(1, 0, 437)]]  # one item across the gaps, not 30 items in two requests
     far = [db(1, 300 * i, 2) for i in range(30)]  # gaps too long: items
-    assert len(plan_reads(far, 480)) == 2
+    assert len(plan_reads(far, 480, max_items=20)) == 2
     assert len(plan_reads([db(1, 0, 2), db(1, 10, 2)], 480)[0]) == 1
 
 
@@ -191,11 +197,33 @@ def test_failed_needs() -> None:
     got: list[tuple[Span, bytes | int]] = [(db(1, 0, 4), 0x05), (c, 0x0A)]
     assert failed_needs([a, b, c], got) == {a, b}  # c failed alone: its own error
     assert failed_needs([a, b, c], [(db(1, 0, 4), b"1234"), (c, b"12")]) == set()
+    where = locate([a, b, c], [span for span, _ in got])
+    assert failed_needs([a, b, c], got, where) == {a, b}  # the poll's located plan: linear
+
+
+def test_failed_needs_at_10000() -> None:
+    """5,000 failed items of two needs each: found through the plan's locations, not by
+    comparing every need with every item (25 million comparisons took 9 s)."""
+    needs = [db(1, 4 * i + half, 2) for i in range(5000) for half in (0, 2)]
+    got: list[tuple[Span, bytes | int]] = [(db(1, 4 * i, 4), 0x05) for i in range(5000)]
+    calls = 0
+    real_overlaps = Span.overlaps
+
+    def counted(self: Span, other: Span) -> bool:
+        nonlocal calls
+        calls += 1
+        return real_overlaps(self, other)
+
+    with pytest.MonkeyPatch.context() as patch:
+        patch.setattr(Span, "overlaps", counted)
+        assert failed_needs(needs, got) == set(needs)
+    assert calls < 50_000
 
 
 def test_plan_writes() -> None:
     items = [WriteItem(db(n, 0, 1), b"\x01", 0) for n in range(1, 31)]
-    plan = plan_writes(items, 480)
+    assert [len(request) for request in plan_writes(items, 480)] == [26, 4]  # 12 + 26 * 18 <= 480
+    plan = plan_writes(items, 480, max_items=20)
     assert [len(request) for request in plan] == [20, 10]
     assert [item for request in plan for item in request] == items  # order kept
     big = [WriteItem(db(1, 0, 300), bytes(300)), WriteItem(db(1, 300, 300), bytes(300))]

@@ -30,29 +30,37 @@ def near(clock: datetime | None, expected: datetime) -> bool:
     return abs(clock - expected.replace(tzinfo=PRAGUE)) < timedelta(seconds=1)
 
 
-async def test_clock_once_an_interval(
+async def test_status_once_an_interval(
     s7_sim: S7Simulator, s7_client: S7Client, monkeypatch: pytest.MonkeyPatch
 ) -> None:
-    """Read at connect and kept; asked again (one round trip more) once the interval passed."""
-    at_connect = s7_sim.clock
+    """State and clock at the first poll, then kept: no poll sends a request for them until the
+    interval passed (counted at the CPU); then both again, two round trips more."""
+    at_first = s7_sim.clock
+    result = await s7_client.read(POINTS)
+    assert near(result.status.clock, at_first)
+    assert s7_sim.calls["szl"] == 3  # identity (2) at connect, state at the first poll
+    assert s7_client.metrics.last_poll_requests == S7Client.requests_for(POINTS) + 2
     s7_sim.clock = datetime(2024, 2, 29, 23, 59, 58)
-    clocks = s7_sim.calls["clock"]
-    for _ in range(2):
+    s7_sim.cpu_state = "STOP"
+    for _ in range(3):
+        before = s7_sim.requests
         result = await s7_client.read(POINTS)
-        assert near(result.status.clock, at_connect)  # the last value read, not a new one
-        assert s7_client.metrics.last_poll_requests == S7Client.requests_for(POINTS)
-    assert s7_sim.calls["clock"] == clocks
+        assert s7_sim.requests - before == S7Client.requests_for(POINTS) == 1
+        assert near(result.status.clock, at_first)  # the last value read, not a new one
+        assert result.status.mode == "RUN"
     monkeypatch.setattr(S7Client, "status_interval", 0.0)
     result = await s7_client.read(POINTS)
     assert near(result.status.clock, datetime(2024, 2, 29, 23, 59, 58))
-    assert s7_client.metrics.last_poll_requests == S7Client.requests_for(POINTS) + 1
-    assert s7_sim.calls["clock"] == clocks + 1
+    assert result.status.mode == "STOP"
+    assert s7_client.metrics.last_poll_requests == S7Client.requests_for(POINTS) + 2
+    assert (s7_sim.calls["clock"], s7_sim.calls["szl"]) == (2, 4)
 
 
 async def test_set_clock_is_read_back(s7_sim: S7Simulator, s7_client: S7Client) -> None:
+    await s7_client.read(POINTS)
     await s7_client.set_clock(datetime(2030, 6, 1, 8, 30, 15))
     assert near((await s7_client.read(POINTS)).status.clock, datetime(2030, 6, 1, 8, 30, 15))
-    assert s7_client.metrics.last_poll_requests == S7Client.requests_for(POINTS) + 1
+    assert s7_client.metrics.last_poll_requests == S7Client.requests_for(POINTS) + 2
 
 
 async def test_no_clock_function(s7_config: ConfigFactory, monkeypatch: pytest.MonkeyPatch) -> None:
@@ -66,9 +74,10 @@ async def test_no_clock_function(s7_config: ConfigFactory, monkeypatch: pytest.M
         for _ in range(3):
             result = await client.read(POINTS)
             assert result.status.clock is None
+            assert result.status.mode == "RUN"
             assert all(outcome.ok for outcome in result.values.values())
-        assert sim.calls["clock"] == 1  # the one refused at connect
-        assert client.metrics.last_poll_requests == S7Client.requests_for(POINTS)
+        assert sim.calls["clock"] == 1  # the one refused at the first poll
+        assert client.metrics.last_poll_requests == S7Client.requests_for(POINTS) + 1  # state
     finally:
         await client.close()
         await sim.stop()

@@ -25,6 +25,7 @@ from ...types import (
 )
 from .address import AREA_I, AREA_P, DATA_TYPES, Variable, on_s7_200, value_kind, variable
 from .codec import check_value, plc_time, span_of
+from .items import ItemLimit
 from .link import S7Link, S7RequestError, endpoint, tsap_text, validate_options
 from .planner import DEFAULT_PDU, Span, plan_reads
 from .protocol import SZL_IDENTITY, SZL_ORDER_CODE, identity
@@ -49,7 +50,7 @@ class S7Client(PlcClient):
     default_scan_interval: ClassVar[float] = 2.0
     requested_pdu: ClassVar[int] = 960  # the PLC answers with what it can (240, 480, 960)
     reconnect_delay: ClassVar[tuple[float, float]] = (1.0, 60.0)  # first and longest wait
-    status_interval: ClassVar[float] = 60.0  # the clock costs a round trip: once a minute
+    status_interval: ClassVar[float] = 60.0  # state and clock cost a round trip each: once a minute
 
     def __init__(
         self, config: ConnectionConfig, session: aiohttp.ClientSession | None = None
@@ -61,7 +62,8 @@ class S7Client(PlcClient):
         self._where = f"{config.host}:{config.port}"
         self._connection = Session(config, self._ends, self.metrics, lambda: self.reconnect_delay)
         self._seen = 0  # the session's link count when this client last looked
-        self._reader = Reader(self._variable)
+        self._items = ItemLimit()  # items a job: as many as the PDU holds, fewer once learned
+        self._reader = Reader(self._variable, self._items)
         self._status = StatusReader(self._zone, self._where)
 
     def _variable(self, point: Point) -> Variable:
@@ -71,7 +73,7 @@ class S7Client(PlcClient):
 
     @classmethod
     def validate_options(cls, options: Mapping[str, object]) -> dict[str, str | int | bool]:
-        """Return the vendor options normalized; raise PlcValueError (a ValueError)."""
+        """Return the vendor options normalized; raise PlcOptionError naming the field at fault."""
         return validate_options(options)
 
     @classmethod
@@ -107,11 +109,12 @@ class S7Client(PlcClient):
 
     @classmethod
     def requests_for(cls, points: Sequence[Point], pdu_size: int = DEFAULT_PDU) -> int:
-        """Round trips of a typical poll: the packed reads, plus one for the CPU state.
+        """Round trips of a typical poll: the packed reads.
 
         A class knows no PLC: it plans for the default PDU (480). Pass `client.pdu_size` for
         the size the PLC negotiated (240 on an S7-300, 960 on an S7-1500). Not counted: the
-        PLC clock, one round trip more once every `status_interval` (60 s; read at connect).
+        CPU state and clock, two round trips more at the first poll of a connection and then
+        once every `status_interval` (60 s).
         """
         needs: set[Span] = set()
         for point in points:
@@ -119,7 +122,7 @@ class S7Client(PlcClient):
                 needs.add(span_of(variable(point)))
             except PlcAddressError:
                 continue
-        return len(plan_reads(needs, pdu_size)) + 1
+        return len(plan_reads(needs, pdu_size))
 
     def planned_requests(self, points: Sequence[Point]) -> int:
         """Round trips of one poll at the PDU size this PLC negotiated."""
@@ -131,13 +134,11 @@ class S7Client(PlcClient):
         return self._connection.pdu_size
 
     async def connect(self) -> DeviceInfo:
-        """Open the S7 session; read the identity (SZL 0x0011 and 0x001C) and the clock."""
+        """Open the S7 session; read the identity (SZL 0x0011 and 0x001C)."""
 
         async def read_identity(link: S7Link) -> dict[str, str]:
             order_code = await self._szl(link, SZL_ORDER_CODE)
-            found = identity(order_code, await self._szl(link, SZL_IDENTITY))
-            await self._status.read_clock(link)
-            return found
+            return identity(order_code, await self._szl(link, SZL_IDENTITY))
 
         found = await self._run(read_identity, fresh=True)
         extra: dict[str, str] = {
@@ -163,7 +164,7 @@ class S7Client(PlcClient):
             return None
 
     async def _read(self, points: Sequence[Point], *, poll: bool) -> ReadResult:
-        """Read every point in the fewest requests, then (in a poll) the CPU state and clock."""
+        """Read every point in the fewest requests; in a poll, the status when it is due."""
         layout = self._reader.layout(points, keep=poll)
 
         async def read(link: S7Link) -> ReadResult:
@@ -181,7 +182,7 @@ class S7Client(PlcClient):
     async def _write(self, values: Mapping[Point, Value]) -> dict[Point, PointResult]:
         """Write every value in as few multi-variable requests as the PDU allows."""
         checked = {point: (self._variable(point), value) for point, value in values.items()}
-        return await self._run(lambda link: write_values(link, checked, self._zone))
+        return await self._run(lambda link: write_values(link, checked, self._zone, self._items))
 
     async def read_clock(self) -> datetime:
         """Return the PLC clock in the configured time zone."""
@@ -213,6 +214,7 @@ class S7Client(PlcClient):
                 self._seen = self._connection.opened
                 self._reader.forget()
                 self._status.forget()
+                self._items.forget()
             return await job(link)
 
         return await self._connection.run(checked, self.requested_pdu, fresh=fresh)

@@ -23,9 +23,9 @@ from snap7.s7protocol import S7Protocol, S7UserDataGroup, S7UserDataSubfunction
 from ...errors import (
     PlcConnectionError,
     PlcError,
+    PlcOptionError,
     PlcProtocolError,
     PlcTimeoutError,
-    PlcValueError,
 )
 from ...types import ClientMetrics
 from .planner import DEFAULT_PDU, Span, WriteItem
@@ -40,6 +40,7 @@ LOCAL_TSAP = 0x0100
 MAX_FRAGMENTS = 16
 FAMILIES = ("s7_300_1500", "s7_200")  # the first is the default
 _TSAP = re.compile(r"([0-9A-F]{1,2})\.([0-9A-F]{1,2})|0X([0-9A-F]{1,4})")
+_DIGITS = re.compile(r"[0-9]{1,3}")  # ASCII only: "²".isdigit() is true, int("²") raises
 
 
 class S7RequestError(PlcProtocolError):
@@ -59,13 +60,21 @@ class Endpoint:
     s7_200: bool = False  # an S7-200 with a CP 243-1: timers and counters on 0x1F/0x1E
 
 
+def _shown(value: object) -> str:
+    """Return an option value as a message shows it: its repr, cut short."""
+    text = repr(value) if not isinstance(value, int) or abs(value) < 10**40 else "a huge number"
+    return text if len(text) <= 40 else f"{text[:37]}..."
+
+
 def parse_tsap(value: object, what: str) -> int:
     """Return a TSAP from "10.01" (as STEP 7 writes it), "0x1001" or an int."""
     if isinstance(value, int) and not isinstance(value, bool) and 0 <= value <= 0xFFFF:
         return value
     match = _TSAP.fullmatch(value.strip().upper()) if isinstance(value, str) else None
     if match is None:
-        raise PlcValueError(f"{what} {value!r} is not a TSAP; write it as STEP 7 does, e.g. 10.01")
+        raise PlcOptionError(
+            f"{what} {_shown(value)} is not a TSAP; write it as STEP 7 does, e.g. 10.01", what
+        )
     if match[3]:
         return int(match[3], 16)
     return int(match[1], 16) << 8 | int(match[2], 16)
@@ -79,17 +88,19 @@ def tsap_text(tsap: int) -> str:
 def _number(options: Mapping[str, object], key: str, default: int, high: int) -> int:
     """Return a small whole number option (form numbers may come as floats or text)."""
     value = options.get(key, default)
-    if isinstance(value, str) and value.strip().isdigit():
+    if isinstance(value, str) and _DIGITS.fullmatch(value.strip()):
         value = int(value)
-    if isinstance(value, float) and value.is_integer():
+    if isinstance(value, float) and value.is_integer() and abs(value) <= high + 1:
         value = int(value)
     if isinstance(value, bool) or not isinstance(value, int) or not 0 <= value <= high:
-        raise PlcValueError(f"{key} must be a whole number from 0 to {high}, not {value!r}")
+        raise PlcOptionError(
+            f"{key} must be a whole number from 0 to {high}, not {_shown(value)}", key
+        )
     return value
 
 
 def validate_options(options: Mapping[str, object]) -> dict[str, str | int | bool]:
-    """Return the connection options normalized; raise PlcValueError (a ValueError) when bad.
+    """Return the connection options normalized; raise PlcOptionError naming the field at fault.
 
     "connection": "rack_slot" (default: "rack" 0..7, "slot" 0..31) or "tsap" ("local_tsap",
     default 01.00, and "remote_tsap", e.g. 10.00/10.01 for an S7-200 CP 243-1). "family":
@@ -98,14 +109,18 @@ def validate_options(options: Mapping[str, object]) -> dict[str, str | int | boo
     """
     family = options.get("family", FAMILIES[0])
     if family not in FAMILIES:
-        raise PlcValueError(f"family must be one of {', '.join(FAMILIES)}, not {family!r}")
+        raise PlcOptionError(
+            f"family must be one of {', '.join(FAMILIES)}, not {_shown(family)}", "family"
+        )
     connection = options.get("connection", "rack_slot")
     if connection == "rack_slot":
         rack, slot = _number(options, "rack", 0, 7), _number(options, "slot", 1, 31)
         return {"connection": "rack_slot", "rack": rack, "slot": slot, "family": str(family)}
     if connection == "tsap":
         if options.get("remote_tsap") in (None, ""):
-            raise PlcValueError("remote_tsap is needed to connect by TSAP, e.g. 10.01")
+            raise PlcOptionError(
+                "remote_tsap is needed to connect by TSAP, e.g. 10.01", "remote_tsap"
+            )
         local = parse_tsap(options.get("local_tsap", LOCAL_TSAP), "local_tsap")
         remote = parse_tsap(options["remote_tsap"], "remote_tsap")
         return {
@@ -114,7 +129,9 @@ def validate_options(options: Mapping[str, object]) -> dict[str, str | int | boo
             "remote_tsap": tsap_text(remote),
             "family": str(family),
         }
-    raise PlcValueError(f"connection must be 'rack_slot' or 'tsap', not {connection!r}")
+    raise PlcOptionError(
+        f"connection must be 'rack_slot' or 'tsap', not {_shown(connection)}", "connection"
+    )
 
 
 def endpoint(options: Mapping[str, object]) -> Endpoint:

@@ -3,7 +3,8 @@
 No sockets here. A `Span` is one item of a multi-variable request (one address spec). Reads
 merge the byte ranges the points need into few spans, split spans a PDU cannot carry, and pack
 them first-fit-decreasing under three limits: the request PDU (10-byte job header), the reply
-PDU (12-byte ACK_DATA header) and the item count.
+PDU (12-byte ACK_DATA header) and the item count (none but the PDU's until a CPU shows one:
+items.py).
 Merging across a gap trades bytes read in vain for items saved; which trade wins depends on
 whether the PDU or the item cap binds, so several gap limits are planned and the plan with the
 fewest requests (then the fewest bytes) is kept.
@@ -21,7 +22,7 @@ from typing import NamedTuple
 from .address import AREA_P, COUNTED
 
 DEFAULT_PDU = 480  # what a client assumes before the PLC negotiates (python-snap7's default)
-MAX_ITEMS = 20  # items per request, as Snap7 and pyS7 cap it (S7-300/400 CPUs)
+MAX_ITEMS = 255  # the item count is one byte; the PDU binds first (79 specs at PDU 960)
 GAPS = (8, 16, 32, 64, 128)  # gap limits tried, in bytes read in vain to save one item
 REQUEST_HEADER = 10  # S7 header of a job request
 REPLY_HEADER = 12  # S7 header of an ACK_DATA reply (two more bytes: error class and code)
@@ -224,16 +225,24 @@ def extract(
     return {need: assemble(need, [got[position] for position in where[need]]) for need in needs}
 
 
-def failed_needs(needs: Iterable[Span], got: Sequence[tuple[Span, bytes | int]]) -> set[Span]:
-    """The needs that shared a failed item with other needs: each must be read on its own."""
-    suspects: set[Span] = set()
-    needs = list(needs)
-    for span, item in got:
-        if isinstance(item, int):
-            inside = [need for need in needs if need.overlaps(span)]
-            if len(inside) > 1:
-                suspects.update(inside)
-    return suspects
+def failed_needs(
+    needs: Iterable[Span],
+    got: Sequence[tuple[Span, bytes | int]],
+    where: dict[Span, list[int]] | None = None,
+) -> set[Span]:
+    """The needs that shared a failed item with other needs: each must be read on its own.
+
+    `where` is `locate(needs, spans read)` where the caller has it (linear, not needs x items).
+    """
+    if where is None:
+        needs = list(needs)
+        where = locate(needs, [span for span, _ in got])
+    sharing: dict[int, list[Span]] = defaultdict(list)
+    for need, positions in where.items():
+        for position in positions:
+            if isinstance(got[position][1], int):
+                sharing[position].append(need)
+    return {need for inside in sharing.values() if len(inside) > 1 for need in inside}
 
 
 def plan_writes(

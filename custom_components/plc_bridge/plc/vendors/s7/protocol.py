@@ -104,16 +104,27 @@ def write_request(sequence: int, items: list[WriteItem]) -> bytes:
     return _request(sequence, bytes([WRITE, len(items)]) + specs, bytes(data))
 
 
+class ShortAnswer(PlcProtocolError):
+    """The PLC answered fewer items than the job asked (Snap7's server stops at 20)."""
+
+    def __init__(self, answered: int, asked: int) -> None:
+        """Keep how many items came back."""
+        super().__init__(f"the PLC answered {answered} of {asked} items")
+        self.answered = answered
+
+
 def _check_function(response: dict[str, Any], function: int, count: int) -> bytes:
     """Return the reply's data section after checking it answers this function and count."""
     parameters = response.get("parameters") or {}
-    if parameters.get("function_code") != function or parameters.get("item_count") != count:
-        raise PlcProtocolError(
-            f"the PLC answered a {count}-item request with {parameters.get('item_count')} items"
-        )
-    raw = response.get("raw_data", b"")
-    assert isinstance(raw, bytes)
-    return raw
+    answered = parameters.get("item_count")
+    if parameters.get("function_code") == function and isinstance(answered, int):
+        if answered < count:
+            raise ShortAnswer(answered, count)
+        if answered == count:
+            raw = response.get("raw_data", b"")
+            assert isinstance(raw, bytes)
+            return raw
+    raise PlcProtocolError(f"the PLC answered a {count}-item request with {answered} items")
 
 
 def read_items(response: dict[str, Any], count: int) -> list[bytes | int]:

@@ -5,14 +5,14 @@ from __future__ import annotations
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from datetime import tzinfo
-import logging
 
 from ...errors import PlcAddressError, PlcProtocolError
 from ...types import Point, PointResult
 from .address import Variable
 from .codec import decode, span_of
-from .link import S7Link, S7RequestError
-from .planner import MAX_ITEMS, Span, assemble, extract, failed_needs, locate, plan_reads
+from .items import ItemLimit, read_plan
+from .link import S7Link
+from .planner import Span, assemble, extract, failed_needs, locate, plan_reads
 from .protocol import item_error
 
 type Fetched = dict[Span, bytes | int]
@@ -28,45 +28,6 @@ class Layout:
     needs: frozenset[Span]
 
 
-async def read_plan(link: S7Link, plan: list[list[Span]]) -> list[tuple[Span, bytes | int]]:
-    """Send the planned read requests; pair each item with its data or return code."""
-    got: list[tuple[Span, bytes | int]] = []
-    for request in plan:
-        try:
-            items = await link.read(request)
-        except S7RequestError as err:
-            raise PlcProtocolError(f"the PLC refused the read: {err}{refusal_hint(err)}") from err
-        for span, item in zip(request, items, strict=True):
-            if isinstance(item, bytes) and len(item) != span.size:
-                raise PlcProtocolError(
-                    f"the PLC answered {len(item)} bytes for an item of {span.size}"
-                )
-            got.append((span, item))
-    return got
-
-
-_LOGGER = logging.getLogger(__name__)
-WRONG_FRAMES = 0x8500
-"""The header error a CPU answers a job it cannot take in one PDU with (too many items)."""
-FUNCTION_NOT_AVAILABLE = 0x8104
-"""The header error an S7-1200/1500 answers every read and write job with while PUT/GET access is
-not permitted. The protocol document names no error classes; this is the CPU's behaviour as
-public S7 clients report it (python-snap7 and Snap7: "CPU : Function not available")."""
-
-
-def refusal_hint(err: S7RequestError) -> str:
-    """Return the advice for the refusal that means PUT/GET is off, and for no other."""
-    if err.code == FUNCTION_NOT_AVAILABLE:
-        return " (an S7-1200/1500 must permit PUT/GET access)"
-    return ""
-
-
-def too_many_items(err: PlcProtocolError) -> bool:
-    """True when the PLC refused a read job as too big for it (not for what it asked)."""
-    cause = err.__cause__
-    return isinstance(cause, S7RequestError) and cause.code == WRONG_FRAMES
-
-
 def outcome(found: Variable, item: bytes | int, zone: tzinfo) -> PointResult:
     """Return one point's value, or its own error."""
     if isinstance(item, int):
@@ -80,13 +41,13 @@ def outcome(found: Variable, item: bytes | int, zone: tzinfo) -> PointResult:
 class Reader:
     """Plans and reads the points of a poll; a coordinator asks the same ones each time: kept."""
 
-    def __init__(self, resolve: Callable[[Point], Variable]) -> None:
+    def __init__(self, resolve: Callable[[Point], Variable], limit: ItemLimit) -> None:
         """Resolve points with `resolve` (raising PlcAddressError for invalid ones)."""
         self._resolve = resolve
+        self._limit = limit  # items a job: the client's, shared with writes
         self._alone: set[Span] = set()  # ranges that failed inside a merged item: read alone
         self._last_layout: Layout | None = None
         self._last_plan: tuple[object, list[list[Span]], dict[Span, list[int]]] | None = None
-        self._max_items = MAX_ITEMS  # lowered, and kept, when the CPU refuses as many
 
     def forget(self) -> None:
         """Forget what a previous link taught (a new one may be another CPU or program)."""
@@ -118,29 +79,13 @@ class Reader:
 
         The ones that fail alone stay alone in later polls; the others merge again.
         """
-        while True:
-            plan, where = self._plan(needs, link.pdu_size)
-            try:
-                got = await read_plan(link, plan)
-                break
-            except PlcProtocolError as err:
-                largest = max(len(request) for request in plan)
-                if not too_many_items(err) or largest <= 1:
-                    raise
-                # A CPU that takes fewer items than the usual cap: halve and keep the limit.
-                self._max_items = largest // 2
-                _LOGGER.info(
-                    "The PLC refused %d items in one request; reading at most %d from now on",
-                    largest,
-                    self._max_items,
-                )
+        plan, where = self._plan(needs, link.pdu_size)
+        got = await read_plan(link, plan, self._limit)
         fetched = {need: assemble(need, [got[p] for p in where[need]]) for need in needs}
-        retry = failed_needs(needs, got) - self._alone
+        retry = failed_needs(needs, got, where) - self._alone
         if retry:
-            again = await read_plan(
-                link, plan_reads(retry, link.pdu_size, alone=retry, max_items=self._max_items)
-            )
-            fetched |= extract(retry, again)
+            again = plan_reads(retry, link.pdu_size, alone=retry, max_items=self._limit.count)
+            fetched |= extract(retry, await read_plan(link, again, self._limit))
             self._alone |= {need for need in retry if isinstance(fetched[need], int)}
         return fetched
 
@@ -148,9 +93,9 @@ class Reader:
         self, needs: frozenset[Span], pdu_size: int
     ) -> tuple[list[list[Span]], dict[Span, list[int]]]:
         """Plan the reads and where each need lies in them; kept while nothing changes."""
-        key = (needs, pdu_size, frozenset(self._alone), self._max_items)
+        key = (needs, pdu_size, frozenset(self._alone), self._limit.count)
         if self._last_plan is None or self._last_plan[0] != key:
-            plan = plan_reads(needs, pdu_size, alone=self._alone, max_items=self._max_items)
+            plan = plan_reads(needs, pdu_size, alone=self._alone, max_items=self._limit.count)
             where = locate(needs, [span for request in plan for span in request])
             self._last_plan = (key, plan, where)
         return self._last_plan[1], self._last_plan[2]

@@ -16,19 +16,27 @@ from ...errors import PlcAddressError, PlcError, PlcValueError, PlcWriteRefusedE
 from ...types import Point, PointResult, Value
 from .address import STRING_MAX, Variable
 from .codec import write_items
+from .items import ItemLimit, read_plan, send_all
 from .link import S7Link, S7RequestError
 from .planner import Span, WriteItem, extract, plan_reads, plan_writes
 from .protocol import OK, item_error
-from .reading import read_plan
+
+
+def _write_refused(err: S7RequestError) -> PlcWriteRefusedError:
+    """Return the error of a write job the PLC refused whatever its size."""
+    return PlcWriteRefusedError(f"the PLC refused the write: {err}")
 
 
 async def write_values(
-    link: S7Link, values: Mapping[Point, tuple[Variable, Value]], zone: tzinfo
+    link: S7Link,
+    values: Mapping[Point, tuple[Variable, Value]],
+    zone: tzinfo,
+    items: ItemLimit,
 ) -> dict[Point, PointResult]:
     """Write checked values in as few requests as the PDU allows; a result per point."""
     results: dict[Point, PointResult] = {}
     strings = [found for found, _ in values.values() if found.string_length]
-    limits = await _string_limits(link, strings) if strings else {}
+    limits = await _string_limits(link, strings, items) if strings else {}
     flat: list[tuple[Point, WriteItem]] = []
     for point, (found, value) in values.items():
         try:
@@ -41,12 +49,9 @@ async def write_values(
         flat += [(point, piece) for piece in pieces]
     codes: dict[Point, list[int]] = {point: [] for point, _ in flat}
     done = 0
-    for request in plan_writes([item for _, item in flat], link.pdu_size):
-        try:
-            answers = await link.write(request)
-        except S7RequestError as err:
-            raise PlcWriteRefusedError(f"the PLC refused the write: {err}") from err
-        for code in answers:
+    for request in plan_writes([item for _, item in flat], link.pdu_size, items.count):
+        for code in await send_all(link.write, request, items, _write_refused):
+            assert isinstance(code, int)
             codes[flat[done][0]].append(code)
             done += 1
     for point, point_codes in codes.items():
@@ -58,11 +63,14 @@ async def write_values(
     return results
 
 
-async def _string_limits(link: S7Link, strings: list[Variable]) -> dict[Variable, int | PlcError]:
+async def _string_limits(
+    link: S7Link, strings: list[Variable], items: ItemLimit
+) -> dict[Variable, int | PlcError]:
     """Return the maximum length each STRING's header declares, or why it could not be read."""
     headers = {found: Span(found.area, found.db, found.start, 2) for found in strings}
     needs = set(headers.values())
-    got = extract(needs, await read_plan(link, plan_reads(needs, link.pdu_size, alone=needs)))
+    plan = plan_reads(needs, link.pdu_size, alone=needs, max_items=items.count)
+    got = extract(needs, await read_plan(link, plan, items))
     limits: dict[Variable, int | PlcError] = {}
     for found, span in headers.items():
         header = got[span]

@@ -1,6 +1,6 @@
 """A Siemens S7 CPU on loopback: python-snap7's own server, extended where a real CPU differs.
 
-The server and its extensions are in simulators/s7_server.py; this is the CPU around it:
+The server and its extensions are in simulators/s7/server.py; this is the CPU around it:
 memory by area, clock, state, identity, counters of requests and connections, and `animate` for
 the demo. The server's threads are python-snap7's; start/stop run in a worker thread.
 """
@@ -19,7 +19,7 @@ import time
 from snap7.datatypes import S7Area
 from snap7.type import SrvArea
 
-from .s7_server import CpuServer
+from .server import CpuServer
 
 _AREAS = {"DB": S7Area.DB, "V": S7Area.DB, "M": S7Area.MK, "I": S7Area.PE, "Q": S7Area.PA}
 _AREAS |= {"T": S7Area.TM, "C": S7Area.CT}
@@ -40,7 +40,7 @@ class S7Simulator:
         slot: int = 1,
         remote_tsap: int | None = None,
         pdu_size: int = 480,
-        max_items: int = 20,
+        max_items: int | None = None,
         max_clients: int = 8,
         szl: bool = True,
         dbs: dict[int, int] | None = None,
@@ -55,6 +55,10 @@ class S7Simulator:
         """
         self.rack, self.slot, self.remote_tsap = rack, slot, remote_tsap
         self.pdu_size, self.max_items, self.szl = pdu_size, max_items, szl
+        # A job of more than `max_items` (None: whatever the PDU carries) is refused with the
+        # header error `too_many_error` ("refuse"), answered for its first items only
+        # ("truncate"), or answered with `too_many_code` past them ("item_codes"): READINGS.md
+        self.too_many, self.too_many_error, self.too_many_code = "refuse", 0x8500, 0x0A
         self.family, self.has_clock = family, has_clock
         self.host, self.port = "127.0.0.1", 0
         self.requests = 0

@@ -1,4 +1,4 @@
-"""python-snap7's S7 server, extended where a real CPU differs (used by simulators/s7.py).
+"""python-snap7's S7 server, extended where a real CPU differs (used by simulators/s7/cpu.py).
 
 The stock python-snap7 3.3.0 server answers reads with real per-item codes (0x0A, 0x05) and
 serves setup, SZL 0x0011 and the clock. Added here: multi-variable writes with a code per item
@@ -24,7 +24,7 @@ from snap7.server import Server
 from snap7.util import get_date_time_object, set_dt
 
 if TYPE_CHECKING:
-    from .s7 import S7Simulator
+    from .cpu import S7Simulator
 
 _WRONG_FRAMES = 0x8500
 _NOT_AVAILABLE = 0x8104
@@ -94,13 +94,18 @@ class CpuServer(Server):
             reply[-2:] = pdu.to_bytes(2, "big")
             return bytes(reply)
         limit = self.pdu.get(client_address, 240)
-        too_many = function in (0x04, 0x05) and request_data[11] > self.sim.max_items
-        if len(request_data) > limit or too_many:
+        if len(request_data) > limit:
             return self._build_error_response(refused, _WRONG_FRAMES)
         if function in (0x04, 0x05) and self.sim.put_get_refused:
             return self._build_error_response(refused, _NOT_AVAILABLE)
+        cap = self.sim.max_items
+        over = function in (0x04, 0x05) and cap is not None and request_data[11] > cap
+        if over and self.sim.too_many == "refuse":
+            return self._build_error_response(refused, self.sim.too_many_error)
         if function == 0x05:
-            answer: bytes | None = self._write_items(request_data)
+            answer: bytes | None = self._write_items(request_data, cap if over else None)
+        elif over and cap is not None:
+            answer = self._read_first(request_data, cap, client_address)
         else:
             answer = super()._process_request(request_data, client_address)
         if answer is not None and len(answer) > limit:
@@ -127,13 +132,45 @@ class CpuServer(Server):
                 return code, _NO_DB  # an S7-200 has no S7-300 timers and counters
         return (code, db) if code in _KNOWN_AREAS else (S7Area.DB, _NO_DB)
 
-    def _write_items(self, pdu: bytes) -> bytes:
-        """Write every item of a multi-variable write; answer a return code per item."""
+    def _read_first(self, pdu: bytes, cap: int, client: tuple[str, int]) -> bytes | None:
+        """Read the first `cap` items only: answer them, or all with `too_many_code` past them.
+
+        "truncate" answers `cap` items, as Snap7's C server does at 20; "item_codes" all asked.
+        """
+        asked = pdu[11]
+        head = struct.pack(">BBHHHH", 0x32, 1, 0, int.from_bytes(pdu[4:6]), 2 + 12 * cap, 0)
+        answer = super()._process_request(
+            head + bytes([0x04, cap]) + pdu[12 : 12 + 12 * cap], client
+        )
+        if self.sim.too_many == "truncate" or answer is None or len(answer) < 14:
+            return answer
+        data, offset, size = bytearray(answer[14:]), 0, 0
+        for _ in range(cap):  # find the last item, which now needs its fill byte
+            code, transport, length = struct.unpack_from(">BBH", data, offset)
+            size = (
+                (length if transport in (0x03, 0x07, 0x09) else length // 8) if code == 0xFF else 0
+            )
+            offset += 4 + size + (size % 2)
+        data = data[: offset - size % 2] + bytes(size % 2)
+        data += bytes([self.sim.too_many_code, 0, 0, 0]) * (asked - cap)
+        header = bytearray(answer[:12])
+        header[8:10] = len(data).to_bytes(2, "big")
+        return bytes(header) + bytes([0x04, asked]) + bytes(data)
+
+    def _write_items(self, pdu: bytes, cap: int | None = None) -> bytes:
+        """Write the items of a multi-variable write (the first `cap`); a return code per item.
+
+        Past `cap`: no code ("truncate") or the code `too_many_code` ("item_codes").
+        """
         parameter_length, data_length = struct.unpack_from(">HH", pdu, 6)
         parameters = pdu[10 : 10 + parameter_length]
         data = pdu[10 + parameter_length : 10 + parameter_length + data_length]
         count, offset, codes = parameters[1], 0, bytearray()
         for index in range(count):
+            if cap is not None and index >= cap:
+                if self.sim.too_many == "item_codes":
+                    codes.append(self.sim.too_many_code)
+                continue
             spec = parameters[2 + 12 * index : 14 + 12 * index]
             _, _, _, word_length, amount, db, area = struct.unpack_from(">BBBBHHB", spec)
             _, transport, length = struct.unpack_from(">BBH", data, offset)
@@ -142,8 +179,8 @@ class CpuServer(Server):
             offset += 4 + size + (size % 2 if index < count - 1 else 0)
             where = int.from_bytes(spec[9:12], "big")
             codes.append(self._store((area, db, word_length, amount, where), payload))
-        header = struct.pack(">BBHHHHBB", 0x32, 0x03, 0, int.from_bytes(pdu[4:6]), 2, count, 0, 0)
-        return header + bytes([0x05, count]) + bytes(codes)
+        header = struct.pack(">BBHHHHBB", 0x32, 3, 0, int.from_bytes(pdu[4:6]), 2, len(codes), 0, 0)
+        return header + bytes([0x05, len(codes)]) + bytes(codes)
 
     def _store(self, spec: tuple[int, int, int, int, int], data: bytes) -> int:
         """Store one written item; return its code (0xFF, 0x0A, 0x05, 0x07 or 0x03)."""
