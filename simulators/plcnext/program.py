@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from collections.abc import Iterator
 from dataclasses import dataclass, field
 from datetime import datetime
 import math
@@ -100,27 +101,59 @@ def _number(raw: Any) -> int | float | None:
     return None
 
 
-type Node = Leaf | dict[str, "Node"] | list["Node"]
+@dataclass(slots=True)
+class Array:
+    """An array: its type name, element type, (first index, length) per dimension, elements.
+
+    A multi-dimensional array keeps its elements in nested lists, the first dimension outside.
+    """
+
+    type: str
+    element: str
+    dims: tuple[tuple[int, int], ...]
+    items: list[Any]
+
+
+type Node = Leaf | dict[str, "Node"] | Array
 
 
 @dataclass(slots=True)
 class Variable:
-    """An HMI variable: declared type name, value tree, read-only flag, first array index."""
+    """An HMI variable: declared type name, value tree, read-only flag."""
 
     type: str
     node: Node
     read_only: bool = False
-    first: int = 0
-    element: str = ""
 
 
-def as_json(node: Node, as_text: bool) -> Any:
+def as_json(node: Node | list[Node], as_text: bool) -> Any:
     """Return a value tree as JSON: objects for structures, lists for arrays."""
     if isinstance(node, Leaf):
         return node.json(as_text)
     if isinstance(node, dict):
         return {name: as_json(member, as_text) for name, member in node.items()}
-    return [as_json(member, as_text) for member in node]
+    items = node.items if isinstance(node, Array) else node
+    return [as_json(member, as_text) for member in items]
+
+
+def node_type(node: Node) -> str:
+    """Return the type name of a node (a structure member's own type: "" where it has none)."""
+    if isinstance(node, Leaf | Array):
+        return node.type
+    return ""
+
+
+def arrays(node: Node) -> Iterator[Array]:
+    """Yield every array in a value tree (elements of arrays of arrays too)."""
+    if isinstance(node, Array):
+        yield node
+        if not node.items or len(node.dims) != 1:
+            return
+        node = node.items[0]
+        yield from arrays(node)
+    elif isinstance(node, dict):
+        for member in node.values():
+            yield from arrays(member)
 
 
 @dataclass(slots=True)
@@ -164,26 +197,43 @@ class Program:
         return {"HmiVariables2": table}
 
     def type_dictionary(self) -> dict[str, Any]:
-        """Return `/ehmi/type.dictionary.json`: the structure and array types."""
-        listing = [
-            {
-                "Name": variable.type,
-                "Kind": "Array" if variable.element else "Struct",
-                "ElementType": variable.element or None,
-                "Dimensions": f"[{variable.first}..{variable.first + len(variable.node) - 1}]"
-                if isinstance(variable.node, list)
-                else None,
-            }
-            for variable in self.variables.values()
-            if not isinstance(variable.node, Leaf)
-        ]
-        return {"Types": listing}
+        """Return `/ehmi/type.dictionary.json`: the structure and array types.
+
+        Dimensions as in the Info Center's example: `[{"StartIndex": 1, "Length": 4}]`, one
+        object per dimension.
+        """
+        listing: dict[str, dict[str, Any]] = {}
+        for variable in self.variables.values():
+            if isinstance(variable.node, dict):
+                listing.setdefault(
+                    variable.type,
+                    {
+                        "Name": variable.type,
+                        "Kind": "Struct",
+                        "ElementType": None,
+                        "Dimensions": [],
+                    },
+                )
+            for array in arrays(variable.node):
+                dims = [{"StartIndex": first, "Length": length} for first, length in array.dims]
+                listing.setdefault(
+                    array.type,
+                    {
+                        "Name": array.type,
+                        "Kind": "Array",
+                        "ElementType": array.element,
+                        "Dimensions": dims,
+                    },
+                )
+        return {"Types": list(listing.values())}
 
 
 def _walk(variable: Variable, rest: str) -> Node | None:
-    """Follow `.member` and `[i]` steps from a variable's node."""
+    """Follow `.member` and `[i]` steps from a variable's node.
+
+    No source shows the path of an element of a multi-dimensional array: none is served.
+    """
     node: Node = variable.node
-    first = variable.first
     while rest:
         if rest.startswith("."):
             name, rest = _name(rest[1:])
@@ -192,15 +242,17 @@ def _walk(variable: Variable, rest: str) -> Node | None:
             match = next((key for key in node if key.lower() == name.lower()), None)
             if match is None:
                 return None
-            node, first = node[match], 0
+            node = node[match]
         elif rest.startswith("["):
             index, _bracket, rest = rest[1:].partition("]")
-            if not isinstance(node, list) or not index.strip().isdigit():
+            if not isinstance(node, Array) or len(node.dims) != 1:
                 return None
-            position = int(index) - first
-            if not 0 <= position < len(node):
+            if not index.strip().lstrip("-").isdigit():
                 return None
-            node, first = node[position], 0
+            position = int(index) - node.dims[0][0]
+            if not 0 <= position < len(node.items):
+                return None
+            node = node.items[position]
         else:
             return None
     return node
@@ -248,16 +300,31 @@ def default_program(bench: int = 0) -> Program:
         main + name: Variable(kind, Leaf(kind, value), read_only)
         for name, (kind, value, read_only) in leaves.items()
     }
+    steps: list[Node] = [Leaf("DINT", seconds) for seconds in (60, 300, 45)]
     variables[main + "Recipe"] = Variable(
         "RecipeType",
         {
             "Name": Leaf("STRING", "Bread"),
             "Weight": Leaf("REAL", 2.5),
             "Ready": Leaf("BOOL", False),
+            "Steps": Array("StepArray", "DINT", ((1, 3),), steps),
         },
     )
     levels: list[Node] = [Leaf("INT", level) for level in (10, 20, 30, 40)]
-    variables[main + "Levels"] = Variable("LevelArray", levels, first=1, element="INT")
+    variables[main + "Levels"] = Variable(
+        "LevelArray", Array("LevelArray", "INT", ((1, 4),), levels)
+    )
+    rows: list[Node] = [
+        Array("ShiftArray", "UINT", ((0, 2),), [Leaf("UINT", row * 10 + shift) for shift in (0, 1)])
+        for row in (1, 2, 3)
+    ]
+    variables[main + "Shifts"] = Variable(
+        "WeekArray", Array("WeekArray", "ShiftArray", ((5, 3),), rows)
+    )
+    grid = [[Leaf("INT", row * 10 + col) for col in (1, 2)] for row in (0, 1)]
+    variables[main + "Grid"] = Variable(
+        "GridArray", Array("GridArray", "INT", ((0, 2), (1, 2)), grid)
+    )
     variables[PREFIX + "GlobalFlag"] = Variable("BOOL", Leaf("BOOL", True))
     for index in range(bench):
         variables[f"{PREFIX}Bench.Value{index}"] = Variable("DINT", Leaf("DINT", index), True)

@@ -22,7 +22,16 @@ from ..base import HttpSimulator
 from .access import Access
 from .groups import Groups
 from .parameters import Fault, body_fields, number, paths_of, query_fields
-from .program import PREFIX, Leaf, Program, Refused, Variable, as_json, default_program
+from .program import (
+    PREFIX,
+    Leaf,
+    Program,
+    Refused,
+    Variable,
+    as_json,
+    default_program,
+    node_type,
+)
 
 DEFAULT_USER = "admin"
 DEFAULT_PASSWORD = "PLCnext-1"
@@ -354,4 +363,4 @@ def _type_of(hit: tuple[str, Variable, Any] | None) -> str:
     """Return the type a register answer names: the leaf's, else the variable's."""
     if hit is None:
         return ""
-    return hit[2].type if isinstance(hit[2], Leaf) else hit[1].type
+    return hit[1].type if hit[2] is hit[1].node else node_type(hit[2])

@@ -33,7 +33,15 @@ from ...types import (
     ValueKind,
 )
 from .api import PlcnextApi
-from .browse import DATA_DICTIONARY, TYPE_DICTIONARY, declared, elementary, leaves, types
+from .browse import (
+    DATA_DICTIONARY,
+    TYPE_DICTIONARY,
+    declared,
+    elementary,
+    leaves,
+    members,
+    types,
+)
 from .codec import KINDS, TYPES, check_value, data_type, decode, encode
 from .errors import ApiError, request_error
 from .info import device_info, plc_status
@@ -189,18 +197,26 @@ class PlcnextClient(PlcClient):
         others = [variable for variable in variables if elementary(variable.type) is None]
         known: dict[str, dict[str, Any]] = {}
         values: dict[str, Any] = {}
+        member_types: dict[str, str] = {}
         if others:
             try:
                 known = types(await self._dictionary(TYPE_DICTIONARY))
             except PlcError as err:
                 _LOGGER.debug("No type dictionary from %s: %s", self.config.host, err)
-            reading = await Reader(api).variables([v.path for v in others], {})
-            values = reading.found
+            reader = Reader(api)
+            values = (await reader.variables([v.path for v in others], {})).found
+            inside = [
+                path
+                for variable in others
+                if variable.path.key in values
+                for path in members(variable.path, values[variable.path.key], variable.type, known)
+            ]
+            member_types = await reader.types_of(inside)
         items: list[BrowseItem] = []
         for variable in variables:
             if elementary(variable.type) is None and variable.path.key not in values:
                 continue
-            items.extend(leaves(variable, values.get(variable.path.key), known))
+            items.extend(leaves(variable, values.get(variable.path.key), known, member_types))
         return items
 
     async def _dictionary(self, path: str) -> Any:

@@ -1,9 +1,9 @@
 """PLCnext reads: one registered group per poll, variable reads where groups cannot serve.
 
-Unknown names are found by registering halves (a register naming one answers 404 as a whole,
-PyREST's real-device log: `invalidNames`) and left out of the group; they are tried again when
-the program changes (`projectCRC`) or the points do. Where every name is unknown, a groups
-report (one request that carries `projectCRC`) watches the program instead of a group read.
+Unknown names are found by reading halves (a register or read naming one answers 404 as a
+whole, PyREST's real-device log: `invalidNames`) and left out of the group; they are tried
+again when the program changes (`projectCRC`) or the points do. Where every name is unknown, a
+groups report (one request that carries `projectCRC`) watches the program instead of a group read.
 """
 
 from __future__ import annotations
@@ -81,29 +81,41 @@ async def isolate(
     attempt: Callable[[Sequence[VariablePath]], Awaitable[Any]],
     unknown: dict[str, PlcError],
 ) -> tuple[list[VariablePath], Any]:
-    """Try the paths; on 404 try each half, down to single unknown names.
+    """Try the paths; on 404 find the unknown names one at a time, each by halving.
 
-    Return the paths the PLC knows and the answer of the last attempt that took them all.
+    A 404 names no path (PyREST's log: `invalidNames`), so the rest is tried as a whole and,
+    refused, halved down to its first unknown name: about log2(N) + 2 requests a name. Return
+    the paths the PLC knows and the answer of an attempt that took them all (None if none did).
     """
-    if not paths:
-        return [], None
-    try:
-        return list(paths), await attempt(paths)
-    except ApiError as err:
-        if err.status != 404:
-            raise
-        if len(paths) == 1:
-            unknown[paths[0].key] = PlcAddressError(
-                f"{paths[0].text}: the PLC does not know this variable, or it has no HMI flag "
-                f"({err.words})"
-            )
-            return [], None
-    half = len(paths) // 2
-    first, first_answer = await isolate(paths[:half], attempt, unknown)
-    second, second_answer = await isolate(paths[half:], attempt, unknown)
-    if not second:
-        return first, first_answer
-    return first + second, second_answer if not first else None
+    known: list[VariablePath] = []
+    rest = list(paths)
+    while rest:
+        try:
+            answer = await attempt(rest)
+        except ApiError as err:
+            if err.status != 404:
+                raise
+            words = err.words
+        else:
+            return known + rest, None if known else answer
+        low, high = 0, len(rest)  # rest[low:high] holds an unknown name; rest[:low] does not
+        while high - low > 1:
+            middle = (low + high) // 2
+            try:
+                await attempt(rest[low:middle])
+            except ApiError as err:
+                if err.status != 404:
+                    raise
+                high, words = middle, err.words
+            else:
+                low = middle
+        unknown[rest[low].key] = PlcAddressError(
+            f"{rest[low].text}: the PLC does not know this variable, or it has no HMI flag "
+            f"({words})"
+        )
+        known += rest[:low]
+        rest = rest[low + 1 :]
+    return known, None
 
 
 GROUP_IDLE = 120.0
@@ -147,7 +159,8 @@ class Reader:
             self.crc = reading.crc
         fresh = self.group is not None and self.group.crc == reading.crc
         if changed and not again and (self.unknown or not fresh):
-            self.group, self.unknown = None, {}
+            await self._unregister()
+            self.unknown = {}
             return await self.poll(paths, again=True)
         reading.failed.update(self.unknown)
         return reading
@@ -156,6 +169,7 @@ class Reader:
         """Read the group of these paths, registering it where the PLC has none."""
         reading = Reading()
         if self.group is None or list(self.group.paths) != wanted:
+            await self._unregister()
             await self._register(wanted)
             if not self.groups_ok:
                 return await self.variables(wanted, self.unknown)
@@ -202,17 +216,23 @@ class Reader:
         return make
 
     async def _register(self, wanted: list[VariablePath]) -> None:
-        """Register a group of the paths the PLC knows; learn the unknown ones by halves."""
+        """Register a group of the paths the PLC knows; learn the unknown ones by reading.
+
+        A register naming an unknown path answers 404 as a whole: the names are then found
+        with variable reads, which leave nothing behind on the PLC, and one group registered.
+        """
         self.group = None
-        if not wanted:
-            self.group = Group("", (), self.crc)
-            return
+        known: list[VariablePath] = wanted
         try:
-            known, answer = await isolate(wanted, self._register_once, self.unknown)
-            if known and answer is None:
-                answer = await self._register_once(known)
+            try:
+                answer = await self._register_once(wanted) if wanted else None
+            except ApiError as err:
+                if err.status != 404:
+                    raise
+                known = await self._known(wanted)
+                answer = await self._register_once(known) if known else None
         except ApiError as err:
-            if err.status in NO_GROUPS:
+            if err.status in NO_GROUPS or err.status == 404:  # 404: groups refuse what reads take
                 self.groups_ok = False
                 return
             raise request_error(err) from None
@@ -222,7 +242,67 @@ class Reader:
         group_id = answer.get("id") if isinstance(answer, dict) else None
         if not isinstance(group_id, str) or not group_id:
             raise PlcProtocolError("the PLC registered the group but sent no id")
+        assert isinstance(answer, dict)
         self.group = Group(group_id, tuple(known), answer.get("projectCRC"))
+
+    async def _known(self, wanted: list[VariablePath]) -> list[VariablePath]:
+        """Return the paths the PLC knows, learning the others by variable reads.
+
+        One read answers where the PLC fails unknown names per entry; where it refuses the
+        whole read (404), halves find them.
+        """
+        known, answer = await isolate(wanted, self._read_once, self.unknown)
+        if answer is not None:
+            reading = Reading()
+            place(answer, known, reading)
+            for key, err in reading.failed.items():
+                if isinstance(err, PlcAddressError):
+                    self.unknown[key] = err
+        return [path for path in known if path.key not in self.unknown]
+
+    async def _unregister(self) -> None:
+        """Unregister the poll's group, when it has one (best effort: it expires on its own)."""
+        group, self.group = self.group, None
+        if group is not None and group.id:
+            await self.unregister(group.id)
+
+    async def unregister(self, group_id: str) -> None:
+        """DELETE a group (best effort: the PLC drops it after about 120 s unused)."""
+
+        def make(session: str | None) -> Request:
+            query = f"?sessionID={quote(session, safe='')}" if session else ""
+            return f"{self._api.base}/groups/{quote(group_id, safe='')}{query}", None, None
+
+        try:
+            await self._api.call("DELETE", make)
+        except ApiError:
+            return
+
+    async def types_of(self, paths: Sequence[VariablePath]) -> dict[str, str]:
+        """Return the IEC type names a register answer gives for paths, by path key.
+
+        The group is unregistered at once, unless the PLC reused an identical one (200).
+        """
+        if not paths or not self.groups_ok:
+            return {}
+        try:
+            answer = await self._register_once(paths)
+        except ApiError:
+            return {}
+        created = self._api.last_status == 201
+        group_id = answer.get("id") if isinstance(answer, dict) else None
+        if created and isinstance(group_id, str) and group_id:
+            await self.unregister(group_id)
+        entries = answer.get("variables") if isinstance(answer, dict) else None
+        if not isinstance(entries, list) or len(entries) != len(paths):
+            return {}
+        return {
+            path.key: entry["type"]
+            for path, entry in zip(paths, entries, strict=True)
+            if isinstance(entry, dict)
+            and isinstance(entry.get("type"), str)
+            and same_path(entry.get("path", path.text), path)
+        }
 
     async def _register_once(self, paths: Sequence[VariablePath]) -> Any:
         """POST /groups once; a body the PLC cannot parse is sent once in the other form.
