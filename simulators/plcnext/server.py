@@ -67,6 +67,7 @@ class PlcnextSimulator(HttpSimulator):
         self.keep_groups = False  # groups survive a download (then stale names fail per entry)
         self.groups_served = True  # False: an interface without groups (405 on /groups)
         self.groups = Groups()  # `groups.timeout`: 120 s idle
+        self.answer_with: tuple[int, bytes] | None = None  # every data answer: status, body
         self.calls: dict[str, int] = {}
 
     def build_app(self, app: web.Application) -> None:
@@ -119,6 +120,9 @@ class PlcnextSimulator(HttpSimulator):
                 raise Fault(404, "invalidPath")
             parts = [part for part in tail.split("/") if part]
             body = await request.read()
+            if self.answer_with is not None and parts and parts[0] not in ("auth", "sessions"):
+                status, raw = self.answer_with
+                return web.Response(status=status, body=raw, content_type="application/json")
             return self._command(request, parts, body)
         except Fault as fault:
             return self._error(fault)
@@ -352,6 +356,9 @@ class PlcnextSimulator(HttpSimulator):
         except Fault as fault:
             return self._error(fault)
         name = request.match_info["name"]
+        if self.answer_with is not None:
+            status, raw = self.answer_with
+            return web.Response(status=status, body=raw, content_type="application/json")
         if name == "data.dictionary.json":
             return web.json_response(self.program.data_dictionary())
         if name == "type.dictionary.json":

@@ -21,6 +21,8 @@ from .paths import VariablePath, parse_path
 
 DATA_DICTIONARY = "/ehmi/data.dictionary.json"
 TYPE_DICTIONARY = "/ehmi/type.dictionary.json"
+MAX_DEPTH = 32
+"""Levels of structures and arrays followed: a deeper value is no PLC type, and recursion ends."""
 
 
 @dataclass(frozen=True, slots=True)
@@ -92,9 +94,15 @@ def bounds(about: dict[str, Any] | None) -> tuple[tuple[int, int], ...] | None:
 
 
 def members(
-    path: VariablePath, value: Any, type_name: str | None, known: dict[str, dict[str, Any]]
+    path: VariablePath,
+    value: Any,
+    type_name: str | None,
+    known: dict[str, dict[str, Any]],
+    depth: int = 0,
 ) -> Iterator[VariablePath]:
     """Yield the paths of the structure members in a value (no dictionary gives their types)."""
+    if depth > MAX_DEPTH:
+        return
     if isinstance(value, list):
         about = known.get(type_name.strip().upper()) if type_name else None
         dims = bounds(about)
@@ -102,13 +110,13 @@ def members(
             return
         element = str(about.get("ElementType") or "") or None
         for index, member in enumerate(value):
-            yield from members(path.child(dims[0][0] + index), member, element, known)
+            yield from members(path.child(dims[0][0] + index), member, element, known, depth + 1)
     elif isinstance(value, dict):
         for key, member in value.items():
             if isinstance(key, str) and key.isidentifier() and key.isascii():
                 if not isinstance(member, dict):
                     yield path.child(key)
-                yield from members(path.child(key), member, None, known)
+                yield from members(path.child(key), member, None, known, depth + 1)
 
 
 def leaves(
@@ -139,8 +147,11 @@ def _walk(
     type_name: str | None,
     known: dict[str, dict[str, Any]],
     member_types: dict[str, str] | None,
+    depth: int = 0,
 ) -> Iterator[tuple[VariablePath, Any, str | None]]:
     """Yield the leaves of a value with their elementary type (None where undeclared)."""
+    if depth > MAX_DEPTH:
+        return
     if type_name is not None and (kind := elementary(type_name)) is not None:
         yield path, value, kind
         return
@@ -151,13 +162,14 @@ def _walk(
             return
         element = str(about.get("ElementType") or "") or None
         for index, member in enumerate(value):
-            yield from _walk(path.child(dims[0][0] + index), member, element, known, member_types)
+            child = path.child(dims[0][0] + index)
+            yield from _walk(child, member, element, known, member_types, depth + 1)
     elif isinstance(value, dict):
         for key, member in value.items():
             if isinstance(key, str) and key.isidentifier() and key.isascii():
                 child = path.child(key)
                 declared_as = (member_types or {}).get(child.key)
-                yield from _walk(child, member, declared_as, known, member_types)
+                yield from _walk(child, member, declared_as, known, member_types, depth + 1)
     else:
         yield path, value, None
 
