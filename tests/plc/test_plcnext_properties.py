@@ -14,7 +14,7 @@ from custom_components.plc_bridge.plc.vendors.plcnext import PlcnextClient, code
 from custom_components.plc_bridge.plc.vendors.plcnext.browse import declared, leaves, types
 from custom_components.plc_bridge.plc.vendors.plcnext.errors import parse_error
 from custom_components.plc_bridge.plc.vendors.plcnext.paths import parse_path
-from custom_components.plc_bridge.plc.vendors.plcnext.reading import Reading, place
+from custom_components.plc_bridge.plc.vendors.plcnext.placing import Reading, place
 
 BOUNDED = settings(
     max_examples=150,

@@ -147,6 +147,7 @@ def _walk(
     type_name: str | None,
     known: dict[str, dict[str, Any]],
     member_types: dict[str, str] | None,
+    *,
     depth: int = 0,
 ) -> Iterator[tuple[VariablePath, Any, str | None]]:
     """Yield the leaves of a value with their elementary type (None where undeclared)."""
@@ -163,13 +164,13 @@ def _walk(
         element = str(about.get("ElementType") or "") or None
         for index, member in enumerate(value):
             child = path.child(dims[0][0] + index)
-            yield from _walk(child, member, element, known, member_types, depth + 1)
+            yield from _walk(child, member, element, known, member_types, depth=depth + 1)
     elif isinstance(value, dict):
         for key, member in value.items():
             if isinstance(key, str) and key.isidentifier() and key.isascii():
                 child = path.child(key)
                 declared_as = (member_types or {}).get(child.key)
-                yield from _walk(child, member, declared_as, known, member_types, depth + 1)
+                yield from _walk(child, member, declared_as, known, member_types, depth=depth + 1)
     else:
         yield path, value, None
 

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import asyncio
 from collections.abc import Mapping, Sequence
+from dataclasses import dataclass, field
 from datetime import datetime
 import logging
 from typing import Any, ClassVar
@@ -46,11 +47,22 @@ from .codec import KINDS, TYPES, check_value, data_type, decode, encode
 from .errors import ApiError, request_error
 from .info import device_info, plc_status
 from .paths import VariablePath, parse_path
-from .reading import Reader, Reading
+from .placing import Reading
+from .reading import Reader
 from .writing import put
 
 _LOGGER = logging.getLogger(__name__)
 CLOSE_TIMEOUT = 2.0
+
+
+@dataclass(slots=True)
+class Plan:
+    """Points parsed for a read: each path and type, the paths to ask, the points refused."""
+
+    points: tuple[Point, ...]
+    wanted: list[tuple[Point, VariablePath, str]] = field(default_factory=list)
+    paths: dict[str, VariablePath] = field(default_factory=dict)
+    errors: dict[Point, PointResult] = field(default_factory=dict)
 
 
 class PlcnextClient(PlcClient):
@@ -73,6 +85,7 @@ class PlcnextClient(PlcClient):
         self._api: PlcnextApi | None = None
         self._reader: Reader | None = None
         self._zone = ZoneInfo(config.time_zone)
+        self._last: Plan | None = None  # the last poll's points, parsed
 
     @classmethod
     def validate_options(cls, options: Mapping[str, object]) -> dict[str, str | int | bool]:
@@ -129,26 +142,39 @@ class PlcnextClient(PlcClient):
             )
         return device_info(description, api)
 
+    def _plan(self, points: Sequence[Point], *, poll: bool) -> Plan:
+        """Return the points' paths and types; a poll keeps them for the next poll.
+
+        Kept per client for the points of the last poll only: a poll of the same points
+        parses nothing again, however many, and nothing grows as points come and go.
+        """
+        listed = tuple(points)
+        if poll and self._last is not None and self._last.points == listed:
+            return self._last
+        plan = Plan(listed)
+        for point in listed:
+            try:
+                path, kind = parse_path(point.address), data_type(point.data_type)
+            except PlcError as err:
+                plan.errors[point] = PointResult(error=err.with_traceback(None))
+                continue
+            plan.wanted.append((point, path, kind))
+            plan.paths.setdefault(path.key, path)
+        if poll:
+            if (clock := self._clock_path()) is not None:  # in the poll's group: no request
+                plan.paths.setdefault(clock.key, clock)
+            self._last = plan
+        return plan
+
     async def _read(self, points: Sequence[Point], *, poll: bool) -> ReadResult:
         """Read every distinct path once: the poll's group, or variables for an on-demand read."""
-        values: dict[Point, PointResult] = {}
-        wanted: list[tuple[Point, VariablePath, str]] = []
-        paths: dict[str, VariablePath] = {}
-        for point in points:
-            try:
-                wanted.append((point, parse_path(point.address), data_type(point.data_type)))
-            except PlcError as err:
-                values[point] = PointResult(error=err)
-                continue
-            paths.setdefault(wanted[-1][1].key, wanted[-1][1])
+        plan = self._plan(points, poll=poll)
+        values, wanted, paths = dict(plan.errors), plan.wanted, plan.paths
         reader = self._poller()
         if not poll:
             reading = await reader.variables(list(paths.values()), {})
             return ReadResult(values=self._place(reading, wanted, values))
-        clock = self._clock_point()
-        clock_path = parse_path(clock.address) if clock else None
-        if clock_path is not None:  # in the poll's group: the clock costs no request
-            paths.setdefault(clock_path.key, clock_path)
+        clock_path = self._clock_path()
         reading = await reader.poll(paths) if paths else Reading()
         when = self._outcome(reading, clock_path, "DT").value if clock_path else None
         status = plc_status(reader.crc, reader.regroups, when)
@@ -161,8 +187,16 @@ class PlcnextClient(PlcClient):
         values: dict[Point, PointResult],
     ) -> dict[Point, PointResult]:
         """Return the results of the wanted points from a reading, with those failed before."""
+        found, failed, zone = reading.found, reading.failed, self._zone
         for point, path, kind in wanted:
-            values[point] = self._outcome(reading, path, kind)
+            raw = found.get(path.key, found)  # `found` itself: absent
+            if raw is found or (failed and path.key in failed):
+                values[point] = self._outcome(reading, path, kind)
+                continue
+            try:
+                values[point] = PointResult(value=decode(kind, raw, zone, path.text))
+            except PlcProtocolError as err:
+                values[point] = PointResult(error=err)
         return values
 
     def _outcome(self, reading: Reading, path: VariablePath, kind: str) -> PointResult:
@@ -226,6 +260,11 @@ class PlcnextClient(PlcClient):
         except ApiError as err:
             raise request_error(err) from None
 
+    def _clock_path(self) -> VariablePath | None:
+        """Return the clock variable's path, when one is chosen."""
+        clock = self._clock_point()
+        return parse_path(clock.address) if clock else None
+
     def _clock_point(self) -> Point | None:
         """Return the clock variable's point, when one is chosen."""
         variable = str(self.config.options.get("clock_variable", "")).strip()
@@ -262,10 +301,12 @@ class PlcnextClient(PlcClient):
             raise error
 
     async def close(self) -> None:
-        """Delete the session (best effort, briefly) and release the client's own session."""
+        """Unregister the group and delete the session (best effort, briefly)."""
         if self._api is not None:
             try:
                 async with asyncio.timeout(CLOSE_TIMEOUT):
+                    if self._reader is not None:
+                        await self._reader.unregister_group()
                     await self._api.close_session()
             except (PlcError, TimeoutError) as err:
                 _LOGGER.debug("Closing the session on %s failed: %s", self.config.host, err)

@@ -43,6 +43,7 @@ KINDS: dict[str, ValueKind] = {
     "DT": ValueKind.DATETIME,
 }
 TIME_RANGES = {"TIME": INTEGER_RANGES["DINT"], "LTIME": INTEGER_RANGES["LINT"]}
+_LIMITS = {**INTEGER_RANGES, **TIME_RANGES}
 MAX_STRING = 255  # no source gives PLCnext's STRING limit; the PLC refuses a longer one itself
 _WHOLE = re.compile(r"\s*[+-]?\d{1,20}\s*", re.ASCII)
 _TRUE, _FALSE = ("true", "1"), ("false", "0")
@@ -106,10 +107,13 @@ def encode(kind: str, value: Value, zone: tzinfo) -> Any:
 
 def decode(kind: str, raw: Any, zone: tzinfo, what: str) -> Value:
     """Return a point's value from its JSON; raise PlcProtocolError when it does not fit."""
+    limits = _LIMITS.get(kind)
+    if type(raw) is int and limits is not None and limits[0] <= raw <= limits[1]:
+        return raw  # the common case first: a JSON number that fits
     if kind == "BOOL":
         return _bool(raw, what)
-    if kind in INTEGER_RANGES or kind in TIME_RANGES:
-        low, high = INTEGER_RANGES.get(kind) or TIME_RANGES[kind]
+    if limits is not None:
+        low, high = limits
         number = _whole(raw)
         if number is not None and low <= number <= high:
             return number

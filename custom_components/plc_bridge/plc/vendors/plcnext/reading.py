@@ -8,30 +8,22 @@ groups report (one request that carries `projectCRC`) watches the program instea
 
 from __future__ import annotations
 
-from collections.abc import Awaitable, Callable, Sequence
-from dataclasses import dataclass, field
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass
 import json
 from typing import Any
 from urllib.parse import quote, urlencode
 
 from ...errors import PlcAddressError, PlcError, PlcProtocolError
 from .api import PlcnextApi, Request
-from .errors import ApiError, reasons_of, request_error
+from .errors import ApiError, request_error
 from .paths import MAX_URI, VariablePath, path_list, same_path, variables_uri
+from .placing import Reading, isolate, place
 
 JSON = "application/json"
 FORM = "application/x-www-form-urlencoded"
 REFUSED_BODY = (400, 415)  # a register body the PLC does not parse: try the other form once
 NO_GROUPS = (400, 405, 415, 501)  # groups cannot serve: read variables instead
-
-
-@dataclass(slots=True)
-class Reading:
-    """Raw values and per-path errors, by path key, and the projectCRC the answer carried."""
-
-    found: dict[str, Any] = field(default_factory=dict)
-    failed: dict[str, PlcError] = field(default_factory=dict)
-    crc: Any = None
 
 
 @dataclass(frozen=True, slots=True)
@@ -41,81 +33,6 @@ class Group:
     id: str
     paths: tuple[VariablePath, ...]
     crc: Any
-
-
-def place(answer: Any, paths: Sequence[VariablePath], reading: Reading) -> None:
-    """Put an answer's variables under their paths: by position where every path agrees.
-
-    The PLC answers in request order; an entry whose `path` names another variable, or a list
-    of another length, is matched by path instead, so that no value shows under a wrong point.
-    """
-    entries = answer.get("variables") if isinstance(answer, dict) else None
-    if not isinstance(entries, list):
-        raise PlcProtocolError("the PLC's answer holds no variables")
-    reading.crc = answer.get("projectCRC")
-    in_order = len(entries) == len(paths) and all(
-        isinstance(entry, dict) and ("path" not in entry or same_path(entry["path"], path))
-        for entry, path in zip(entries, paths, strict=False)
-    )
-    for index, path in enumerate(paths):
-        if in_order:
-            entry = entries[index]
-        else:
-            entry = next(
-                (e for e in entries if isinstance(e, dict) and same_path(e.get("path"), path)),
-                None,
-            )
-        if entry is None:
-            reading.failed[path.key] = PlcProtocolError(f"{path.text} is missing from the answer")
-        elif entry.get("error") is not None:
-            said = ", ".join(reasons_of(entry["error"])) or "no reason given"
-            reading.failed[path.key] = PlcAddressError(f"{path.text}: the PLC says {said}")
-        elif "value" not in entry:
-            reading.failed[path.key] = PlcProtocolError(f"{path.text}: the answer has no value")
-        else:
-            reading.found[path.key] = entry["value"]
-
-
-async def isolate(
-    paths: Sequence[VariablePath],
-    attempt: Callable[[Sequence[VariablePath]], Awaitable[Any]],
-    unknown: dict[str, PlcError],
-) -> tuple[list[VariablePath], Any]:
-    """Try the paths; on 404 find the unknown names one at a time, each by halving.
-
-    A 404 names no path (PyREST's log: `invalidNames`), so the rest is tried as a whole and,
-    refused, halved down to its first unknown name: about log2(N) + 2 requests a name. Return
-    the paths the PLC knows and the answer of an attempt that took them all (None if none did).
-    """
-    known: list[VariablePath] = []
-    rest = list(paths)
-    while rest:
-        try:
-            answer = await attempt(rest)
-        except ApiError as err:
-            if err.status != 404:
-                raise
-            words = err.words
-        else:
-            return known + rest, None if known else answer
-        low, high = 0, len(rest)  # rest[low:high] holds an unknown name; rest[:low] does not
-        while high - low > 1:
-            middle = (low + high) // 2
-            try:
-                await attempt(rest[low:middle])
-            except ApiError as err:
-                if err.status != 404:
-                    raise
-                high, words = middle, err.words
-            else:
-                low = middle
-        unknown[rest[low].key] = PlcAddressError(
-            f"{rest[low].text}: the PLC does not know this variable, or it has no HMI flag "
-            f"({words})"
-        )
-        known += rest[:low]
-        rest = rest[low + 1 :]
-    return known, None
 
 
 GROUP_IDLE = 120.0
@@ -159,7 +76,7 @@ class Reader:
             self.crc = reading.crc
         fresh = self.group is not None and self.group.crc == reading.crc
         if changed and not again and (self.unknown or not fresh):
-            await self._unregister()
+            await self.unregister_group()
             self.unknown = {}
             return await self.poll(paths, again=True)
         reading.failed.update(self.unknown)
@@ -169,7 +86,7 @@ class Reader:
         """Read the group of these paths, registering it where the PLC has none."""
         reading = Reading()
         if self.group is None or list(self.group.paths) != wanted:
-            await self._unregister()
+            await self.unregister_group()
             await self._register(wanted)
             if not self.groups_ok:
                 return await self.variables(wanted, self.unknown)
@@ -260,7 +177,7 @@ class Reader:
                     self.unknown[key] = err
         return [path for path in known if path.key not in self.unknown]
 
-    async def _unregister(self) -> None:
+    async def unregister_group(self) -> None:
         """Unregister the poll's group, when it has one (best effort: it expires on its own)."""
         group, self.group = self.group, None
         if group is not None and group.id:
@@ -324,14 +241,22 @@ class Reader:
     def _register_request(
         self, paths: Sequence[VariablePath], *, form: bool
     ) -> Callable[[str | None], Request]:
-        """Return the request maker of a group registration."""
+        """Return the request maker of a group registration.
+
+        Paths of one component go relative to a `pathPrefix` (the Groups page's example): the
+        PLC then answers every read with the short paths.
+        """
         base = self._api.base
+        components = {path.component for path in paths}
+        prefix = f"{components.pop()}/" if len(components) == 1 else ""
+        names = [path.name if prefix else path.text for path in paths]
 
         def make(session: str | None) -> Request:
             if form:
-                body = f"sessionID={quote(session or '', safe='')}&paths={path_list(paths)}"
+                fields = {"sessionID": session or "", "pathPrefix": prefix}
+                body = f"{urlencode(fields)}&paths={path_list(names)}"
                 return f"{base}/groups", body.encode(), FORM
-            data = {"sessionID": session or "", "paths": [path.text for path in paths]}
+            data = {"sessionID": session or "", "pathPrefix": prefix, "paths": names}
             return f"{base}/groups", json.dumps(data).encode(), JSON
 
         return make

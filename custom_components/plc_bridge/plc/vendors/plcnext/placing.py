@@ -1,0 +1,123 @@
+"""PLCnext answers: values placed under their paths, unknown names found by halving.
+
+Pure decisions about answers, tested through the reader: no request is made here.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Awaitable, Callable, Sequence
+from dataclasses import dataclass, field
+from typing import Any
+
+from ...errors import PlcAddressError, PlcError, PlcProtocolError
+from .errors import ApiError, reasons_of
+from .paths import VariablePath, folded, same_path
+
+
+@dataclass(slots=True)
+class Reading:
+    """Raw values and per-path errors, by path key, and the projectCRC the answer carried."""
+
+    found: dict[str, Any] = field(default_factory=dict)
+    failed: dict[str, PlcError] = field(default_factory=dict)
+    crc: Any = None
+
+
+def place(answer: Any, paths: Sequence[VariablePath], reading: Reading) -> None:
+    """Put an answer's variables under their paths: by position where every path agrees.
+
+    The PLC answers in request order; an entry whose `path` names another variable, or a list
+    of another length, is matched by path instead, so that no value shows under a wrong point.
+    """
+    entries = answer.get("variables") if isinstance(answer, dict) else None
+    if not isinstance(entries, list):
+        raise PlcProtocolError("the PLC's answer holds no variables")
+    reading.crc = answer.get("projectCRC")
+    chosen: Sequence[Any] = entries
+    if len(entries) != len(paths) or not in_order(entries, paths):
+        chosen = by_path(entries, paths)
+    found = reading.found
+    for path, entry in zip(paths, chosen, strict=True):
+        if type(entry) is dict and "value" in entry and entry.get("error") is None:
+            found[path.key] = entry["value"]
+        elif entry is None:
+            reading.failed[path.key] = PlcProtocolError(f"{path.text} is missing from the answer")
+        elif entry.get("error") is not None:
+            said = ", ".join(reasons_of(entry["error"])) or "no reason given"
+            reading.failed[path.key] = PlcAddressError(f"{path.text}: the PLC says {said}")
+        elif "value" not in entry:
+            reading.failed[path.key] = PlcProtocolError(f"{path.text}: the answer has no value")
+        else:
+            reading.found[path.key] = entry["value"]
+
+
+def in_order(entries: list[Any], paths: Sequence[VariablePath]) -> bool:
+    """True when each entry is an object naming its path, or naming none (the summary form)."""
+    for entry, path in zip(entries, paths, strict=True):
+        if not isinstance(entry, dict):
+            return False
+        named = entry.get("path", path.name)
+        if named not in (path.name, path.text) and not same_path(named, path):
+            return False
+    return True
+
+
+def by_path(entries: list[Any], paths: Sequence[VariablePath]) -> list[Any]:
+    """Return each path's entry: named as sent, else the only one naming it in another case."""
+    exact: dict[str, Any] = {}
+    other_case: dict[str, list[Any]] = {}
+    for entry in entries:
+        named = entry.get("path") if isinstance(entry, dict) else None
+        if isinstance(named, str):
+            exact.setdefault(named.strip(), entry)
+            other_case.setdefault(folded(named), []).append(entry)
+    chosen: list[Any] = []
+    for path in paths:
+        entry = exact.get(path.text, exact.get(path.name))
+        if entry is None:
+            found = other_case.get(folded(path.text), []) + other_case.get(folded(path.name), [])
+            entry = found[0] if len(found) == 1 else None
+        chosen.append(entry)
+    return chosen
+
+
+async def isolate(
+    paths: Sequence[VariablePath],
+    attempt: Callable[[Sequence[VariablePath]], Awaitable[Any]],
+    unknown: dict[str, PlcError],
+) -> tuple[list[VariablePath], Any]:
+    """Try the paths; on 404 find the unknown names one at a time, each by halving.
+
+    A 404 names no path (PyREST's log: `invalidNames`), so the rest is tried as a whole and,
+    refused, halved down to its first unknown name: about log2(N) + 2 requests a name. Return
+    the paths the PLC knows and the answer of an attempt that took them all (None if none did).
+    """
+    known: list[VariablePath] = []
+    rest = list(paths)
+    while rest:
+        try:
+            answer = await attempt(rest)
+        except ApiError as err:
+            if err.status != 404:
+                raise
+            words = err.words
+        else:
+            return known + rest, None if known else answer
+        low, high = 0, len(rest)  # rest[low:high] holds an unknown name; rest[:low] does not
+        while high - low > 1:
+            middle = (low + high) // 2
+            try:
+                await attempt(rest[low:middle])
+            except ApiError as err:
+                if err.status != 404:
+                    raise
+                high, words = middle, err.words
+            else:
+                low = middle
+        unknown[rest[low].key] = PlcAddressError(
+            f"{rest[low].text}: the PLC does not know this variable, or it has no HMI flag "
+            f"({words})"
+        )
+        known += rest[:low]
+        rest = rest[low + 1 :]
+    return known, None
