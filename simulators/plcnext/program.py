@@ -158,9 +158,14 @@ def arrays(node: Node) -> Iterator[Array]:
 
 @dataclass(slots=True)
 class Program:
-    """The HMI variables of one project download, by full path."""
+    """The HMI variables of one project download, by full path.
+
+    `case_sensitive`: names match only as declared (no source says; IEC 61131-3 names are
+    case-insensitive, C++ components' are not). Off: any case names the variable.
+    """
 
     variables: dict[str, Variable] = field(default_factory=dict)
+    case_sensitive: bool = False
     _names: dict[str, str] = field(default_factory=dict, init=False, repr=False)
 
     def __post_init__(self) -> None:
@@ -173,20 +178,30 @@ class Program:
         del self._names[old.lower()]
         self._names[new.lower()] = new
 
+    def _fold(self, text: str) -> str:
+        """Return a name as compared."""
+        return text if self.case_sensitive else text.lower()
+
+    def declared(self, path: str) -> tuple[str, str] | None:
+        """Return the declared name of the variable a path names, and the rest of the path."""
+        text = path.strip()
+        exact = text if self.case_sensitive else self._names.get(text.lower())
+        if exact is not None and exact in self.variables:
+            return exact, ""
+        folded = self._fold(text)
+        for name in self.variables:
+            if folded.startswith((self._fold(name) + ".", self._fold(name) + "[")):
+                return name, text[len(name) :]
+        return None
+
     def find(self, path: str) -> tuple[Variable, Node] | None:
         """Return the variable and node a full path names (members, `[i]` elements)."""
-        lowered = path.strip().lower()
-        if (exact := self._names.get(lowered)) is not None:
-            variable = self.variables[exact]
-            return variable, variable.node
-        for name, variable in self.variables.items():
-            key = name.lower()
-            if lowered == key:
-                return variable, variable.node
-            if lowered.startswith((key + ".", key + "[")):
-                node = _walk(variable, path.strip()[len(name) :])
-                return None if node is None else (variable, node)
-        return None
+        found = self.declared(path)
+        if found is None:
+            return None
+        variable = self.variables[found[0]]
+        node = _walk(variable, found[1], self.case_sensitive)
+        return None if node is None else (variable, node)
 
     def data_dictionary(self) -> dict[str, Any]:
         """Return `/ehmi/data.dictionary.json`: every HMI variable's type and read-only flag."""
@@ -228,7 +243,7 @@ class Program:
         return {"Types": list(listing.values())}
 
 
-def _walk(variable: Variable, rest: str) -> Node | None:
+def _walk(variable: Variable, rest: str, case_sensitive: bool) -> Node | None:
     """Follow `.member` and `[i]` steps from a variable's node.
 
     No source shows the path of an element of a multi-dimensional array: none is served.
@@ -239,7 +254,14 @@ def _walk(variable: Variable, rest: str) -> Node | None:
             name, rest = _name(rest[1:])
             if not isinstance(node, dict):
                 return None
-            match = next((key for key in node if key.lower() == name.lower()), None)
+            match = next(
+                (
+                    key
+                    for key in node
+                    if key == name or (not case_sensitive and key.lower() == name.lower())
+                ),
+                None,
+            )
             if match is None:
                 return None
             node = node[match]
@@ -266,66 +288,3 @@ def _name(text: str) -> tuple[str, str]:
         if found != -1:
             end = min(end, found)
     return text[:end], text[end:]
-
-
-def default_program(bench: int = 0) -> Program:
-    """Return the demo project: every elementary type, a structure, an array, bench values."""
-    main = PREFIX + "MainInstance."
-    leaves: dict[str, tuple[str, Any, bool]] = {
-        "Temperature": ("REAL", 21.5, True),
-        "Setpoint": ("REAL", 22.0, False),
-        "Pump": ("BOOL", False, False),
-        "Alarm": ("BOOL", True, True),
-        "Counter": ("DINT", 799244562, True),
-        "Speed": ("INT", -1200, False),
-        "Small": ("SINT", -5, False),
-        "Tiny": ("USINT", 200, False),
-        "Mask": ("BYTE", 0x5A, False),
-        "Status": ("WORD", 0xBEEF, False),
-        "Wide": ("UINT", 60000, False),
-        "Flags": ("DWORD", 0xDEADBEEF, False),
-        "Energy": ("UDINT", 4_000_000_000, False),
-        "Total": ("LINT", -(2**40), False),
-        "Big": ("ULINT", 2**63, False),
-        "Pattern": ("LWORD", 2**60, False),
-        "Precise": ("LREAL", 123456.789, False),
-        "Message": ("STRING", "Hello PLCnext", False),
-        "Label": ("WSTRING", "Grüße ✓", False),
-        "Runtime": ("TIME", 90_000, False),
-        "Uptime": ("LTIME", 5_000_000_000, True),
-        "Clock": ("DT", "2026-11-26T08:00:00.000Z", False),
-        "Today": ("DATE", "2026-11-26", False),
-    }
-    variables = {
-        main + name: Variable(kind, Leaf(kind, value), read_only)
-        for name, (kind, value, read_only) in leaves.items()
-    }
-    steps: list[Node] = [Leaf("DINT", seconds) for seconds in (60, 300, 45)]
-    variables[main + "Recipe"] = Variable(
-        "RecipeType",
-        {
-            "Name": Leaf("STRING", "Bread"),
-            "Weight": Leaf("REAL", 2.5),
-            "Ready": Leaf("BOOL", False),
-            "Steps": Array("StepArray", "DINT", ((1, 3),), steps),
-        },
-    )
-    levels: list[Node] = [Leaf("INT", level) for level in (10, 20, 30, 40)]
-    variables[main + "Levels"] = Variable(
-        "LevelArray", Array("LevelArray", "INT", ((1, 4),), levels)
-    )
-    rows: list[Node] = [
-        Array("ShiftArray", "UINT", ((0, 2),), [Leaf("UINT", row * 10 + shift) for shift in (0, 1)])
-        for row in (1, 2, 3)
-    ]
-    variables[main + "Shifts"] = Variable(
-        "WeekArray", Array("WeekArray", "ShiftArray", ((5, 3),), rows)
-    )
-    grid = [[Leaf("INT", row * 10 + col) for col in (1, 2)] for row in (0, 1)]
-    variables[main + "Grid"] = Variable(
-        "GridArray", Array("GridArray", "INT", ((0, 2), (1, 2)), grid)
-    )
-    variables[PREFIX + "GlobalFlag"] = Variable("BOOL", Leaf("BOOL", True))
-    for index in range(bench):
-        variables[f"{PREFIX}Bench.Value{index}"] = Variable("DINT", Leaf("DINT", index), True)
-    return Program(variables)

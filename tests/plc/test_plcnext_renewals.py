@@ -11,7 +11,7 @@ import pytest
 from custom_components.plc_bridge.plc import PlcConnectionError, PlcError, PlcProtocolError, Point
 from custom_components.plc_bridge.plc.vendors.plcnext import PlcnextClient
 from simulators.plcnext import PlcnextSimulator
-from simulators.plcnext.program import default_program
+from simulators.plcnext.demo import default_program
 
 POINTS = [
     Point("MainInstance.Temperature", "REAL"),

@@ -63,6 +63,7 @@ class Plan:
     wanted: list[tuple[Point, VariablePath, str]] = field(default_factory=list)
     paths: dict[str, VariablePath] = field(default_factory=dict)
     errors: dict[Point, PointResult] = field(default_factory=dict)
+    clock: VariablePath | None = None  # a poll's: read in its group, at no request
 
 
 class PlcnextClient(PlcClient):
@@ -161,8 +162,9 @@ class PlcnextClient(PlcClient):
             plan.wanted.append((point, path, kind))
             plan.paths.setdefault(path.key, path)
         if poll:
-            if (clock := self._clock_path()) is not None:  # in the poll's group: no request
-                plan.paths.setdefault(clock.key, clock)
+            plan.clock = self._clock_path()
+            if plan.clock is not None:
+                plan.paths.setdefault(plan.clock.key, plan.clock)
             self._last = plan
         return plan
 
@@ -174,7 +176,7 @@ class PlcnextClient(PlcClient):
         if not poll:
             reading = await reader.variables(list(paths.values()), {})
             return ReadResult(values=self._place(reading, wanted, values))
-        clock_path = self._clock_path()
+        clock_path = plan.clock
         reading = await reader.poll(paths) if paths else Reading()
         when = self._outcome(reading, clock_path, "DT").value if clock_path else None
         status = plc_status(reader.crc, reader.regroups, when)
