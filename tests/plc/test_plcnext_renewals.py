@@ -94,3 +94,17 @@ async def test_deeply_nested_answer(
     with pytest.raises(PlcError) as caught:
         await (call or plcnext_client.browse())
     assert isinstance(caught.value, PlcConnectionError if status == 500 else PlcProtocolError)
+
+
+async def test_a_reused_group_is_left_registered(
+    plcnext_sim: PlcnextSimulator, plcnext_client: PlcnextClient
+) -> None:
+    """An identical group the PLC reused (200: another client's) is not unregistered."""
+    status, other = plcnext_sim.groups.register(
+        "Arp.Plc.Eclr/", ["MainInstance.Temperature", "MainInstance.Pump", "MainInstance.Clock"]
+    )
+    assert status == 201
+    await plcnext_client.read(POINTS[:2])
+    await plcnext_client.read(POINTS)
+    await plcnext_client.close()
+    assert list(plcnext_sim.groups.registered) == [other]

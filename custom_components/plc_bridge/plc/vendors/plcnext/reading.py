@@ -28,11 +28,16 @@ NO_GROUPS = (400, 405, 415, 501)  # groups cannot serve: read variables instead
 
 @dataclass(frozen=True, slots=True)
 class Group:
-    """A group the PLC registered: its id, the paths in its order, the program it was made for."""
+    """A group the PLC registered: its id, the paths in its order, the program it was made for.
+
+    `created`: registered by this client (201), not an identical one reused (200), which
+    another client may be reading: only a created group is unregistered.
+    """
 
     id: str
     paths: tuple[VariablePath, ...]
     crc: Any
+    created: bool = False
 
 
 GROUP_IDLE = 120.0
@@ -160,7 +165,8 @@ class Reader:
         if not isinstance(group_id, str) or not group_id:
             raise PlcProtocolError("the PLC registered the group but sent no id")
         assert isinstance(answer, dict)
-        self.group = Group(group_id, tuple(known), answer.get("projectCRC"))
+        created = self._api.last_status == 201
+        self.group = Group(group_id, tuple(known), answer.get("projectCRC"), created)
 
     async def _known(self, wanted: list[VariablePath]) -> list[VariablePath]:
         """Return the paths the PLC knows, learning the others by variable reads.
@@ -180,7 +186,7 @@ class Reader:
     async def unregister_group(self) -> None:
         """Unregister the poll's group, when it has one (best effort: it expires on its own)."""
         group, self.group = self.group, None
-        if group is not None and group.id:
+        if group is not None and group.id and group.created:
             await self.unregister(group.id)
 
     async def unregister(self, group_id: str) -> None:
