@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import time
 from typing import Any
 
 from aiohttp import web
@@ -19,6 +20,7 @@ class AccessRoutes:
     access: Access
     auth: bool
     foreign: bool
+    station_conflicts: bool  # a second session for a station with a live one: 409 (PyREST)
 
     def _reason(self, documented: str, own: str) -> str:
         """Return a reason: the documented one, or in foreign mode the simulator's own."""
@@ -61,6 +63,9 @@ class AccessRoutes:
             timeout = number(fields.get("timeout"), 3_600_000)
             if not station:
                 raise Fault(400, "invalidStationID")
+            live = (s for s in self.access.sessions.values() if s.station == station)
+            if self.station_conflicts and any(s.alive(time.monotonic()) for s in live):
+                raise Fault(409, self._reason("stationInUse", "conflict"))
             session_id = self.access.open(station, timeout)
             return self._json({"sessionID": session_id}, status=201)
         if parts and method in ("POST", "PUT"):

@@ -6,7 +6,8 @@ choose: `bodies` ("both", "json", "form" group registrations), `text_values` (va
 text), `trailing_slashes`, `groups.timeout`, `auth` (user authentication on or off),
 `unknown_entries` (unknown names in a variable read fail their entry, not the request),
 `groups_served` (False: an interface without groups), `program.case_sensitive` (names match
-only as declared), `declared_spelling` (answers spell paths as declared, not as asked).
+only as declared), `declared_spelling` (answers spell paths as declared, not as asked),
+`station_conflicts` (409 for a second session of one station). See READINGS.md.
 `foreign` answers the cases the sources leave open with other reasons and error shapes than
 the client's tests assume, so the client is tested on structure.
 """
@@ -69,6 +70,7 @@ class PlcnextSimulator(AccessRoutes, HttpSimulator):
         self.keep_groups = False  # groups survive a download (then stale names fail per entry)
         self.groups_served = True  # False: an interface without groups (405 on /groups)
         self.declared_spelling = False  # answers name a path as declared, not as asked
+        self.station_conflicts = False  # 409 for a station that has a live session
         self.groups = Groups()  # `groups.timeout`: 120 s idle
         self.answer_with: tuple[int, bytes] | None = None  # every data answer: status, body
         self.calls: dict[str, int] = {}

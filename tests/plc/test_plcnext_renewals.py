@@ -5,6 +5,7 @@ from __future__ import annotations
 import asyncio
 import math
 import random
+from typing import TYPE_CHECKING
 
 import pytest
 
@@ -12,6 +13,9 @@ from custom_components.plc_bridge.plc import PlcConnectionError, PlcError, PlcPr
 from custom_components.plc_bridge.plc.vendors.plcnext import PlcnextClient
 from simulators.plcnext import PlcnextSimulator
 from simulators.plcnext.demo import default_program
+
+if TYPE_CHECKING:
+    from .plcnext_fixtures import ConfigFactory
 
 POINTS = [
     Point("MainInstance.Temperature", "REAL"),
@@ -108,3 +112,19 @@ async def test_a_reused_group_is_left_registered(
     await plcnext_client.read(POINTS)
     await plcnext_client.close()
     assert list(plcnext_sim.groups.registered) == [other]
+
+
+async def test_station_with_a_session_takes_another_id(
+    plcnext_sim: PlcnextSimulator, plcnext_config: ConfigFactory
+) -> None:
+    """A 409 for a station that has a session (PyREST): another station id, once."""
+    plcnext_sim.station_conflicts = True
+    client = PlcnextClient(plcnext_config())
+    try:
+        station = client._rest().station
+        plcnext_sim.access.open(str(station), 60_000)
+        await client.connect()
+        assert client._rest().station != station
+        assert client._rest().session_id in plcnext_sim.access.sessions
+    finally:
+        await client.close()
