@@ -65,3 +65,18 @@ async def test_names_differing_in_case_are_not_merged(
         assert not result.values[other].ok
     else:
         assert result.values[other].value is True
+
+
+async def test_results_kept_only_for_the_same_value(
+    plcnext_sim: PlcnextSimulator, plcnext_client: PlcnextClient
+) -> None:
+    """A poll reuses a point's result only for the same JSON value: 0.0 then -0.0 shows both."""
+    setpoint, pump = Point("MainInstance.Setpoint", "REAL"), Point("MainInstance.Pump", "BOOL")
+    shown: list[tuple[object, object]] = []
+    for real, flag in ((0.0, False), (-0.0, False), (-0.0, True), (1.5, True)):
+        plcnext_sim.set("MainInstance.Setpoint", real)
+        plcnext_sim.set("MainInstance.Pump", flag)
+        result = await plcnext_client.read([setpoint, pump])
+        shown.append((result.values[setpoint].value, result.values[pump].value))
+    assert [str(value) for value, _flag in shown] == ["0.0", "-0.0", "-0.0", "1.5"]
+    assert [flag for _value, flag in shown] == [False, False, True, True]

@@ -64,6 +64,12 @@ class Plan:
     paths: dict[str, VariablePath] = field(default_factory=dict)
     errors: dict[Point, PointResult] = field(default_factory=dict)
     clock: VariablePath | None = None  # a poll's: read in its group, at no request
+    last: list[tuple[Any, PointResult] | None] = field(default_factory=list)  # by `wanted`
+
+
+def same_json(old: Any, new: Any) -> bool:
+    """True when two JSON values are the same value of the same type (0.0 is not -0.0)."""
+    return old == new and type(old) is type(new) and (bool(new) or type(new) is not float)
 
 
 class PlcnextClient(PlcClient):
@@ -161,6 +167,7 @@ class PlcnextClient(PlcClient):
                 continue
             plan.wanted.append((point, path, kind))
             plan.paths.setdefault(path.key, path)
+        plan.last = [None] * len(plan.wanted)
         if poll:
             plan.clock = self._clock_path()
             if plan.clock is not None:
@@ -171,34 +178,42 @@ class PlcnextClient(PlcClient):
     async def _read(self, points: Sequence[Point], *, poll: bool) -> ReadResult:
         """Read every distinct path once: the poll's group, or variables for an on-demand read."""
         plan = self._plan(points, poll=poll)
-        values, wanted, paths = dict(plan.errors), plan.wanted, plan.paths
+        paths = plan.paths
         reader = self._poller()
         if not poll:
             reading = await reader.variables(list(paths.values()), {})
-            return ReadResult(values=self._place(reading, wanted, values))
+            return ReadResult(values=self._place(reading, plan))
         clock_path = plan.clock
         reading = await reader.poll(paths) if paths else Reading()
         when = self._outcome(reading, clock_path, "DT").value if clock_path else None
         status = plc_status(reader.crc, reader.regroups, when)
-        return ReadResult(values=self._place(reading, wanted, values), status=status)
+        return ReadResult(values=self._place(reading, plan), status=status)
 
-    def _place(
-        self,
-        reading: Reading,
-        wanted: list[tuple[Point, VariablePath, str]],
-        values: dict[Point, PointResult],
-    ) -> dict[Point, PointResult]:
-        """Return the results of the wanted points from a reading, with those failed before."""
+    def _place(self, reading: Reading, plan: Plan) -> dict[Point, PointResult]:
+        """Return the results of the plan's points from a reading, with those failed before.
+
+        A value the PLC sent exactly as at the last poll keeps its last result: decoding the
+        same JSON value in the same zone gives the same value, and makes nothing new.
+        """
         found, failed, zone = reading.found, reading.failed, self._zone
-        for point, path, kind in wanted:
+        values = dict(plan.errors)
+        last = plan.last
+        for index, (point, path, kind) in enumerate(plan.wanted):
             raw = found.get(path.key, found)  # `found` itself: absent
             if raw is found or (failed and path.key in failed):
                 values[point] = self._outcome(reading, path, kind)
+                last[index] = None
+                continue
+            kept = last[index]
+            if kept is not None and same_json(kept[0], raw):
+                values[point] = kept[1]
                 continue
             try:
-                values[point] = PointResult(value=decode(kind, raw, zone, path.text))
+                result = PointResult(value=decode(kind, raw, zone, path.text))
             except PlcProtocolError as err:
-                values[point] = PointResult(error=err)
+                result = PointResult(error=err)
+            values[point] = result
+            last[index] = (raw, result) if result.ok else None
         return values
 
     def _outcome(self, reading: Reading, path: VariablePath, kind: str) -> PointResult:
