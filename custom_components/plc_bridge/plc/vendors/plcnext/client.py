@@ -205,7 +205,7 @@ class PlcnextClient(PlcClient):
                 last[index] = None
                 continue
             kept = last[index]
-            if kept is not None and same_json(kept[0], raw):
+            if kept is not None and kept[0] == raw and same_json(kept[0], raw):
                 values[point] = kept[1]
                 continue
             try:

@@ -33,33 +33,41 @@ def place(answer: Any, paths: Sequence[VariablePath], reading: Reading) -> None:
     if not isinstance(entries, list):
         raise PlcProtocolError("the PLC's answer holds no variables")
     reading.crc = answer.get("projectCRC")
-    chosen: Sequence[Any] = entries
-    if len(entries) != len(paths) or not in_order(entries, paths):
-        chosen = by_path(entries, paths)
-    found = reading.found
-    for path, entry in zip(paths, chosen, strict=True):
-        if type(entry) is dict and "value" in entry and entry.get("error") is None:
-            found[path.key] = entry["value"]
-        elif entry is None:
-            reading.failed[path.key] = PlcProtocolError(f"{path.text} is missing from the answer")
-        elif entry.get("error") is not None:
-            said = ", ".join(reasons_of(entry["error"])) or "no reason given"
-            reading.failed[path.key] = PlcAddressError(f"{path.text}: the PLC says {said}")
-        elif "value" not in entry:
-            reading.failed[path.key] = PlcProtocolError(f"{path.text}: the answer has no value")
-        else:
-            reading.found[path.key] = entry["value"]
+    if len(entries) != len(paths) or not in_order(entries, paths, reading):
+        for path, entry in zip(paths, by_path(entries, paths), strict=True):
+            if entry is not None and "value" in entry and entry.get("error") is None:
+                reading.found[path.key] = entry["value"]
+            else:
+                reading.failed[path.key] = failure(entry, path)
 
 
-def in_order(entries: list[Any], paths: Sequence[VariablePath]) -> bool:
-    """True when each entry is an object naming its path, or naming none (the summary form)."""
+def in_order(entries: list[Any], paths: Sequence[VariablePath], reading: Reading) -> bool:
+    """Place the entries by position and return True, if each names its path (or none)."""
+    found: dict[str, Any] = {}
+    failed: dict[str, PlcError] = {}
     for entry, path in zip(entries, paths, strict=True):
-        if not isinstance(entry, dict):
+        if type(entry) is not dict:
             return False
         named = entry.get("path", path.name)
         if named not in (path.name, path.text) and not same_path(named, path):
             return False
+        if "value" in entry and entry.get("error") is None:
+            found[path.key] = entry["value"]
+        else:
+            failed[path.key] = failure(entry, path)
+    reading.found.update(found)
+    reading.failed.update(failed)
     return True
+
+
+def failure(entry: dict[str, Any] | None, path: VariablePath) -> PlcError:
+    """Return the error of an entry that holds no value (or of a path with no entry)."""
+    if entry is None:
+        return PlcProtocolError(f"{path.text} is missing from the answer")
+    if entry.get("error") is not None:
+        said = ", ".join(reasons_of(entry["error"])) or "no reason given"
+        return PlcAddressError(f"{path.text}: the PLC says {said}")
+    return PlcProtocolError(f"{path.text}: the answer has no value")
 
 
 def by_path(entries: list[Any], paths: Sequence[VariablePath]) -> list[Any]:
