@@ -106,6 +106,8 @@ class Reader:
             # The PLC no longer knows the group (120 s idle, restart, new program).
             self.regroups += 1
             await self._register(wanted)
+            if not self.groups_ok:
+                return await self.variables(wanted, self.unknown)
             group = self.group
             if group is None or not group.paths:
                 return reading
