@@ -5,6 +5,7 @@ Pure decisions about answers, tested through the reader: no request is made here
 
 from __future__ import annotations
 
+from collections import Counter
 from collections.abc import Awaitable, Callable, Sequence
 from dataclasses import dataclass, field
 from typing import Any
@@ -42,15 +43,24 @@ def place(answer: Any, paths: Sequence[VariablePath], reading: Reading) -> None:
 
 
 def in_order(entries: list[Any], paths: Sequence[VariablePath], reading: Reading) -> bool:
-    """Place the entries by position and return True, if each names its path (or none)."""
+    """Place the entries by position and return True, if each names its path (or none).
+
+    A relative name counts where no other path has it, another case where no other path
+    differs in case alone: else the entry could be another path's.
+    """
     found: dict[str, Any] = {}
     failed: dict[str, PlcError] = {}
+    checked: dict[str, bool] = {}  # "relative", "case": computed once, where first needed
     for entry, path in zip(entries, paths, strict=True):
         if type(entry) is not dict:
             return False
-        named = entry.get("path", path.name)
-        if named not in (path.name, path.text) and not same_path(named, path):
-            return False
+        named = entry.get("path", path.text)
+        if named != path.text:
+            how = "relative" if named == path.name else "case"
+            if how not in checked:
+                checked[how] = unique(paths, relative=how == "relative")
+            if not checked[how] or (how == "case" and not same_path(named, path)):
+                return False
         if "value" in entry and entry.get("error") is None:
             found[path.key] = entry["value"]
         else:
@@ -58,6 +68,15 @@ def in_order(entries: list[Any], paths: Sequence[VariablePath], reading: Reading
     reading.found.update(found)
     reading.failed.update(failed)
     return True
+
+
+def unique(paths: Sequence[VariablePath], *, relative: bool) -> bool:
+    """True when no two paths share their relative name (or, else, their case-folded one)."""
+    if relative:
+        return len({path.component for path in paths}) == 1 or len(
+            {path.name for path in paths}
+        ) == len(paths)
+    return len({folded(path.name) for path in paths}) == len(paths)
 
 
 def failure(entry: dict[str, Any] | None, path: VariablePath) -> PlcError:
@@ -71,21 +90,38 @@ def failure(entry: dict[str, Any] | None, path: VariablePath) -> PlcError:
 
 
 def by_path(entries: list[Any], paths: Sequence[VariablePath]) -> list[Any]:
-    """Return each path's entry: named as sent, else the only one naming it in another case."""
-    exact: dict[str, Any] = {}
-    other_case: dict[str, list[Any]] = {}
+    """Return each path's entry, None where none or several could be it.
+
+    Named as sent (in full, or relative where no other path has that name), else the only
+    entry left that names it in another case (where no other path differs in case alone).
+    """
+    named: dict[str, list[Any]] = {}
     for entry in entries:
-        named = entry.get("path") if isinstance(entry, dict) else None
-        if isinstance(named, str):
-            exact.setdefault(named.strip(), entry)
-            other_case.setdefault(folded(named), []).append(entry)
+        name = entry.get("path") if isinstance(entry, dict) else None
+        if isinstance(name, str):
+            named.setdefault(name.strip(), []).append(entry)
+    relative = Counter(path.name for path in paths)
     chosen: list[Any] = []
     for path in paths:
-        entry = exact.get(path.text, exact.get(path.name))
-        if entry is None:
-            found = other_case.get(folded(path.text), []) + other_case.get(folded(path.name), [])
-            entry = found[0] if len(found) == 1 else None
-        chosen.append(entry)
+        found = named.get(path.text, [])
+        if relative[path.name] == 1:
+            found = found + named.get(path.name, [])
+        chosen.append(found[0] if len(found) == 1 else None)
+    if all(entry is not None for entry in chosen):
+        return chosen
+    taken = {id(entry) for entry in chosen if entry is not None}
+    by_fold: dict[str, list[Any]] = {}
+    for name, listed in named.items():
+        by_fold.setdefault(folded(name), []).extend(listed)
+    spelled = Counter(folded(path.name) for path in paths)
+    for index, path in enumerate(paths):
+        if chosen[index] is not None or spelled[folded(path.name)] > 1:
+            continue
+        keys = [folded(path.text)] + ([folded(path.name)] if relative[path.name] == 1 else [])
+        found = [e for key in keys for e in by_fold.get(key, []) if id(e) not in taken]
+        if len(found) == 1:
+            chosen[index] = found[0]
+            taken.add(id(found[0]))
     return chosen
 
 
