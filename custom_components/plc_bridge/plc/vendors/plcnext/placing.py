@@ -45,21 +45,20 @@ def place(answer: Any, paths: Sequence[VariablePath], reading: Reading) -> None:
 def in_order(entries: list[Any], paths: Sequence[VariablePath], reading: Reading) -> bool:
     """Place the entries by position and return True, if each names its path (or none).
 
-    A relative name counts where no other path has it, another case where no other path
-    differs in case alone: else the entry could be another path's.
+    The PLC answers in request order (Groups page): a relative name counts where no other
+    path has it; another case counts (a PLC may answer with the declared spelling).
     """
     found: dict[str, Any] = {}
     failed: dict[str, PlcError] = {}
-    checked: dict[str, bool] = {}  # "relative", "case": computed once, where first needed
+    relative: list[bool] = []  # computed once, where first needed
     for entry, path in zip(entries, paths, strict=True):
         if type(entry) is not dict:
             return False
         named = entry.get("path", path.text)
         if named != path.text:
-            how = "relative" if named == path.name else "case"
-            if how not in checked:
-                checked[how] = unique(paths, relative=how == "relative")
-            if not checked[how] or (how == "case" and not same_path(named, path)):
+            if not relative:
+                relative.append(unique_names(paths))
+            if not relative[0] or not same_path(named, path):
                 return False
         if "value" in entry and entry.get("error") is None:
             found[path.key] = entry["value"]
@@ -70,12 +69,10 @@ def in_order(entries: list[Any], paths: Sequence[VariablePath], reading: Reading
     return True
 
 
-def unique(paths: Sequence[VariablePath], *, relative: bool) -> bool:
-    """True when no two paths share their relative name (or, else, their case-folded one)."""
-    if relative:
-        return len({path.component for path in paths}) == 1 or len(
-            {path.name for path in paths}
-        ) == len(paths)
+def unique_names(paths: Sequence[VariablePath]) -> bool:
+    """True when no two paths share their name in their component (in any case)."""
+    if len({path.component for path in paths}) == 1:
+        return True
     return len({folded(path.name) for path in paths}) == len(paths)
 
 
