@@ -43,7 +43,7 @@ from .browse import (
     members,
     types,
 )
-from .codec import KINDS, TYPES, check_value, data_type, decode, encode
+from .codec import KINDS, TYPES, check_value, data_type, decode, encode, same_json
 from .errors import ApiError, request_error
 from .info import device_info, plc_status
 from .paths import VariablePath, parse_path
@@ -65,11 +65,6 @@ class Plan:
     errors: dict[Point, PointResult] = field(default_factory=dict)
     clock: VariablePath | None = None  # a poll's: read in its group, at no request
     last: list[tuple[Any, PointResult] | None] = field(default_factory=list)  # by `wanted`
-
-
-def same_json(old: Any, new: Any) -> bool:
-    """True when two JSON values are the same value of the same type (0.0 is not -0.0)."""
-    return old == new and type(old) is type(new) and (bool(new) or type(new) is not float)
 
 
 class PlcnextClient(PlcClient):
