@@ -58,7 +58,7 @@ def in_order(entries: list[Any], paths: Sequence[VariablePath], reading: Reading
         if named != path.text:
             if not relative:
                 relative.append(unique_names(paths))
-            if not relative[0] or not same_path(named, path):
+            if not relative[0] or (named != path.name and not same_path(named, path)):
                 return False
         if "value" in entry and entry.get("error") is None:
             found[path.key] = entry["value"]
