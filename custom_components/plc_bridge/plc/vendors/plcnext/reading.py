@@ -99,7 +99,7 @@ class Reader:
         if group is None or not group.paths:
             return reading
         try:
-            answer = await self._api.call("GET", self._group_uri(group))
+            answer = await self._api.call("GET", self._group_uri(group.id))
         except ApiError as err:
             if err.status != 404:
                 raise request_error(err) from None
@@ -112,7 +112,7 @@ class Reader:
             if group is None or not group.paths:
                 return reading
             try:
-                answer = await self._api.call("GET", self._group_uri(group))
+                answer = await self._api.call("GET", self._group_uri(group.id))
             except ApiError as again:
                 raise request_error(again) from None
         if isinstance(answer, dict) and answer.get("id") not in (None, group.id):
@@ -130,12 +130,12 @@ class Reader:
             return None
         return answer.get("projectCRC") if isinstance(answer, dict) else None
 
-    def _group_uri(self, group: Group) -> Callable[[str | None], Request]:
-        """Return the request maker of a group read (its session id keeps the session alive)."""
+    def _group_uri(self, group_id: str) -> Callable[[str | None], Request]:
+        """Return the request maker of a group's read or unregistration (with the session)."""
 
         def make(session: str | None) -> Request:
             query = f"?sessionID={quote(session, safe='')}" if session else ""
-            return f"{self._api.base}/groups/{quote(group.id, safe='')}{query}", None, None
+            return f"{self._api.base}/groups/{quote(group_id, safe='')}{query}", None, None
 
         return make
 
@@ -193,13 +193,8 @@ class Reader:
 
     async def unregister(self, group_id: str) -> None:
         """DELETE a group (best effort: the PLC drops it after about 120 s unused)."""
-
-        def make(session: str | None) -> Request:
-            query = f"?sessionID={quote(session, safe='')}" if session else ""
-            return f"{self._api.base}/groups/{quote(group_id, safe='')}{query}", None, None
-
         try:
-            await self._api.call("DELETE", make)
+            await self._api.call("DELETE", self._group_uri(group_id))
         except ApiError:
             return
 
