@@ -66,15 +66,17 @@ async def test_pick_list_from_the_dictionary(
         label(MAIN + "Uptime", "LTIME"),
         label(MAIN + "Clock", "DT"),
         label(MAIN + "Today", "DATE"),
-        # A structure's members: the dictionary declares none, JSON says only "a number"
-        label(MAIN + "Recipe.Name", "STRING?"),
-        label(MAIN + "Recipe.Weight", "LREAL?"),
+        # A structure's members: typed by a register answer, not guessed from JSON
+        label(MAIN + "Recipe.Name", "STRING"),
+        label(MAIN + "Recipe.Weight", "REAL"),
+        label(MAIN + "Recipe.Steps[1]", "DINT"),  # an array in a structure: bounds of its type
         label(MAIN + "Levels[1]", "INT"),  # the type dictionary's element type and first index
         label(MAIN + "Levels[4]", "INT"),
         label("Arp.Plc.Eclr/GlobalFlag", "BOOL"),
     ):
         assert shown in labels, shown
     assert label(MAIN + "Levels[0]", "INT") not in labels
+    assert label(MAIN + "Recipe.Steps[0]", "DINT") not in labels
     assert not any(f"{MAIN}Recipe (" in shown for shown in labels)
 
 

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from collections.abc import Iterator
 from dataclasses import dataclass, field
 from datetime import datetime
 import math
@@ -100,34 +101,71 @@ def _number(raw: Any) -> int | float | None:
     return None
 
 
-type Node = Leaf | dict[str, "Node"] | list["Node"]
+@dataclass(slots=True)
+class Array:
+    """An array: its type name, element type, (first index, length) per dimension, elements.
+
+    A multi-dimensional array keeps its elements in nested lists, the first dimension outside.
+    """
+
+    type: str
+    element: str
+    dims: tuple[tuple[int, int], ...]
+    items: list[Any]
+
+
+type Node = Leaf | dict[str, "Node"] | Array
 
 
 @dataclass(slots=True)
 class Variable:
-    """An HMI variable: declared type name, value tree, read-only flag, first array index."""
+    """An HMI variable: declared type name, value tree, read-only flag."""
 
     type: str
     node: Node
     read_only: bool = False
-    first: int = 0
-    element: str = ""
 
 
-def as_json(node: Node, as_text: bool) -> Any:
+def as_json(node: Node | list[Node], as_text: bool) -> Any:
     """Return a value tree as JSON: objects for structures, lists for arrays."""
     if isinstance(node, Leaf):
         return node.json(as_text)
     if isinstance(node, dict):
         return {name: as_json(member, as_text) for name, member in node.items()}
-    return [as_json(member, as_text) for member in node]
+    items = node.items if isinstance(node, Array) else node
+    return [as_json(member, as_text) for member in items]
+
+
+def node_type(node: Node) -> str:
+    """Return the type name of a node (a structure member's own type: "" where it has none)."""
+    if isinstance(node, Leaf | Array):
+        return node.type
+    return ""
+
+
+def arrays(node: Node) -> Iterator[Array]:
+    """Yield every array in a value tree (elements of arrays of arrays too)."""
+    if isinstance(node, Array):
+        yield node
+        if not node.items or len(node.dims) != 1:
+            return
+        node = node.items[0]
+        yield from arrays(node)
+    elif isinstance(node, dict):
+        for member in node.values():
+            yield from arrays(member)
 
 
 @dataclass(slots=True)
 class Program:
-    """The HMI variables of one project download, by full path."""
+    """The HMI variables of one project download, by full path.
+
+    `case_sensitive`: names match only as declared (no source says; IEC 61131-3 names are
+    case-insensitive, C++ components' are not). Off: any case names the variable.
+    """
 
     variables: dict[str, Variable] = field(default_factory=dict)
+    case_sensitive: bool = False
     _names: dict[str, str] = field(default_factory=dict, init=False, repr=False)
 
     def __post_init__(self) -> None:
@@ -140,20 +178,30 @@ class Program:
         del self._names[old.lower()]
         self._names[new.lower()] = new
 
+    def _fold(self, text: str) -> str:
+        """Return a name as compared."""
+        return text if self.case_sensitive else text.lower()
+
+    def declared(self, path: str) -> tuple[str, str] | None:
+        """Return the declared name of the variable a path names, and the rest of the path."""
+        text = path.strip()
+        exact = text if self.case_sensitive else self._names.get(text.lower())
+        if exact is not None and exact in self.variables:
+            return exact, ""
+        folded = self._fold(text)
+        for name in self.variables:
+            if folded.startswith((self._fold(name) + ".", self._fold(name) + "[")):
+                return name, text[len(name) :]
+        return None
+
     def find(self, path: str) -> tuple[Variable, Node] | None:
         """Return the variable and node a full path names (members, `[i]` elements)."""
-        lowered = path.strip().lower()
-        if (exact := self._names.get(lowered)) is not None:
-            variable = self.variables[exact]
-            return variable, variable.node
-        for name, variable in self.variables.items():
-            key = name.lower()
-            if lowered == key:
-                return variable, variable.node
-            if lowered.startswith((key + ".", key + "[")):
-                node = _walk(variable, path.strip()[len(name) :])
-                return None if node is None else (variable, node)
-        return None
+        found = self.declared(path)
+        if found is None:
+            return None
+        variable = self.variables[found[0]]
+        node = _walk(variable, found[1], self.case_sensitive)
+        return None if node is None else (variable, node)
 
     def data_dictionary(self) -> dict[str, Any]:
         """Return `/ehmi/data.dictionary.json`: every HMI variable's type and read-only flag."""
@@ -164,43 +212,69 @@ class Program:
         return {"HmiVariables2": table}
 
     def type_dictionary(self) -> dict[str, Any]:
-        """Return `/ehmi/type.dictionary.json`: the structure and array types."""
-        listing = [
-            {
-                "Name": variable.type,
-                "Kind": "Array" if variable.element else "Struct",
-                "ElementType": variable.element or None,
-                "Dimensions": f"[{variable.first}..{variable.first + len(variable.node) - 1}]"
-                if isinstance(variable.node, list)
-                else None,
-            }
-            for variable in self.variables.values()
-            if not isinstance(variable.node, Leaf)
-        ]
-        return {"Types": listing}
+        """Return `/ehmi/type.dictionary.json`: the structure and array types.
+
+        Dimensions as in the Info Center's example: `[{"StartIndex": 1, "Length": 4}]`, one
+        object per dimension.
+        """
+        listing: dict[str, dict[str, Any]] = {}
+        for variable in self.variables.values():
+            if isinstance(variable.node, dict):
+                listing.setdefault(
+                    variable.type,
+                    {
+                        "Name": variable.type,
+                        "Kind": "Struct",
+                        "ElementType": None,
+                        "Dimensions": [],
+                    },
+                )
+            for array in arrays(variable.node):
+                dims = [{"StartIndex": first, "Length": length} for first, length in array.dims]
+                listing.setdefault(
+                    array.type,
+                    {
+                        "Name": array.type,
+                        "Kind": "Array",
+                        "ElementType": array.element,
+                        "Dimensions": dims,
+                    },
+                )
+        return {"Types": list(listing.values())}
 
 
-def _walk(variable: Variable, rest: str) -> Node | None:
-    """Follow `.member` and `[i]` steps from a variable's node."""
+def _walk(variable: Variable, rest: str, case_sensitive: bool) -> Node | None:
+    """Follow `.member` and `[i]` steps from a variable's node.
+
+    No source shows the path of an element of a multi-dimensional array: none is served.
+    """
     node: Node = variable.node
-    first = variable.first
     while rest:
         if rest.startswith("."):
             name, rest = _name(rest[1:])
             if not isinstance(node, dict):
                 return None
-            match = next((key for key in node if key.lower() == name.lower()), None)
+            match = next(
+                (
+                    key
+                    for key in node
+                    if key == name or (not case_sensitive and key.lower() == name.lower())
+                ),
+                None,
+            )
             if match is None:
                 return None
-            node, first = node[match], 0
+            node = node[match]
         elif rest.startswith("["):
             index, _bracket, rest = rest[1:].partition("]")
-            if not isinstance(node, list) or not index.strip().isdigit():
+            if not isinstance(node, Array) or len(node.dims) != 1:
                 return None
-            position = int(index) - first
-            if not 0 <= position < len(node):
+            if not index.strip().lstrip("-").isdigit():
                 return None
-            node, first = node[position], 0
+            position = int(index) - node.dims[0][0]
+            if not 0 <= position < len(node.items):
+                return None
+            node = node.items[position]
         else:
             return None
     return node
@@ -214,51 +288,3 @@ def _name(text: str) -> tuple[str, str]:
         if found != -1:
             end = min(end, found)
     return text[:end], text[end:]
-
-
-def default_program(bench: int = 0) -> Program:
-    """Return the demo project: every elementary type, a structure, an array, bench values."""
-    main = PREFIX + "MainInstance."
-    leaves: dict[str, tuple[str, Any, bool]] = {
-        "Temperature": ("REAL", 21.5, True),
-        "Setpoint": ("REAL", 22.0, False),
-        "Pump": ("BOOL", False, False),
-        "Alarm": ("BOOL", True, True),
-        "Counter": ("DINT", 799244562, True),
-        "Speed": ("INT", -1200, False),
-        "Small": ("SINT", -5, False),
-        "Tiny": ("USINT", 200, False),
-        "Mask": ("BYTE", 0x5A, False),
-        "Status": ("WORD", 0xBEEF, False),
-        "Wide": ("UINT", 60000, False),
-        "Flags": ("DWORD", 0xDEADBEEF, False),
-        "Energy": ("UDINT", 4_000_000_000, False),
-        "Total": ("LINT", -(2**40), False),
-        "Big": ("ULINT", 2**63, False),
-        "Pattern": ("LWORD", 2**60, False),
-        "Precise": ("LREAL", 123456.789, False),
-        "Message": ("STRING", "Hello PLCnext", False),
-        "Label": ("WSTRING", "Grüße ✓", False),
-        "Runtime": ("TIME", 90_000, False),
-        "Uptime": ("LTIME", 5_000_000_000, True),
-        "Clock": ("DT", "2026-11-26T08:00:00.000Z", False),
-        "Today": ("DATE", "2026-11-26", False),
-    }
-    variables = {
-        main + name: Variable(kind, Leaf(kind, value), read_only)
-        for name, (kind, value, read_only) in leaves.items()
-    }
-    variables[main + "Recipe"] = Variable(
-        "RecipeType",
-        {
-            "Name": Leaf("STRING", "Bread"),
-            "Weight": Leaf("REAL", 2.5),
-            "Ready": Leaf("BOOL", False),
-        },
-    )
-    levels: list[Node] = [Leaf("INT", level) for level in (10, 20, 30, 40)]
-    variables[main + "Levels"] = Variable("LevelArray", levels, first=1, element="INT")
-    variables[PREFIX + "GlobalFlag"] = Variable("BOOL", Leaf("BOOL", True))
-    for index in range(bench):
-        variables[f"{PREFIX}Bench.Value{index}"] = Variable("DINT", Leaf("DINT", index), True)
-    return Program(variables)

@@ -5,7 +5,9 @@ dictionaries, over HTTPS with a self-signed certificate. Where the sources disag
 choose: `bodies` ("both", "json", "form" group registrations), `text_values` (values sent as
 text), `trailing_slashes`, `groups.timeout`, `auth` (user authentication on or off),
 `unknown_entries` (unknown names in a variable read fail their entry, not the request),
-`groups_served` (False: an interface without groups).
+`groups_served` (False: an interface without groups), `program.case_sensitive` (names match
+only as declared), `declared_spelling` (answers spell paths as declared, not as asked),
+`station_conflicts` (409 for a second session of one station). See READINGS.md.
 `foreign` answers the cases the sources leave open with other reasons and error shapes than
 the client's tests assume, so the client is tested on structure.
 """
@@ -20,9 +22,19 @@ from aiohttp import web
 
 from ..base import HttpSimulator
 from .access import Access
+from .demo import default_program
 from .groups import Groups
-from .parameters import Fault, body_fields, number, paths_of, query_fields
-from .program import PREFIX, Leaf, Program, Refused, Variable, as_json, default_program
+from .parameters import Fault, body_fields, paths_of, query_fields
+from .program import (
+    PREFIX,
+    Leaf,
+    Program,
+    Refused,
+    Variable,
+    as_json,
+    node_type,
+)
+from .routes import AccessRoutes
 
 DEFAULT_USER = "admin"
 DEFAULT_PASSWORD = "PLCnext-1"
@@ -32,8 +44,8 @@ API_VERSION = "1.8.0.0"
 VERSIONS = ("api", "v1.0", "v1.1", "v1.2", "v1.3", "v1.4", "v1.5", "v1.6", "v1.7", "v1.8")
 
 
-class PlcnextSimulator(HttpSimulator):
-    """A PLCnext Control running the demo project (`program.default_program`)."""
+class PlcnextSimulator(AccessRoutes, HttpSimulator):
+    """A PLCnext Control running the demo project (`demo.default_program`)."""
 
     tls = True
     common_name = "plcnext-axc-f-2152"
@@ -57,7 +69,10 @@ class PlcnextSimulator(HttpSimulator):
         self.unknown_entries = False
         self.keep_groups = False  # groups survive a download (then stale names fail per entry)
         self.groups_served = True  # False: an interface without groups (405 on /groups)
+        self.declared_spelling = False  # answers name a path as declared, not as asked
+        self.station_conflicts = False  # 409 for a station that has a live session
         self.groups = Groups()  # `groups.timeout`: 120 s idle
+        self.answer_with: tuple[int, bytes] | None = None  # every data answer: status, body
         self.calls: dict[str, int] = {}
 
     def build_app(self, app: web.Application) -> None:
@@ -110,6 +125,9 @@ class PlcnextSimulator(HttpSimulator):
                 raise Fault(404, "invalidPath")
             parts = [part for part in tail.split("/") if part]
             body = await request.read()
+            if self.answer_with is not None and parts and parts[0] not in ("auth", "sessions"):
+                status, raw = self.answer_with
+                return web.Response(status=status, body=raw, content_type="application/json")
             return self._command(request, parts, body)
         except Fault as fault:
             return self._error(fault)
@@ -158,65 +176,12 @@ class PlcnextSimulator(HttpSimulator):
             error = {"details": [{"reason": fault.reason}]}
         return web.json_response({"error": error}, status=fault.status, headers=headers)
 
-    def _reason(self, documented: str, own: str) -> str:
-        """Return a reason: the documented one, or in foreign mode the simulator's own."""
-        return own if self.foreign else documented
-
-    # -- authentication and sessions -------------------------------------------------------
-
-    def _auth(self, step: str, fields: dict[str, Any]) -> web.Response:
-        """The two steps of the login."""
-        if step == "auth-token" and fields.get("scope") == "variables":
-            answer = {"code": self.access.auth_code(), "expires_in": 600}
-            if "state" in fields:
-                answer["state"] = fields["state"]
-            return web.json_response(answer)
-        if step == "access-token":
-            token = self.access.access_token(
-                fields.get("code"), fields.get("username"), fields.get("password")
-            )
-            if token is None:
-                status = 403 if self.foreign else 401
-                raise Fault(status, self._reason("wrongPassword", "loginRefused"))
-            roles = self.access.roles(self.access.tokens[token])
-            return web.json_response(
-                {"token_type": "Bearer", "access_token": token, "roles": roles}
-            )
-        raise Fault(400, "invalidRequest")
-
-    def _user(self, request: web.Request) -> str | None:
-        """Return the user of a protected request; refuse a missing or unknown token."""
-        if not self.auth:
-            return None
-        user = self.access.user_of(request.headers.get("Authorization", ""))
-        if user is None:
-            challenge = "" if self.foreign else 'Bearer realm="pxcapi", error="invalid_token"'
-            raise Fault(401, self._reason("invalidToken", "tokenExpired"), challenge)
-        return user
-
-    def _sessions(self, method: str, parts: list[str], fields: dict[str, Any]) -> web.Response:
-        """Create, maintain and delete sessions."""
-        if method == "POST" and not parts:
-            station = str(fields.get("stationID", "")).strip()
-            timeout = number(fields.get("timeout"), 3_600_000)
-            if not station:
-                raise Fault(400, "invalidStationID")
-            session_id = self.access.open(station, timeout)
-            return self._json({"sessionID": session_id}, status=201)
-        if parts and method in ("POST", "PUT"):
-            self._keep_session(parts[0])
-            return self._json({"sessionID": parts[0]})
-        if parts and method == "DELETE":
-            self.access.sessions.pop(parts[0], None)
-            return web.Response(status=204)
-        raise Fault(400, "invalidRequest")
-
-    def _keep_session(self, session_id: Any) -> None:
-        """Keep a named session alive; one that is gone answers 410 (notes 3a, Sessions)."""
-        if session_id and not self.access.touch(str(session_id)):
-            raise Fault(410, self._reason("invalidSessionID", "sessionTimedOut"))
-
     # -- variables and groups --------------------------------------------------------------
+
+    def _spelled(self, full: str) -> str:
+        """Return a full path as an answer names it: as asked, or as declared."""
+        declared = self.program.declared(full) if self.declared_spelling else None
+        return full if declared is None else declared[0] + declared[1]
 
     def _resolve(self, prefix: str, paths: list[str]) -> list[tuple[str, Variable, Any] | None]:
         """Return (full path, variable, node) of each path; None for an unknown one."""
@@ -240,7 +205,9 @@ class PlcnextSimulator(HttpSimulator):
                 reason = self._reason("invalidName", "noSuchVariable")
                 entries.append({"path": prefix + path, "error": {"reason": reason}})
                 continue
-            entries.append({"path": hit[0], "value": as_json(hit[2], self.text_values)})
+            entries.append(
+                {"path": self._spelled(hit[0]), "value": as_json(hit[2], self.text_values)}
+            )
         return self._json({"variables": entries})
 
     def _write(self, fields: dict[str, Any], user: str | None) -> web.Response:
@@ -309,7 +276,8 @@ class PlcnextSimulator(HttpSimulator):
             if hit is None:
                 entries.append({"path": path, "error": {"reason": "invalidName"}})
             else:
-                entries.append({"path": path, "value": as_json(hit[2], self.text_values)})
+                named = self._spelled(hit[0])[len(group.prefix) :]
+                entries.append({"path": named, "value": as_json(hit[2], self.text_values)})
         if str(query.get("summary", "0")) == "1":
             summary = [{"value": entry.get("value")} for entry in entries]
             return web.json_response({"apiVersion": API_VERSION, "variables": summary})
@@ -343,6 +311,9 @@ class PlcnextSimulator(HttpSimulator):
         except Fault as fault:
             return self._error(fault)
         name = request.match_info["name"]
+        if self.answer_with is not None:
+            status, raw = self.answer_with
+            return web.Response(status=status, body=raw, content_type="application/json")
         if name == "data.dictionary.json":
             return web.json_response(self.program.data_dictionary())
         if name == "type.dictionary.json":
@@ -354,4 +325,4 @@ def _type_of(hit: tuple[str, Variable, Any] | None) -> str:
     """Return the type a register answer names: the leaf's, else the variable's."""
     if hit is None:
         return ""
-    return hit[2].type if isinstance(hit[2], Leaf) else hit[1].type
+    return hit[1].type if hit[2] is hit[1].node else node_type(hit[2])

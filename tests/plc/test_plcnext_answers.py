@@ -18,8 +18,8 @@ from custom_components.plc_bridge.plc import (
 )
 from custom_components.plc_bridge.plc.vendors.plcnext import PlcnextClient
 from simulators.plcnext import NO_ROLE_USER, PlcnextSimulator
+from simulators.plcnext.demo import default_program
 from simulators.plcnext.parameters import Fault
-from simulators.plcnext.program import default_program
 
 if TYPE_CHECKING:
     from .plcnext_fixtures import ConfigFactory

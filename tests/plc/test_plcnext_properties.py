@@ -14,7 +14,7 @@ from custom_components.plc_bridge.plc.vendors.plcnext import PlcnextClient, code
 from custom_components.plc_bridge.plc.vendors.plcnext.browse import declared, leaves, types
 from custom_components.plc_bridge.plc.vendors.plcnext.errors import parse_error
 from custom_components.plc_bridge.plc.vendors.plcnext.paths import parse_path
-from custom_components.plc_bridge.plc.vendors.plcnext.reading import Reading, place
+from custom_components.plc_bridge.plc.vendors.plcnext.placing import Reading, place
 
 BOUNDED = settings(
     max_examples=150,
@@ -86,3 +86,32 @@ def test_answers(answer: Any, status: int, raw: bytes) -> None:
         for variable in declared({"HmiVariables2": answer}):
             list(leaves(variable, answer, types(answer)))
     assert parse_error(status, raw).status == status
+
+
+NAMES = st.sampled_from(["Main.a", "Main.A", "main.a", "Main.b", "Other/Main.a", "Other/Main.B"])
+
+
+@BOUNDED
+@given(
+    asked=st.lists(NAMES, min_size=1, max_size=5, unique_by=lambda n: parse_path(n).text),
+    answered=st.lists(NAMES | st.sampled_from(["Arp.Plc.Eclr/Main.a", "Main.B"]), max_size=6),
+    reverse=st.booleans(),
+)
+def test_no_value_under_another_path(asked: list[str], answered: list[str], reverse: bool) -> None:
+    """Whatever the entries name, in whatever order: a value is placed only under a path its
+    entry names (in another case only by position), never by name under another path.
+    """
+    paths = [parse_path(name) for name in asked]
+    entries = [{"path": name, "value": name} for name in (answered[::-1] if reverse else answered)]
+    reading = Reading()
+    place({"variables": entries}, paths, reading)
+    by_position = len(entries) == len(paths)
+    for index, path in enumerate(paths):
+        if path.key not in reading.found:
+            continue
+        value = reading.found[path.key]
+        assert value.casefold() in (path.text.casefold(), path.name.casefold())
+        if by_position and value == entries[index]["value"]:
+            continue
+        owners = [other for other in paths if value in (other.text, other.name)]
+        assert not owners or path in owners

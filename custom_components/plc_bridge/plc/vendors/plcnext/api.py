@@ -49,7 +49,7 @@ def loads(raw: bytes, what: str) -> Any:
         return None
     try:
         return json.loads(raw)
-    except ValueError:
+    except (ValueError, RecursionError):  # RecursionError: nested deeper than Python parses
         raise PlcProtocolError(f"the PLC answered {what} with something other than JSON") from None
 
 
@@ -71,6 +71,7 @@ class PlcnextApi:
         self._logins = 0
         self._login_lock = asyncio.Lock()
         self.session_id: str | None = None
+        self.last_status = 0  # of the last data answer: 201 where a register made a group
         self._sessions = 0
         self._session_lock = asyncio.Lock()
         self.station = secrets.randbelow(2**31 - 1) + 1
@@ -128,8 +129,8 @@ class PlcnextApi:
         while True:
             if self.auth_required and self._token is None and self.can_login:
                 await self.login(self._logins)
-            logins, sessions = self._logins, self._sessions
-            path, body, content = make(self.session_id)
+            logins, sessions, session = self._logins, self._sessions, self.session_id
+            path, body, content = make(session)
             status, headers, raw = await self.send(
                 method, path, body, content, idempotent=idempotent
             )
@@ -137,6 +138,7 @@ class PlcnextApi:
                 answer = loads(raw, path.partition("?")[0][-40:])
                 if not (isinstance(answer, dict) and "error" in answer):
                     self.note(answer)
+                    self.last_status = status
                     return answer
                 # A dictionary refused for rights may come as 200 with an error object.
                 status = 401 if self._token is None else 403
@@ -148,7 +150,7 @@ class PlcnextApi:
                 self.auth_required = True
                 await self.login(logins)
                 continue
-            if status == 410 and not renewed_session and self.session_id is not None:
+            if status == 410 and not renewed_session and session is not None:
                 renewed_session = True
                 self._metrics.session_renewals += 1
                 await self.open_session(sessions)
@@ -206,12 +208,14 @@ class PlcnextApi:
     async def open_session(self, seen: int | None = None) -> None:
         """Create a session (form body `stationID=…&timeout=…`); once, for concurrent callers.
 
+        Single-flight: a caller whose request met a gone session (`seen` sessions made before
+        it) makes one only if nobody has since. The old id stays until the new one exists, so
+        calls that overlap the renewal still know they had a session and wait for the new one.
         Sessions are optional (notes 3a, Sessions): a PLC that refuses one is used without.
         """
         async with self._session_lock:
             if seen is not None and self._sessions != seen and self.session_id is not None:
                 return
-            self.session_id = None
             millis = round(self.session_timeout * 1000)
             for _attempt in range(2):
                 body = urlencode({"stationID": self.station, "timeout": millis}).encode()
@@ -223,12 +227,13 @@ class PlcnextApi:
                         continue
                     if err.status in (401, 403):
                         raise request_error(err) from None
+                    self.session_id = None
                     return
                 found = answer.get("sessionID") if isinstance(answer, dict) else None
-                if isinstance(found, str) and found:
-                    self.session_id = found
-                    self._sessions += 1
+                self.session_id = found if isinstance(found, str) and found else None
+                self._sessions += 1
                 return
+            self.session_id = None
 
     def _session_request(self, body: bytes) -> Callable[[str | None], Request]:
         """Return the request maker of a session's creation."""

@@ -1,16 +1,17 @@
 """PLCnext browsing: the eHMI variable dictionary, arrays and structures expanded to leaves.
 
 `/ehmi/data.dictionary.json` lists every HMI variable with its declared type and read-only
-flag (notes 3a, Dictionaries); `/ehmi/type.dictionary.json` describes the other types. The
-sources give no member list of a structure, so a variable of another type is read once and
-its value (JSON objects for structures, lists for arrays) names its leaves.
+flag (notes 3a, Dictionaries); `/ehmi/type.dictionary.json` describes the other types (an
+array's element type and bounds). The sources give no member list of a structure, so a
+variable of another type is read once and its value (JSON objects for structures, lists for
+arrays) names its leaves; a group registered for the members names their types (the Groups
+page: a register answer gives each variable's IEC type), then is unregistered.
 """
 
 from __future__ import annotations
 
 from collections.abc import Iterator
 from dataclasses import dataclass
-import re
 from typing import Any
 
 from ...errors import PlcAddressError
@@ -20,7 +21,8 @@ from .paths import VariablePath, parse_path
 
 DATA_DICTIONARY = "/ehmi/data.dictionary.json"
 TYPE_DICTIONARY = "/ehmi/type.dictionary.json"
-_LOWER = re.compile(r"(-?\d+)\s*\.\.")
+MAX_DEPTH = 32
+"""Levels of structures and arrays followed: a deeper value is no PLC type, and recursion ends."""
 
 
 @dataclass(frozen=True, slots=True)
@@ -71,41 +73,106 @@ def types(dictionary: Any) -> dict[str, dict[str, Any]]:
     }
 
 
-def lower_bound(about: dict[str, Any] | None) -> int:
-    """Return an array type's first index (`Dimensions` like "[1..10]"; 0 when unsaid)."""
+def bounds(about: dict[str, Any] | None) -> tuple[tuple[int, int], ...] | None:
+    """Return an array type's (first index, length) per dimension; None when unreadable.
+
+    The Info Center's example: `"Dimensions": [{"StartIndex": 1, "Length": 4}]`.
+    """
     dimensions = about.get("Dimensions") if about else None
-    match = _LOWER.search(str(dimensions)) if dimensions is not None else None
-    return int(match[1]) if match else 0
+    if not isinstance(dimensions, list) or not dimensions:
+        return None
+    found: list[tuple[int, int]] = []
+    for dimension in dimensions:
+        first = dimension.get("StartIndex") if isinstance(dimension, dict) else None
+        length = dimension.get("Length") if isinstance(dimension, dict) else None
+        if type(first) is not int or type(length) is not int:  # bool is no bound
+            return None
+        if length < 0 or abs(first) > 2**31:
+            return None
+        found.append((first, length))
+    return tuple(found)
+
+
+def members(
+    path: VariablePath,
+    value: Any,
+    type_name: str | None,
+    known: dict[str, dict[str, Any]],
+    depth: int = 0,
+) -> Iterator[VariablePath]:
+    """Yield the paths of the structure members in a value (no dictionary gives their types)."""
+    if depth > MAX_DEPTH:
+        return
+    if isinstance(value, list):
+        about = known.get(type_name.strip().upper()) if type_name else None
+        dims = bounds(about)
+        if about is None or dims is None or len(dims) != 1 or dims[0][1] != len(value):
+            return
+        element = str(about.get("ElementType") or "") or None
+        for index, member in enumerate(value):
+            yield from members(path.child(dims[0][0] + index), member, element, known, depth + 1)
+    elif isinstance(value, dict):
+        for key, member in value.items():
+            if isinstance(key, str) and key.isidentifier() and key.isascii():
+                if not isinstance(member, dict):
+                    yield path.child(key)
+                yield from members(path.child(key), member, None, known, depth + 1)
 
 
 def leaves(
-    variable: Declared, value: Any, known: dict[str, dict[str, Any]]
+    variable: Declared,
+    value: Any,
+    known: dict[str, dict[str, Any]],
+    member_types: dict[str, str] | None = None,
 ) -> Iterator[BrowseItem]:
-    """Yield the points of a variable: itself when elementary, else its members and elements."""
-    kind = elementary(variable.type)
-    if kind is not None:
+    """Yield the points of a variable: itself when elementary, else its members and elements.
+
+    An array's elements are offered only where the type dictionary gives its bounds and the
+    value has that many elements, and only for one dimension (no source shows the path of an
+    element of a multi-dimensional array); otherwise none are offered.
+    """
+    if (kind := elementary(variable.type)) is not None:
         yield item(variable.path, kind, variable.read_only)
         return
-    about = known.get(variable.type.strip().upper())
-    element = elementary(str(about.get("ElementType", ""))) if about else None
-    yield from _expand(variable.path, value, element, lower_bound(about), variable.read_only)
+    for path, member, kind in _walk(variable.path, value, variable.type, known, member_types):
+        if kind is not None:
+            yield item(path, kind, variable.read_only)
+        elif not isinstance(member, dict | list) and (guessed := guess(member)) is not None:
+            yield item(path, guessed, variable.read_only, guessed=True)
 
 
-def _expand(
-    path: VariablePath, value: Any, element: str | None, first: int, read_only: bool
-) -> Iterator[BrowseItem]:
-    """Yield the leaves of a value; an array's elements take the declared element type."""
-    if isinstance(value, dict):
+def _walk(
+    path: VariablePath,
+    value: Any,
+    type_name: str | None,
+    known: dict[str, dict[str, Any]],
+    member_types: dict[str, str] | None,
+    *,
+    depth: int = 0,
+) -> Iterator[tuple[VariablePath, Any, str | None]]:
+    """Yield the leaves of a value with their elementary type (None where undeclared)."""
+    if depth > MAX_DEPTH:
+        return
+    if type_name is not None and (kind := elementary(type_name)) is not None:
+        yield path, value, kind
+        return
+    about = known.get(type_name.strip().upper()) if type_name else None
+    if isinstance(value, list):
+        dims = bounds(about)
+        if about is None or dims is None or len(dims) != 1 or dims[0][1] != len(value):
+            return
+        element = str(about.get("ElementType") or "") or None
+        for index, member in enumerate(value):
+            child = path.child(dims[0][0] + index)
+            yield from _walk(child, member, element, known, member_types, depth=depth + 1)
+    elif isinstance(value, dict):
         for key, member in value.items():
             if isinstance(key, str) and key.isidentifier() and key.isascii():
-                yield from _expand(path.child(key), member, None, 0, read_only)
-    elif isinstance(value, list):
-        for index, member in enumerate(value):
-            yield from _expand(path.child(first + index), member, element, 0, read_only)
-    elif element is not None:
-        yield item(path, element, read_only)
-    elif (kind := guess(value)) is not None:
-        yield item(path, kind, read_only, guessed=True)
+                child = path.child(key)
+                declared_as = (member_types or {}).get(child.key)
+                yield from _walk(child, member, declared_as, known, member_types, depth=depth + 1)
+    else:
+        yield path, value, None
 
 
 def guess(value: Any) -> str | None:

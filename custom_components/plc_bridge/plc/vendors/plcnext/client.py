@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import asyncio
 from collections.abc import Mapping, Sequence
+from dataclasses import dataclass, field
 from datetime import datetime
 import logging
 from typing import Any, ClassVar
@@ -34,16 +35,37 @@ from ...types import (
     ValueKind,
 )
 from .api import PlcnextApi
-from .browse import DATA_DICTIONARY, TYPE_DICTIONARY, declared, elementary, leaves, types
-from .codec import KINDS, TYPES, check_value, data_type, decode, encode
+from .browse import (
+    DATA_DICTIONARY,
+    TYPE_DICTIONARY,
+    declared,
+    elementary,
+    leaves,
+    members,
+    types,
+)
+from .codec import KINDS, TYPES, check_value, data_type, decode, encode, same_json
 from .errors import ApiError, request_error
 from .info import device_info, plc_status
 from .paths import VariablePath, parse_path
-from .reading import Reader, Reading
+from .placing import Reading
+from .reading import Reader
 from .writing import put
 
 _LOGGER = logging.getLogger(__name__)
 CLOSE_TIMEOUT = 2.0
+
+
+@dataclass(slots=True)
+class Plan:
+    """Points parsed for a read: each path and type, the paths to ask, the points refused."""
+
+    points: tuple[Point, ...]
+    wanted: list[tuple[Point, VariablePath, str]] = field(default_factory=list)
+    paths: dict[str, VariablePath] = field(default_factory=dict)
+    errors: dict[Point, PointResult] = field(default_factory=dict)
+    clock: VariablePath | None = None  # a poll's: read in its group, at no request
+    last: list[tuple[Any, PointResult] | None] = field(default_factory=list)  # by `wanted`
 
 
 class PlcnextClient(PlcClient):
@@ -66,6 +88,7 @@ class PlcnextClient(PlcClient):
         self._api: PlcnextApi | None = None
         self._reader: Reader | None = None
         self._zone = ZoneInfo(config.time_zone)
+        self._last: Plan | None = None  # the last poll's points, parsed
 
     @classmethod
     def validate_options(cls, options: Mapping[str, object]) -> dict[str, str | int | bool]:
@@ -128,40 +151,71 @@ class PlcnextClient(PlcClient):
             )
         return device_info(description, api)
 
+    def _plan(self, points: Sequence[Point], *, poll: bool) -> Plan:
+        """Return the points' paths and types; a poll keeps them for the next poll.
+
+        Kept per client for the points of the last poll only: a poll of the same points
+        parses nothing again, however many, and nothing grows as points come and go.
+        """
+        listed = tuple(points)
+        if poll and self._last is not None and self._last.points == listed:
+            return self._last
+        plan = Plan(listed)
+        for point in listed:
+            try:
+                path, kind = parse_path(point.address), data_type(point.data_type)
+            except PlcError as err:
+                plan.errors[point] = PointResult(error=err.with_traceback(None))
+                continue
+            plan.wanted.append((point, path, kind))
+            plan.paths.setdefault(path.key, path)
+        plan.last = [None] * len(plan.wanted)
+        if poll:
+            plan.clock = self._clock_path()
+            if plan.clock is not None:
+                plan.paths.setdefault(plan.clock.key, plan.clock)
+            self._last = plan
+        return plan
+
     async def _read(self, points: Sequence[Point], *, poll: bool) -> ReadResult:
         """Read every distinct path once: the poll's group, or variables for an on-demand read."""
-        values: dict[Point, PointResult] = {}
-        wanted: list[tuple[Point, VariablePath, str]] = []
-        paths: dict[str, VariablePath] = {}
-        for point in points:
-            try:
-                wanted.append((point, parse_path(point.address), data_type(point.data_type)))
-            except PlcError as err:
-                values[point] = PointResult(error=err)
-                continue
-            paths.setdefault(wanted[-1][1].key, wanted[-1][1])
+        plan = self._plan(points, poll=poll)
+        paths = plan.paths
         reader = self._poller()
         if not poll:
             reading = await reader.variables(list(paths.values()), {})
-            return ReadResult(values=self._place(reading, wanted, values))
-        clock = self._clock_point()
-        clock_path = parse_path(clock.address) if clock else None
-        if clock_path is not None:  # in the poll's group: the clock costs no request
-            paths.setdefault(clock_path.key, clock_path)
+            return ReadResult(values=self._place(reading, plan))
+        clock_path = plan.clock
         reading = await reader.poll(paths) if paths else Reading()
         when = self._outcome(reading, clock_path, "DT").value if clock_path else None
         status = plc_status(reader.crc, reader.regroups, when)
-        return ReadResult(values=self._place(reading, wanted, values), status=status)
+        return ReadResult(values=self._place(reading, plan), status=status)
 
-    def _place(
-        self,
-        reading: Reading,
-        wanted: list[tuple[Point, VariablePath, str]],
-        values: dict[Point, PointResult],
-    ) -> dict[Point, PointResult]:
-        """Return the results of the wanted points from a reading, with those failed before."""
-        for point, path, kind in wanted:
-            values[point] = self._outcome(reading, path, kind)
+    def _place(self, reading: Reading, plan: Plan) -> dict[Point, PointResult]:
+        """Return the results of the plan's points from a reading, with those failed before.
+
+        A value the PLC sent exactly as at the last poll keeps its last result: decoding the
+        same JSON value in the same zone gives the same value, and makes nothing new.
+        """
+        found, failed, zone = reading.found, reading.failed, self._zone
+        values = dict(plan.errors)
+        last = plan.last
+        for index, (point, path, kind) in enumerate(plan.wanted):
+            raw = found.get(path.key, found)  # `found` itself: absent
+            if raw is found or (failed and path.key in failed):
+                values[point] = self._outcome(reading, path, kind)
+                last[index] = None
+                continue
+            kept = last[index]
+            if kept is not None and kept[0] == raw and same_json(kept[0], raw):
+                values[point] = kept[1]
+                continue
+            try:
+                result = PointResult(value=decode(kind, raw, zone, path.text))
+            except PlcProtocolError as err:
+                result = PointResult(error=err)
+            values[point] = result
+            last[index] = (raw, result) if result.ok else None
         return values
 
     def _outcome(self, reading: Reading, path: VariablePath, kind: str) -> PointResult:
@@ -196,18 +250,26 @@ class PlcnextClient(PlcClient):
         others = [variable for variable in variables if elementary(variable.type) is None]
         known: dict[str, dict[str, Any]] = {}
         values: dict[str, Any] = {}
+        member_types: dict[str, str] = {}
         if others:
             try:
                 known = types(await self._dictionary(TYPE_DICTIONARY))
             except PlcError as err:
                 _LOGGER.debug("No type dictionary from %s: %s", self.config.host, err)
-            reading = await Reader(api).variables([v.path for v in others], {})
-            values = reading.found
+            reader = Reader(api)
+            values = (await reader.variables([v.path for v in others], {})).found
+            inside = [
+                path
+                for variable in others
+                if variable.path.key in values
+                for path in members(variable.path, values[variable.path.key], variable.type, known)
+            ]
+            member_types = await reader.types_of(inside)
         items: list[BrowseItem] = []
         for variable in variables:
             if elementary(variable.type) is None and variable.path.key not in values:
                 continue
-            items.extend(leaves(variable, values.get(variable.path.key), known))
+            items.extend(leaves(variable, values.get(variable.path.key), known, member_types))
         return items
 
     async def _dictionary(self, path: str) -> Any:
@@ -216,6 +278,11 @@ class PlcnextClient(PlcClient):
             return await self._rest().call("GET", lambda _session: (path, None, None))
         except ApiError as err:
             raise request_error(err) from None
+
+    def _clock_path(self) -> VariablePath | None:
+        """Return the clock variable's path, when one is chosen."""
+        clock = self._clock_point()
+        return parse_path(clock.address) if clock else None
 
     def _clock_point(self) -> Point | None:
         """Return the clock variable's point, when one is chosen."""
@@ -253,10 +320,12 @@ class PlcnextClient(PlcClient):
             raise error
 
     async def close(self) -> None:
-        """Delete the session (best effort, briefly) and release the client's own session."""
+        """Unregister the group and delete the session (best effort, briefly)."""
         if self._api is not None:
             try:
                 async with asyncio.timeout(CLOSE_TIMEOUT):
+                    if self._reader is not None:
+                        await self._reader.unregister_group()
                     await self._api.close_session()
             except (PlcError, TimeoutError) as err:
                 _LOGGER.debug("Closing the session on %s failed: %s", self.config.host, err)

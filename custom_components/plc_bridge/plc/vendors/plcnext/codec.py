@@ -43,6 +43,7 @@ KINDS: dict[str, ValueKind] = {
     "DT": ValueKind.DATETIME,
 }
 TIME_RANGES = {"TIME": INTEGER_RANGES["DINT"], "LTIME": INTEGER_RANGES["LINT"]}
+_LIMITS = {**INTEGER_RANGES, **TIME_RANGES}
 MAX_STRING = 255  # no source gives PLCnext's STRING limit; the PLC refuses a longer one itself
 _WHOLE = re.compile(r"\s*[+-]?\d{1,20}\s*", re.ASCII)
 _TRUE, _FALSE = ("true", "1"), ("false", "0")
@@ -106,10 +107,13 @@ def encode(kind: str, value: Value, zone: tzinfo) -> Any:
 
 def decode(kind: str, raw: Any, zone: tzinfo, what: str) -> Value:
     """Return a point's value from its JSON; raise PlcProtocolError when it does not fit."""
+    limits = _LIMITS.get(kind)
+    if type(raw) is int and limits is not None and limits[0] <= raw <= limits[1]:
+        return raw  # the common case first: a JSON number that fits
     if kind == "BOOL":
         return _bool(raw, what)
-    if kind in INTEGER_RANGES or kind in TIME_RANGES:
-        low, high = INTEGER_RANGES.get(kind) or TIME_RANGES[kind]
+    if limits is not None:
+        low, high = limits
         number = _whole(raw)
         if number is not None and low <= number <= high:
             return number
@@ -126,6 +130,11 @@ def decode(kind: str, raw: Any, zone: tzinfo, what: str) -> Value:
         shape = "a structure" if isinstance(raw, dict) else "an array"
         raise PlcProtocolError(f"{what} is {shape}, not a {kind}; choose one of its members")
     raise PlcProtocolError(f"{what}: the PLC sent {str(raw)[:40]!r}, which is no {kind}")
+
+
+def same_json(old: Any, new: Any) -> bool:
+    """True when two JSON values are the same value of the same type (0.0 is not -0.0)."""
+    return old == new and type(old) is type(new) and (bool(new) or type(new) is not float)
 
 
 def _bool(raw: Any, what: str) -> bool:

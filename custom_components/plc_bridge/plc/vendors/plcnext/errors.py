@@ -60,7 +60,7 @@ def parse_error(status: int, raw: bytes, challenge: str = "") -> ApiError:
     error: Any = None
     try:
         body = json.loads(raw)
-    except ValueError:
+    except (ValueError, RecursionError):
         body = raw.decode("utf-8", "replace")
     if isinstance(body, dict):
         error = body.get("error", body)

@@ -31,7 +31,8 @@ class VariablePath:
     component: str
     segments: tuple[Segment, ...]
     text: str = field(init=False, compare=False)  # `Arp.Plc.Eclr/Main.Recipe[2].Weight`
-    key: str = field(init=False, compare=False)  # compared case-insensitively, as IEC names
+    name: str = field(init=False, compare=False)  # `Main.Recipe[2].Weight`, in its component
+    key: str = field(init=False, compare=False)  # as typed: a PLC may tell `a` from `A`
 
     def __post_init__(self) -> None:
         """Spell the path once."""
@@ -40,7 +41,8 @@ class VariablePath:
             for index, part in enumerate(self.segments)
         )
         object.__setattr__(self, "text", f"{self.component}/{variable}")
-        object.__setattr__(self, "key", self.text.lower())
+        object.__setattr__(self, "name", variable)
+        object.__setattr__(self, "key", self.text)
 
     def child(self, part: Segment) -> VariablePath:
         """Return the path of a member or element of this variable."""
@@ -69,21 +71,29 @@ def parse_path(address: str) -> VariablePath:
 
 
 def same_path(answered: object, path: VariablePath) -> bool:
-    """True when an answer's `path` names this variable (full, or relative to its component)."""
-    if not isinstance(answered, str):
-        return False
-    name = answered.strip().lower()
-    return name == path.key or name == path.key.partition("/")[2]
+    """True when an answer's `path` names this variable (full, or relative to its component).
+
+    As sent first; else in another case, for a PLC that answers with its own spelling (IEC
+    names are case-insensitive; `place` takes such a match only where it is the only one).
+    """
+    if answered in (path.text, path.name):
+        return True
+    return isinstance(answered, str) and folded(answered) in (folded(path.text), folded(path.name))
 
 
-def path_list(paths: Iterable[VariablePath]) -> str:
+def folded(text: str) -> str:
+    """Return a path compared without case (IEC 61131-3 names are case-insensitive)."""
+    return text.strip().casefold()
+
+
+def path_list(paths: Iterable[str]) -> str:
     """Return the `paths` parameter: the paths comma-separated, percent-encoded for a URI."""
-    return ",".join(quote(path.text, safe="/.[]_") for path in paths)
+    return ",".join(quote(path, safe="/.[]_") for path in paths)
 
 
 def variables_uri(base: str, paths: Iterable[VariablePath], session: str | None) -> str:
     """Return the GET /variables URI of a read (sessionID keeps the session alive)."""
-    query = f"paths={path_list(paths)}"
+    query = f"paths={path_list(path.text for path in paths)}"
     if session:
         query = f"sessionID={quote(session, safe='')}&{query}"
     return f"{base}/variables?{query}"

@@ -1,23 +1,24 @@
 """PLCnext reads: one registered group per poll, variable reads where groups cannot serve.
 
-Unknown names are found by registering halves (a register naming one answers 404 as a whole,
-PyREST's real-device log: `invalidNames`) and left out of the group; they are tried again when
-the program changes (`projectCRC`) or the points do. Where every name is unknown, a groups
-report (one request that carries `projectCRC`) watches the program instead of a group read.
+Unknown names are found by reading halves (a register or read naming one answers 404 as a
+whole, PyREST's real-device log: `invalidNames`) and left out of the group; they are tried
+again when the program changes (`projectCRC`) or the points do. Where every name is unknown, a
+groups report (one request that carries `projectCRC`) watches the program instead of a group read.
 """
 
 from __future__ import annotations
 
-from collections.abc import Awaitable, Callable, Sequence
-from dataclasses import dataclass, field
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass
 import json
 from typing import Any
 from urllib.parse import quote, urlencode
 
 from ...errors import PlcAddressError, PlcError, PlcProtocolError
 from .api import PlcnextApi, Request
-from .errors import ApiError, reasons_of, request_error
+from .errors import ApiError, request_error
 from .paths import MAX_URI, VariablePath, path_list, same_path, variables_uri
+from .placing import Reading, isolate, place
 
 JSON = "application/json"
 FORM = "application/x-www-form-urlencoded"
@@ -25,85 +26,18 @@ REFUSED_BODY = (400, 415)  # a register body the PLC does not parse: try the oth
 NO_GROUPS = (400, 405, 415, 501)  # groups cannot serve: read variables instead
 
 
-@dataclass(slots=True)
-class Reading:
-    """Raw values and per-path errors, by path key, and the projectCRC the answer carried."""
-
-    found: dict[str, Any] = field(default_factory=dict)
-    failed: dict[str, PlcError] = field(default_factory=dict)
-    crc: Any = None
-
-
 @dataclass(frozen=True, slots=True)
 class Group:
-    """A group the PLC registered: its id, the paths in its order, the program it was made for."""
+    """A group the PLC registered: its id, the paths in its order, the program it was made for.
+
+    `created`: registered by this client (201), not an identical one reused (200), which
+    another client may be reading: only a created group is unregistered.
+    """
 
     id: str
     paths: tuple[VariablePath, ...]
     crc: Any
-
-
-def place(answer: Any, paths: Sequence[VariablePath], reading: Reading) -> None:
-    """Put an answer's variables under their paths: by position where every path agrees.
-
-    The PLC answers in request order; an entry whose `path` names another variable, or a list
-    of another length, is matched by path instead, so that no value shows under a wrong point.
-    """
-    entries = answer.get("variables") if isinstance(answer, dict) else None
-    if not isinstance(entries, list):
-        raise PlcProtocolError("the PLC's answer holds no variables")
-    reading.crc = answer.get("projectCRC")
-    in_order = len(entries) == len(paths) and all(
-        isinstance(entry, dict) and ("path" not in entry or same_path(entry["path"], path))
-        for entry, path in zip(entries, paths, strict=False)
-    )
-    for index, path in enumerate(paths):
-        if in_order:
-            entry = entries[index]
-        else:
-            entry = next(
-                (e for e in entries if isinstance(e, dict) and same_path(e.get("path"), path)),
-                None,
-            )
-        if entry is None:
-            reading.failed[path.key] = PlcProtocolError(f"{path.text} is missing from the answer")
-        elif entry.get("error") is not None:
-            said = ", ".join(reasons_of(entry["error"])) or "no reason given"
-            reading.failed[path.key] = PlcAddressError(f"{path.text}: the PLC says {said}")
-        elif "value" not in entry:
-            reading.failed[path.key] = PlcProtocolError(f"{path.text}: the answer has no value")
-        else:
-            reading.found[path.key] = entry["value"]
-
-
-async def isolate(
-    paths: Sequence[VariablePath],
-    attempt: Callable[[Sequence[VariablePath]], Awaitable[Any]],
-    unknown: dict[str, PlcError],
-) -> tuple[list[VariablePath], Any]:
-    """Try the paths; on 404 try each half, down to single unknown names.
-
-    Return the paths the PLC knows and the answer of the last attempt that took them all.
-    """
-    if not paths:
-        return [], None
-    try:
-        return list(paths), await attempt(paths)
-    except ApiError as err:
-        if err.status != 404:
-            raise
-        if len(paths) == 1:
-            unknown[paths[0].key] = PlcAddressError(
-                f"{paths[0].text}: the PLC does not know this variable, or it has no HMI flag "
-                f"({err.words})"
-            )
-            return [], None
-    half = len(paths) // 2
-    first, first_answer = await isolate(paths[:half], attempt, unknown)
-    second, second_answer = await isolate(paths[half:], attempt, unknown)
-    if not second:
-        return first, first_answer
-    return first + second, second_answer if not first else None
+    created: bool = False
 
 
 GROUP_IDLE = 120.0
@@ -147,7 +81,8 @@ class Reader:
             self.crc = reading.crc
         fresh = self.group is not None and self.group.crc == reading.crc
         if changed and not again and (self.unknown or not fresh):
-            self.group, self.unknown = None, {}
+            await self.unregister_group()
+            self.unknown = {}
             return await self.poll(paths, again=True)
         reading.failed.update(self.unknown)
         return reading
@@ -156,6 +91,7 @@ class Reader:
         """Read the group of these paths, registering it where the PLC has none."""
         reading = Reading()
         if self.group is None or list(self.group.paths) != wanted:
+            await self.unregister_group()
             await self._register(wanted)
             if not self.groups_ok:
                 return await self.variables(wanted, self.unknown)
@@ -163,18 +99,20 @@ class Reader:
         if group is None or not group.paths:
             return reading
         try:
-            answer = await self._api.call("GET", self._group_uri(group))
+            answer = await self._api.call("GET", self._group_uri(group.id))
         except ApiError as err:
             if err.status != 404:
                 raise request_error(err) from None
             # The PLC no longer knows the group (120 s idle, restart, new program).
             self.regroups += 1
             await self._register(wanted)
+            if not self.groups_ok:
+                return await self.variables(wanted, self.unknown)
             group = self.group
             if group is None or not group.paths:
                 return reading
             try:
-                answer = await self._api.call("GET", self._group_uri(group))
+                answer = await self._api.call("GET", self._group_uri(group.id))
             except ApiError as again:
                 raise request_error(again) from None
         if isinstance(answer, dict) and answer.get("id") not in (None, group.id):
@@ -192,27 +130,33 @@ class Reader:
             return None
         return answer.get("projectCRC") if isinstance(answer, dict) else None
 
-    def _group_uri(self, group: Group) -> Callable[[str | None], Request]:
-        """Return the request maker of a group read (its session id keeps the session alive)."""
+    def _group_uri(self, group_id: str) -> Callable[[str | None], Request]:
+        """Return the request maker of a group's read or unregistration (with the session)."""
 
         def make(session: str | None) -> Request:
             query = f"?sessionID={quote(session, safe='')}" if session else ""
-            return f"{self._api.base}/groups/{quote(group.id, safe='')}{query}", None, None
+            return f"{self._api.base}/groups/{quote(group_id, safe='')}{query}", None, None
 
         return make
 
     async def _register(self, wanted: list[VariablePath]) -> None:
-        """Register a group of the paths the PLC knows; learn the unknown ones by halves."""
+        """Register a group of the paths the PLC knows; learn the unknown ones by reading.
+
+        A register naming an unknown path answers 404 as a whole: the names are then found
+        with variable reads, which leave nothing behind on the PLC, and one group registered.
+        """
         self.group = None
-        if not wanted:
-            self.group = Group("", (), self.crc)
-            return
+        known: list[VariablePath] = wanted
         try:
-            known, answer = await isolate(wanted, self._register_once, self.unknown)
-            if known and answer is None:
-                answer = await self._register_once(known)
+            try:
+                answer = await self._register_once(wanted) if wanted else None
+            except ApiError as err:
+                if err.status != 404:
+                    raise
+                known = await self._known(wanted)
+                answer = await self._register_once(known) if known else None
         except ApiError as err:
-            if err.status in NO_GROUPS:
+            if err.status in NO_GROUPS or err.status == 404:  # 404: groups refuse what reads take
                 self.groups_ok = False
                 return
             raise request_error(err) from None
@@ -222,7 +166,63 @@ class Reader:
         group_id = answer.get("id") if isinstance(answer, dict) else None
         if not isinstance(group_id, str) or not group_id:
             raise PlcProtocolError("the PLC registered the group but sent no id")
-        self.group = Group(group_id, tuple(known), answer.get("projectCRC"))
+        assert isinstance(answer, dict)
+        created = self._api.last_status == 201
+        self.group = Group(group_id, tuple(known), answer.get("projectCRC"), created)
+
+    async def _known(self, wanted: list[VariablePath]) -> list[VariablePath]:
+        """Return the paths the PLC knows, learning the others by variable reads.
+
+        One read answers where the PLC fails unknown names per entry; where it refuses the
+        whole read (404), halves find them.
+        """
+        known, answer = await isolate(wanted, self._read_once, self.unknown)
+        if answer is not None:
+            reading = Reading()
+            place(answer, known, reading)
+            for key, err in reading.failed.items():
+                if isinstance(err, PlcAddressError):
+                    self.unknown[key] = err
+        return [path for path in known if path.key not in self.unknown]
+
+    async def unregister_group(self) -> None:
+        """Unregister the poll's group, when it has one (best effort: it expires on its own)."""
+        group, self.group = self.group, None
+        if group is not None and group.id and group.created:
+            await self.unregister(group.id)
+
+    async def unregister(self, group_id: str) -> None:
+        """DELETE a group (best effort: the PLC drops it after about 120 s unused)."""
+        try:
+            await self._api.call("DELETE", self._group_uri(group_id))
+        except ApiError:
+            return
+
+    async def types_of(self, paths: Sequence[VariablePath]) -> dict[str, str]:
+        """Return the IEC type names a register answer gives for paths, by path key.
+
+        The group is unregistered at once, unless the PLC reused an identical one (200).
+        """
+        if not paths or not self.groups_ok:
+            return {}
+        try:
+            answer = await self._register_once(paths)
+        except ApiError:
+            return {}
+        created = self._api.last_status == 201
+        group_id = answer.get("id") if isinstance(answer, dict) else None
+        if created and isinstance(group_id, str) and group_id:
+            await self.unregister(group_id)
+        entries = answer.get("variables") if isinstance(answer, dict) else None
+        if not isinstance(entries, list) or len(entries) != len(paths):
+            return {}
+        return {
+            path.key: entry["type"]
+            for path, entry in zip(paths, entries, strict=True)
+            if isinstance(entry, dict)
+            and isinstance(entry.get("type"), str)
+            and same_path(entry.get("path", path.text), path)
+        }
 
     async def _register_once(self, paths: Sequence[VariablePath]) -> Any:
         """POST /groups once; a body the PLC cannot parse is sent once in the other form.
@@ -244,14 +244,22 @@ class Reader:
     def _register_request(
         self, paths: Sequence[VariablePath], *, form: bool
     ) -> Callable[[str | None], Request]:
-        """Return the request maker of a group registration."""
+        """Return the request maker of a group registration.
+
+        Paths of one component go relative to a `pathPrefix` (the Groups page's example): the
+        PLC then answers every read with the short paths.
+        """
         base = self._api.base
+        components = {path.component for path in paths}
+        prefix = f"{components.pop()}/" if len(components) == 1 else ""
+        names = [path.name if prefix else path.text for path in paths]
 
         def make(session: str | None) -> Request:
             if form:
-                body = f"sessionID={quote(session or '', safe='')}&paths={path_list(paths)}"
+                fields = {"sessionID": session or "", "pathPrefix": prefix}
+                body = f"{urlencode(fields)}&paths={path_list(names)}"
                 return f"{base}/groups", body.encode(), FORM
-            data = {"sessionID": session or "", "paths": [path.text for path in paths]}
+            data = {"sessionID": session or "", "pathPrefix": prefix, "paths": names}
             return f"{base}/groups", json.dumps(data).encode(), JSON
 
         return make

@@ -17,7 +17,8 @@ from ...types import Point, PointResult
 from .api import PlcnextApi, Request
 from .errors import ApiError, request_error
 from .paths import VariablePath
-from .reading import JSON, Reading, place
+from .placing import Reading, place
+from .reading import JSON
 
 type Item = tuple[Point, VariablePath, Any]
 """A point, its parsed path and the JSON value the PUT carries."""
