@@ -205,13 +205,13 @@ async def test_nothing_at_the_port(hass: HomeAssistant, unused_tcp_port: int) ->
 async def test_invalid_options(
     hass: HomeAssistant, s7_ha_sims: SimFactory, fields: dict[str, Any], problem: str
 ) -> None:
-    """Options the client refuses are shown with its words; nothing connects."""
+    """Options the client refuses are shown with its words on their field; nothing connects."""
     sim = await s7_ha_sims(remote_tsap=0x1001)
     result = await submit(hass, await connection_form(hass), where(sim, **fields))
     assert result["type"] is FlowResultType.FORM
-    assert result["errors"] == {"base": "invalid_options"}
+    assert result["errors"] == {"remote_tsap": "invalid_options"}
     assert result["description_placeholders"] == {"problem": problem}
-    assert error_message(result, "base", *CONFIG) == (
+    assert error_message(result, "remote_tsap", *CONFIG) == (
         f"The connection settings are not valid: {problem}"
     )
     assert sim.requests == 0

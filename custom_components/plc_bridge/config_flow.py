@@ -235,9 +235,12 @@ class PlcBridgeConfigFlow(ConfigFlow, domain=DOMAIN):
             self._data[CONF_OPTIONS] = client.validate_options(self._data[CONF_OPTIONS])
         except PlcValueError as err:
             self._problem = str(err)
-            if self._vendor in SECOND_PAGES:
-                return self._second_form({"base": "invalid_options"})
-            return self._connection_form({"base": "invalid_options"})
+            field = err.option if isinstance(err, PlcOptionError) else "base"
+            if self._vendor in SECOND_PAGES and (
+                field == "base" or field in self._second_fields()
+            ):
+                return self._second_form({field: "invalid_options"})
+            return self._connection_form({field: "invalid_options"})
         self._data[CONF_FINGERPRINT] = ""
         if self._data[CONF_TLS] == TlsMode.PIN:
             try:
@@ -323,6 +326,10 @@ class PlcBridgeConfigFlow(ConfigFlow, domain=DOMAIN):
             schema,
             errors,
         )
+
+    def _second_fields(self) -> set[str]:
+        """The keys of the second page's fields, for the way chosen on the connection page."""
+        return {field.key for field in second_page(self._vendor, self._data[CONF_OPTIONS])[1]}
 
     def _second_form(self, errors: dict[str, str]) -> ConfigFlowResult:
         """Show the second page: the fields of the way chosen on the connection page."""
