@@ -80,7 +80,7 @@ async def test_write_refused_per_point(
         await call(hass, "write", setup_integration, points=points)
     assert str(err.value) == (
         "The PLC did not write every value: VW2000: VW2000: the PLC has no such address "
-        "(code 3004); SMB10: SMB10: the address is read-only (code 3007)"
+        "(code 3004); SMB10: SMB10: the PLC refused it (Read-only address., code 3007)"
     )
     assert s7_smart_sim.get("VW30") == 7
 
