@@ -192,11 +192,13 @@ class S7SmartClient(PlcClient):
         """Read every distinct point once, 32 nodes a request; status from the last reply."""
         while True:
             planned = self._poll_plan(points, keep=poll)
+            replies: list[dict[str, Any]] = []
             try:
-                replies = [await self._call("read", params) for _group, params in planned.groups]
+                for _group, params in planned.groups:
+                    replies.append(await self._call("read", params))
                 break
             except RequestRefused:
-                if not await self._fewer_nodes(max((p for _g, p in planned.groups), key=len)):
+                if not await self._fewer_nodes(planned.groups[len(replies)][1]):
                     raise
         values = dict(planned.invalid)
         status = PlcStatus()
