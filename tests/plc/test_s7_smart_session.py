@@ -203,6 +203,10 @@ async def test_malformed_reply(
             lambda r: {"jsonrpc": "2.0", "id": r["id"], "error": {"code": "x"}},
             "the PLC refused the request \\(no message, code 0\\)",
         ),
+        (
+            lambda r: {"jsonrpc": "2.0", "id": r["id"], "error": {"code": 5, "message": [["x"]]}},
+            "the PLC refused the request \\(no message, code 5\\)",
+        ),
     ],
 )
 async def test_protocol_errors(

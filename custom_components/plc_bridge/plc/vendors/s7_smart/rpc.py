@@ -140,8 +140,10 @@ def _result(method: str, call_id: int, status: int, reply: Any) -> dict[str, Any
             f"the PLC answered id {reply.get('id')!r} to request id {call_id} ({method})"
         )
     if isinstance(error, dict):
-        code = error.get("code")
-        raise RpcError(code if isinstance(code, int) else 0, str(error.get("message", "")))
+        code, message = error.get("code"), error.get("message")
+        raise RpcError(
+            code if isinstance(code, int) else 0, message if isinstance(message, str) else ""
+        )
     result = reply.get("result")
     if not isinstance(result, dict):
         raise PlcProtocolError(f"the PLC's answer to {method} has no result")
