@@ -26,8 +26,9 @@ from .address import BOOL, DATE, MODES, Address, parse_address, point_kind
 DATE_FORMAT = "%Y-%m-%d %H:%M:%S"
 MAX_NODES = 32  # "max to 32 nodes" (manual 8.1, 9.1)
 PAYLOAD_LIMIT = 15 * 1024  # "The overall payload shall not exceed 15KB" (manual 4.3)
-NODE_CACHE = 1 << 16
-"""Points whose parsed node is kept: past a poll's point count, or every new plan parses all."""
+NODE_CACHE = 1 << 14
+"""Points whose parsed node is kept (about 320 bytes each): above the largest poll planned for
+(10,000 points), since a poll past the cap parses every point again at each new plan."""
 MAX_STRING = 254  # an S7-200 SMART string: one length byte, then up to 254 ASCII characters
 
 
