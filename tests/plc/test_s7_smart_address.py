@@ -18,7 +18,12 @@ from custom_components.plc_bridge.plc import (
 )
 from custom_components.plc_bridge.plc.vendors.s7_smart import S7SmartClient
 from custom_components.plc_bridge.plc.vendors.s7_smart.address import parse_address, point_kind
-from custom_components.plc_bridge.plc.vendors.s7_smart.codec import decode, decode_status, encode
+from custom_components.plc_bridge.plc.vendors.s7_smart.codec import (
+    decode,
+    decode_status,
+    encode,
+    node_for,
+)
 from custom_components.plc_bridge.plc.vendors.s7_smart.errors import (
     STOP_MESSAGE,
     RpcError,
@@ -293,3 +298,14 @@ def test_node_errors() -> None:
 )
 def test_retry_after(header: dict[str, str], seconds: float) -> None:
     assert retry_after(header, datetime(2026, 1, 1, tzinfo=UTC)) == seconds
+
+
+def test_node_cache_holds_a_large_poll() -> None:
+    """A 10,000-point poll planned again parses nothing again (a cache of 4,096 parsed all)."""
+    points = [Point(f"VB{index}", "unsigned") for index in range(10_000)]
+    for point in points:
+        node_for(point)
+    hits = node_for.cache_info().hits
+    for point in points:
+        node_for(point)
+    assert node_for.cache_info().hits - hits == len(points)
