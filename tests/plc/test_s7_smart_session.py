@@ -28,10 +28,10 @@ POINT = Point("VW0", "signed")
 
 
 FIRMWARES = [
-    {"codes": codes, "stop_refusal": stop, "error_status": status}
+    {"codes": codes, "stop_refusal": stop, "error_status": status, "cookie_name_in_token": named}
     for codes in CODES
     for stop in ("request", "node")
-    for status in (200, 500)
+    for status, named in ((200, True), (500, False))  # each value of both, in pairs
 ]
 
 
@@ -44,12 +44,16 @@ def configure(sim: S7SmartSimulator, firmware: dict[str, Any]) -> None:
 @pytest.fixture(
     autouse=True,
     params=FIRMWARES,
-    ids=lambda f: f"{f['codes']}-stop-{f['stop_refusal']}-http-{f['error_status']}",
+    ids=lambda f: (
+        f"{f['codes']}-stop-{f['stop_refusal']}-http-{f['error_status']}"
+        + ("" if f["cookie_name_in_token"] else "-bare-token")
+    ),
 )
 def firmware(request: pytest.FixtureRequest, s7_smart_sim: S7SmartSimulator) -> dict[str, Any]:
     """Run every session, STOP and permission test under each reading the manual leaves open:
     codes of our table, foreign ones, or ours meaning other things; STOP refused for the whole
-    write or per node; error replies with HTTP 200 or 500. The paths rest on structure."""
+    write or per node; error replies with HTTP 200 or 500; a login cookie with its name or bare.
+    The paths rest on structure."""
     configure(s7_smart_sim, request.param)
     return dict(request.param)
 
