@@ -340,7 +340,8 @@ class S7SmartClient(PlcClient):
         try:
             return self._noted(await self._send(method, params))
         except RpcError as err:
-            if write and await self._session_works():
+            # Another caller's login since then would make the empty read pass on its token.
+            if write and self._logins == seen and await self._session_works():
                 raise self._write_refused(err) from None
         await self._login(seen)
         try:
