@@ -17,12 +17,13 @@ import json
 import math
 import secrets
 import time
-from typing import Any
+from typing import Any, NamedTuple
 
 from aiohttp import web
 
 from ..base import HttpSimulator
 from .errors import (
+    CODES,
     INVALID_ADDRESS,
     INVALID_PARAMS,
     INVALID_REQUEST,
@@ -50,14 +51,23 @@ MAX_NODES = 32
 MAX_USERS = 4
 
 
+class HttpFault(NamedTuple):
+    """An HTTP answer given instead of handling one request (a busy server, a proxy)."""
+
+    status: int
+    body: str = ""
+    headers: dict[str, str] = {}  # noqa: RUF012 - never changed, only read
+
+
 class S7SmartSimulator(HttpSimulator):
     """An S7-200 SMART CPU (V memory of an ST60/SR60) with its Web API.
 
     Knobs for tests: `mode` ("RUN"/"STOP"), `malformed`, `write_permission`, `idle_timeout`,
-    `v_size` (a CPU with less V memory), `cookie_name_in_token` (login returns
-    "Session-Id=<token>" as the manual's examples show, or the bare token), `rewrite` (edit every
-    successful reply before it is sent), `system_status`, `forced`, `clock` (stands still unless
-    set, so tests stay deterministic).
+    `v_size` (a CPU with less V memory), `rewrite` (edit every successful reply before it is
+    sent), `system_status`, `forced`, `clock` (stands still unless set, so tests stay
+    deterministic), `http_faults` (HTTP answers given instead of the next requests'). Where the
+    manual is silent, a switch per reading (READINGS.md): `codes`, `stop_refusal`, `max_nodes`
+    with `node_limit_error`, `error_status`, `cookie_name_in_token`, `version`.
     """
 
     tls = True
@@ -81,10 +91,15 @@ class S7SmartSimulator(HttpSimulator):
         self.mode = "RUN"
         self.malformed = False
         self.system_status = "OK"
-        # Codes and messages other than the ones our client knows: the manual defines 3004
-        # only, so a real firmware may answer with any (tests run both ways).
-        self.foreign_codes = False
+        # The manual defines 3004 only: "guessed" answers with our table, "foreign" with codes
+        # and words no client knows, "shuffled" with our codes meaning other things.
+        self.codes = "guessed"
+        self.stop_refusal = "request"  # or "node": each node of a write in STOP is refused
         self.max_nodes = MAX_NODES  # a firmware may take fewer nodes a request than the manual
+        self.node_limit_error = TOO_MANY_NODES  # the whole-request error past max_nodes
+        self.error_status = 200  # the HTTP status of an error reply (JSON-RPC over HTTP: 500)
+        self.version = API_VERSION  # the manual's reply shows "${version_string}." (10.3.1)
+        self.http_faults: list[HttpFault] = []
         self.forced = False
         self.cookie_name_in_token = True
         self.rewrite: Callable[[dict[str, Any]], dict[str, Any]] | None = None
@@ -149,6 +164,11 @@ class S7SmartSimulator(HttpSimulator):
 
     async def _handle(self, request: web.Request) -> web.StreamResponse:
         """Answer one JSON-RPC call (never a batch)."""
+        if self.http_faults:
+            fault = self.http_faults.pop(0)
+            return web.Response(status=fault.status, text=fault.body, headers=fault.headers)
+        if self.codes not in CODES:
+            raise ValueError(f"codes must be one of {CODES}")
         if request.content_type != "application/json":
             return self._error(None, INVALID_REQUEST)
         body = await request.read()
@@ -179,10 +199,14 @@ class S7SmartSimulator(HttpSimulator):
         return web.json_response(reply, dumps=_compact)
 
     def _error(self, call_id: Any, code: int) -> web.Response:
-        """Return a JSON-RPC error reply (in a foreign code table when `foreign_codes` is set)."""
-        code, message = shown(code, foreign=self.foreign_codes)
+        """Return a JSON-RPC error reply, in the code table and HTTP status the switches name."""
+        code, message = shown(code, self.codes)
         error = {"code": code, "message": message}
-        return web.json_response({"jsonrpc": "2.0", "id": call_id, "error": error}, dumps=_compact)
+        return web.json_response(
+            {"jsonrpc": "2.0", "id": call_id, "error": error},
+            status=self.error_status,
+            dumps=_compact,
+        )
 
     def _methods(self) -> dict[str, Callable[[web.Request, Any], dict[str, Any]]]:
         """Map each API method to its handler."""
@@ -240,7 +264,7 @@ class S7SmartSimulator(HttpSimulator):
         return {"code": 0, "message": "Success.", "permission": {"write": self.write_permission}}
 
     def _browse(self, request: web.Request, params: Any) -> dict[str, Any]:
-        return {"code": 0, "message": "Success.", "version": API_VERSION, "api": API_LIST}
+        return {"code": 0, "message": "Success.", "version": self.version, "api": API_LIST}
 
     def _status(self) -> dict[str, str]:
         """Return the status block of read and write replies."""
@@ -258,7 +282,7 @@ class S7SmartSimulator(HttpSimulator):
         if not isinstance(params, list):
             raise Fault(INVALID_PARAMS)
         if len(params) > self.max_nodes:
-            raise Fault(TOO_MANY_NODES)
+            raise Fault(self.node_limit_error)
         return params
 
     def _read(self, request: web.Request, params: Any) -> dict[str, Any]:
@@ -271,7 +295,7 @@ class S7SmartSimulator(HttpSimulator):
         if not self.write_permission:
             raise Fault(PERMISSION_DENIED)
         nodes = self._nodes(params)
-        if nodes and self.mode != "RUN":
+        if nodes and self.mode != "RUN" and self.stop_refusal == "request":
             raise Fault(NOT_IN_RUN)
         return {"status": self._status(), "data": [self._node(n, True) for n in nodes]}
 
@@ -285,6 +309,8 @@ class S7SmartSimulator(HttpSimulator):
                 raise Fault(INVALID_ADDRESS)
             where = self.memory.locate(var, node.get("mode", "signed"))
             if write:
+                if self.mode != "RUN":  # stop_refusal "node": the request passed, no node does
+                    raise Fault(NOT_IN_RUN)
                 if "value" not in node:
                     raise Fault(INVALID_VALUE)
                 if where.area == "SM" and where.offset < READ_ONLY_SM:
@@ -293,7 +319,7 @@ class S7SmartSimulator(HttpSimulator):
             else:
                 value = self.memory.load(where)
         except Fault as fault:
-            code, message = shown(fault.code, foreign=self.foreign_codes)
+            code, message = shown(fault.code, self.codes)
             return {"code": code, "message": message, "var": var}
         done = {"code": 0, "message": "Success.", "var": var}
         return done if write else done | {"value": value}

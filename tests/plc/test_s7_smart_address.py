@@ -18,15 +18,19 @@ from custom_components.plc_bridge.plc import (
 )
 from custom_components.plc_bridge.plc.vendors.s7_smart import S7SmartClient
 from custom_components.plc_bridge.plc.vendors.s7_smart.address import parse_address, point_kind
-from custom_components.plc_bridge.plc.vendors.s7_smart.client import cookie_header
 from custom_components.plc_bridge.plc.vendors.s7_smart.codec import (
-    STOP_MESSAGE,
     decode,
     decode_status,
     encode,
+    node_for,
+)
+from custom_components.plc_bridge.plc.vendors.s7_smart.errors import (
+    STOP_MESSAGE,
+    RpcError,
     node_error,
     request_error,
 )
+from custom_components.plc_bridge.plc.vendors.s7_smart.rpc import cookie_header, retry_after
 
 PRAGUE = ZoneInfo("Europe/Prague")
 
@@ -243,34 +247,65 @@ def test_decode_status() -> None:
 
 
 @pytest.mark.parametrize(
-    ("code", "kind", "message"),
+    ("code", "message", "write", "kind", "text"),
     [
-        # Never an authentication error here: a fresh login has just worked (the login's own
-        # refusal is told apart by its method, not its code).
-        (1001, PlcProtocolError, "the PLC refused the request: Login failed. (code 1001)"),
-        (1002, PlcProtocolError, "the PLC refused the request: Invalid token. (code 1002)"),
-        (1003, PlcWriteRefusedError, "the PLC user has no write permission (Permission denied.)"),
-        (2001, PlcWriteRefusedError, STOP_MESSAGE),
-        (2002, PlcProtocolError, "the PLC refused the request: Too many nodes. (code 2002)"),
-        (-32700, PlcProtocolError, "the PLC refused the request: boom (code -32700)"),
-        (77, PlcProtocolError, "the PLC refused the request: no message (code 77)"),
+        # No code decides the kind or lends a meaning: the PLC's words, behind a neutral lead.
+        (1003, "Permission denied.", True, PlcWriteRefusedError, "the PLC refused the write"),
+        (2001, "CPU not in RUN.", False, PlcProtocolError, "the PLC refused the request"),
+        (1002, "Too many nodes.", False, PlcProtocolError, "the PLC refused the request"),
     ],
 )
-def test_request_errors(code: int, kind: type[Exception], message: str) -> None:
-    error = request_error(code, "boom" if code == -32700 else "")
+def test_request_errors(
+    code: int, message: str, write: bool, kind: type[Exception], text: str
+) -> None:
+    error = request_error(RpcError(code, message), write=write)
     assert isinstance(error, kind)
-    assert str(error) == message
+    assert str(error) == f"{text} ({message}, code {code})"
+    assert str(request_error(RpcError(77, ""), write=False)).endswith("(no message, code 77)")
 
 
 def test_node_errors() -> None:
-    assert str(node_error(3004, "VB9")) == "VB9: the PLC has no such address (code 3004)"
-    assert isinstance(node_error(3005, "VB9"), PlcAddressError)
-    assert isinstance(node_error(3006, "VB9"), PlcAddressError)
-    assert isinstance(node_error(3007, "SMB0"), PlcWriteRefusedError)
+    """Only 3004 is the manual's; any other code is the PLC refusing the node, in its words."""
+    assert str(node_error(3004, "VB9", "Invalid address.")) == (
+        "VB9: the PLC has no such address (code 3004)"
+    )
+    assert str(node_error(3004, "VB9", "No such area")) == (
+        "VB9: the PLC has no such address (No such area, code 3004)"
+    )
+    read_only = node_error(3005, "SMB0", "Address is read only", write=True)
+    assert isinstance(read_only, PlcWriteRefusedError)
+    assert str(read_only) == "SMB0: the PLC refused it (Address is read only, code 3005)"
+    in_stop = node_error(3006, "VW0", "CPU is not in RUN mode", write=True, stopped=True)
+    assert isinstance(in_stop, PlcWriteRefusedError)
+    assert str(in_stop) == f"VW0: {STOP_MESSAGE} (CPU is not in RUN mode, code 3006)"
     unknown = node_error(None, "VB9")
     assert isinstance(unknown, PlcProtocolError)
-    assert str(unknown) == "VB9: the PLC refused it without a reason (code None)"
-    # Codes the table does not know keep the PLC's words; a write node is a refused write.
-    foreign = node_error(7107, "AIW16", "Request refused (E7107)", write=True)
-    assert isinstance(foreign, PlcWriteRefusedError)
-    assert str(foreign) == "AIW16: the PLC refused it: Request refused (E7107) (code 7107)"
+    assert str(unknown) == "VB9: the PLC refused it (no message, code None)"
+    assert len(str(node_error([[[[[[[[1]]]]]]]], "VB9"))) < 80  # never the whole of a value
+
+
+@pytest.mark.parametrize(
+    ("header", "seconds"),
+    [
+        ({"Retry-After": "3"}, 3.0),
+        ({"Retry-After": "86400"}, 60.0),  # bounded
+        ({"Retry-After": "9" * 5000}, 60.0),
+        ({"Retry-After": "Thu, 01 Jan 2026 00:00:20 GMT"}, 20.0),
+        ({"Retry-After": "Wed, 31 Dec 2025 23:00:00 GMT"}, 0.0),  # already past
+        ({"Retry-After": "soon"}, 2.0),
+        ({}, 2.0),
+    ],
+)
+def test_retry_after(header: dict[str, str], seconds: float) -> None:
+    assert retry_after(header, datetime(2026, 1, 1, tzinfo=UTC)) == seconds
+
+
+def test_node_cache_holds_a_large_poll() -> None:
+    """A 10,000-point poll planned again parses nothing again (a cache of 4,096 parsed all)."""
+    points = [Point(f"VB{index}", "unsigned") for index in range(10_000)]
+    for point in points:
+        node_for(point)
+    hits = node_for.cache_info().hits
+    for point in points:
+        node_for(point)
+    assert node_for.cache_info().hits - hits == len(points)

@@ -229,7 +229,9 @@ async def test_write_node_errors(
     assert isinstance(results[points[1]].error, PlcAddressError)
     assert results[points[1]].value is None
     assert isinstance(results[points[2]].error, PlcWriteRefusedError)
-    assert str(results[points[2]].error) == "SMB29: the address is read-only (code 3007)"
+    assert str(results[points[2]].error) == (
+        "SMB29: the PLC refused it (Read-only address., code 3007)"  # its words, no guess
+    )
     assert s7_smart_sim.get("VW0") == 1
     assert (await s7_smart_client.write({Point("SMB30", "unsigned"): 3}))[
         Point("SMB30", "unsigned")

@@ -19,19 +19,53 @@ from custom_components.plc_bridge.plc import (
     TlsMode,
 )
 from custom_components.plc_bridge.plc.vendors.s7_smart import S7SmartClient, client as client_module
-from simulators.s7_smart import S7SmartSimulator
+from custom_components.plc_bridge.plc.vendors.s7_smart.errors import STOP_MESSAGE
+from simulators.s7_smart import CODES, S7SmartSimulator
 
 from .conftest import ConfigFactory
 
 POINT = Point("VW0", "signed")
 
 
-@pytest.fixture(autouse=True, params=[False, True], ids=["manual-codes", "foreign-codes"])
-def codes(request: pytest.FixtureRequest, s7_smart_sim: S7SmartSimulator) -> bool:
-    """Run every session, STOP and permission test twice: with the codes our client knows, and
-    with a firmware's it cannot (the manual defines 3004 only): the paths rest on structure."""
-    s7_smart_sim.foreign_codes = request.param
-    return bool(request.param)
+FIRMWARES = [
+    {"codes": codes, "stop_refusal": stop, "error_status": status, "cookie_name_in_token": named}
+    for codes in CODES
+    for stop in ("request", "node")
+    for status, named in ((200, True), (500, False))  # each value of both, in pairs
+]
+
+
+def configure(sim: S7SmartSimulator, firmware: dict[str, Any]) -> None:
+    """Set the simulator's switches for the readings a firmware takes (READINGS.md)."""
+    for name, value in firmware.items():
+        setattr(sim, name, value)
+
+
+@pytest.fixture(
+    autouse=True,
+    params=FIRMWARES,
+    ids=lambda f: (
+        f"{f['codes']}-stop-{f['stop_refusal']}-http-{f['error_status']}"
+        + ("" if f["cookie_name_in_token"] else "-bare-token")
+    ),
+)
+def firmware(request: pytest.FixtureRequest, s7_smart_sim: S7SmartSimulator) -> dict[str, Any]:
+    """Run every session, STOP and permission test under each reading the manual leaves open:
+    codes of our table, foreign ones, or ours meaning other things; STOP refused for the whole
+    write or per node; error replies with HTTP 200 or 500; a login cookie with its name or bare.
+    The paths rest on structure."""
+    configure(s7_smart_sim, request.param)
+    return dict(request.param)
+
+
+async def stop_refusal(client: S7SmartClient, point: Point) -> str:
+    """Write in STOP and return the refusal's text, whole request or node alike."""
+    try:
+        error = (await client.write({point: 1}))[point].error
+    except PlcWriteRefusedError as err:
+        error = err
+    assert isinstance(error, PlcWriteRefusedError)
+    return str(error)
 
 
 async def test_token_renewed_once(
@@ -47,18 +81,17 @@ async def test_token_renewed_once(
 
 
 async def test_token_lost_twice_fails(
-    s7_smart_sim: S7SmartSimulator, s7_smart_client: S7SmartClient, codes: bool
+    s7_smart_sim: S7SmartSimulator, s7_smart_client: S7SmartClient
 ) -> None:
-    """A refusal that a fresh login does not cure is no reason for reauth (the login worked)."""
+    """A refusal that a fresh login does not cure is no reason for reauth (the login worked);
+    an empty read refused too tells a dropped session, whatever the code says."""
     s7_smart_sim.idle_timeout = 0.0  # every token is stale by its next request
-    # With the known code the client can say what happened; with another, the PLC's words.
-    expected = "Request refused" if codes else "dropped the session again"
-    with pytest.raises((PlcConnectionError, PlcProtocolError), match=expected) as err:
-        await s7_smart_client.read([POINT])
-    assert not isinstance(err.value, PlcAuthenticationError)  # the password is right: no reauth
-    assert s7_smart_client.metrics.session_renewals == 1
+    with pytest.raises(PlcConnectionError, match="refused calls again right after a new login"):
+        await s7_smart_client.read([POINT, Point("VW2", "signed")])
+    assert s7_smart_client.metrics.session_renewals == 0  # the retry failed: nothing renewed
     assert s7_smart_client.metrics.errors == 1
     assert s7_smart_sim.calls["login"] == 2
+    assert s7_smart_sim.calls["read"] == 3  # no node-count probing with a session that fails
 
 
 async def test_idle_expiry(s7_smart_sim: S7SmartSimulator, s7_smart_client: S7SmartClient) -> None:
@@ -75,8 +108,7 @@ async def test_renewal_then_other_refusal(
 ) -> None:
     s7_smart_sim.invalidate_tokens()
     s7_smart_sim.mode = "STOP"
-    with pytest.raises(PlcWriteRefusedError):
-        await s7_smart_client.write({POINT: 1})
+    assert STOP_MESSAGE in await stop_refusal(s7_smart_client, POINT)
     assert s7_smart_client.metrics.session_renewals == 1
 
 
@@ -120,25 +152,27 @@ async def test_stop_refuses_writes(
     s7_smart_sim: S7SmartSimulator, s7_smart_client: S7SmartClient
 ) -> None:
     s7_smart_sim.mode = "STOP"
-    with pytest.raises(PlcWriteRefusedError) as caught:
-        await s7_smart_client.write({POINT: 1})
-    assert str(caught.value).startswith(
-        "the PLC is in STOP; S7-200 SMART accepts writes only in RUN ("  # then the PLC's words
-    )
+    refusal = await stop_refusal(s7_smart_client, POINT)
+    assert STOP_MESSAGE in refusal
+    assert "value" not in refusal  # no guessed meaning of a code; the PLC's words follow
     assert s7_smart_client.metrics.session_renewals == 0  # the status told: no new login
+    assert s7_smart_sim.calls["login"] == 1
     assert (await s7_smart_client.read([POINT])).status.mode == "STOP"
 
 
-async def test_no_write_permission(s7_smart_config: ConfigFactory, codes: bool) -> None:
+async def test_no_write_permission(
+    s7_smart_config: ConfigFactory, firmware: dict[str, Any]
+) -> None:
     """A read-only user's write is refused as such, whatever code the firmware uses."""
     sim = S7SmartSimulator(write_permission=False)
-    sim.foreign_codes = codes
+    configure(sim, firmware)
     await sim.start()
     try:
         client = S7SmartClient(s7_smart_config(port=sim.port, fingerprint=sim.fingerprint))
         assert (await client.connect()).can_write is False
         with pytest.raises(PlcWriteRefusedError, match="no write permission"):
             await client.write({POINT: 1})
+        assert sim.calls["login"] == 1  # the empty read passed: no new login to try
         await client.close()
     finally:
         await sim.stop()
@@ -167,21 +201,24 @@ async def test_malformed_reply(
         (lambda r: r | {"result": r["result"] | {"data": [{"var": "VW2"}] * 2}}, "match"),
         (
             lambda r: {"jsonrpc": "2.0", "id": None, "error": {"code": 2003, "message": "Big."}},
-            "the PLC refused the request: Big. \\(code 2003\\)",
+            "the PLC refused the request \\(Big., code 2003\\)",
         ),
         (
             lambda r: {"jsonrpc": "2.0", "id": r["id"], "error": {"code": "x"}},
-            "the PLC refused the request: no message \\(code 0\\)",
+            "the PLC refused the request \\(no message, code 0\\)",
+        ),
+        (
+            lambda r: {"jsonrpc": "2.0", "id": r["id"], "error": {"code": 5, "message": [["x"]]}},
+            "the PLC refused the request \\(no message, code 5\\)",
         ),
     ],
 )
 async def test_protocol_errors(
     s7_smart_sim: S7SmartSimulator, s7_smart_client: S7SmartClient, rewrite: Any, message: str
 ) -> None:
-    """Garbled or refused read replies; a refusal survives the one fresh login it earns."""
-    s7_smart_sim.rewrite = lambda reply: (
-        rewrite(reply) if "cookie" not in reply.get("result", {}) else reply
-    )
+    """Garbled or refused read replies (not the login's or the empty status read's); a refusal
+    survives the one fresh login it earns and a read of fewer nodes."""
+    s7_smart_sim.rewrite = lambda reply: rewrite(reply) if reply["result"].get("data") else reply
     with pytest.raises(PlcProtocolError, match=message):
         await s7_smart_client.read([POINT, Point("VW2", "signed")])
 
@@ -277,12 +314,19 @@ async def test_calls_without_a_session_share_one_login(s7_smart_config: ConfigFa
 async def test_fewer_nodes_learned(
     s7_smart_sim: S7SmartSimulator, s7_smart_client: S7SmartClient
 ) -> None:
-    """A firmware taking 10 nodes a read, whatever code it refuses with: the poll halves its
-    requests until they pass and keeps the limit; no authentication error on the way."""
+    """A firmware taking 10 nodes a read, whatever code it refuses with: after the one fresh
+    login, fewer nodes are tried until the most that pass is found; the limit is kept, for
+    writes too; no renewal is counted (the retry after the login failed) and no error raised."""
     s7_smart_sim.max_nodes = 10
     points = [Point(f"VW{2 * index}", "signed") for index in range(40)]
     result = await s7_smart_client.read(points)
     assert all(outcome.ok for outcome in result.values.values())
+    assert s7_smart_client.metrics.session_renewals == 0
+    assert s7_smart_sim.calls["login"] == 2
     before = s7_smart_sim.calls["read"]
     await s7_smart_client.read(points)
-    assert s7_smart_sim.calls["read"] - before == 5  # 40 nodes, 8 a request (32 -> 16 -> 8)
+    assert s7_smart_sim.calls["read"] - before == 4  # 40 nodes, 10 a request
+    written = await s7_smart_client.write(dict.fromkeys(points[:20], 3))
+    assert all(outcome.ok for outcome in written.values())
+    assert s7_smart_sim.calls["write"] == 2
+    assert s7_smart_sim.calls["login"] == 2

@@ -11,7 +11,14 @@ from typing import Any
 import aiohttp
 import pytest
 
-from simulators.s7_smart import DEFAULT_PASSWORD, DEFAULT_USER, ERRORS, S7SmartSimulator
+from simulators.s7_smart import (
+    DEFAULT_PASSWORD,
+    DEFAULT_USER,
+    ERRORS,
+    HttpFault,
+    S7SmartSimulator,
+)
+from simulators.s7_smart.errors import INVALID_PARAMS, SHUFFLED
 
 type Reply = dict[str, Any]
 
@@ -181,6 +188,45 @@ async def test_write_refusals(raw: Raw, s7_smart_sim: S7SmartSimulator) -> None:
     s7_smart_sim.write_permission = False
     assert code(await raw.call("write", [])) == 1003
     assert (await raw.call("get_permission"))["result"]["permission"] == {"write": False}
+
+
+async def test_reading_switches(raw: Raw, s7_smart_sim: S7SmartSimulator) -> None:
+    """Each switch of READINGS.md changes what it names only."""
+    await raw.login()
+    write = [{"var": "VW0", "value": 1}]
+    s7_smart_sim.mode, s7_smart_sim.stop_refusal = "STOP", "node"
+    reply = await raw.call("write", write)
+    assert reply["result"]["status"]["Operating Mode"] == "STOP"
+    assert reply["result"]["data"] == [{"code": 2001, "message": "CPU not in RUN.", "var": "VW0"}]
+    s7_smart_sim.codes = "shuffled"
+    reply = await raw.call("write", write)
+    assert reply["result"]["data"][0]["message"] == "CPU is not in RUN mode"
+    s7_smart_sim.max_nodes, s7_smart_sim.node_limit_error = 2, INVALID_PARAMS
+    assert (await raw.call("read", [{"var": "VW0"}] * 3))["error"]["code"] == INVALID_PARAMS
+    s7_smart_sim.node_limit_error = 2002
+    assert (await raw.call("read", [{"var": "VW0"}] * 3))["error"] == {
+        "code": SHUFFLED[2002][0],
+        "message": "Too many nodes.",
+    }
+    s7_smart_sim.codes = "foreign"
+    assert (await raw.call("read", [{"var": "VW0"}] * 3))["error"]["code"] > 7000
+    assert (await raw.call("read", [{"var": "VW0"}] * 2))["result"]["data"][0]["code"] == 0
+
+
+async def test_http_switches(raw: Raw, s7_smart_sim: S7SmartSimulator) -> None:
+    """`error_status` sets the HTTP status of error replies; `http_faults` answer in their place."""
+    s7_smart_sim.error_status = 500
+    body = json.dumps({"jsonrpc": "2.0", "method": "read", "id": 1, "params": []})
+    headers = {"Content-Type": "application/json"}
+    async with raw.session.post(raw.url, data=body, headers=headers, ssl=False) as reply:
+        assert reply.status == 500
+        assert (await reply.json())["error"]["message"] == "Invalid token."
+    s7_smart_sim.http_faults = [HttpFault(429, "slow down", {"Retry-After": "3"})]
+    async with raw.session.post(raw.url, data=body, headers=headers, ssl=False) as reply:
+        assert (reply.status, reply.headers["Retry-After"]) == (429, "3")
+        assert await reply.text() == "slow down"
+    assert s7_smart_sim.http_faults == []
+    assert s7_smart_sim.calls["read"] == 1  # a fault is answered before the call is handled
 
 
 def test_users_and_direct_access() -> None:

@@ -7,8 +7,6 @@ from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from datetime import datetime
 import hashlib
-import itertools
-import json
 import logging
 from typing import Any, ClassVar
 from zoneinfo import ZoneInfo
@@ -16,13 +14,7 @@ from zoneinfo import ZoneInfo
 import aiohttp
 
 from ...client import PlcClient
-from ...errors import (
-    PlcAuthenticationError,
-    PlcConnectionError,
-    PlcError,
-    PlcProtocolError,
-    PlcWriteRefusedError,
-)
+from ...errors import PlcError, PlcProtocolError
 from ...http import HttpTransport
 from ...types import (
     ConnectionConfig,
@@ -38,27 +30,31 @@ from ...types import (
 )
 from .address import BOOL, DATE, MODES, covered, writable
 from .codec import (
-    INVALID_TOKEN,
     MAX_NODES,
-    STOP_MESSAGE,
     Node,
-    RequestRefused,
     check_value,
     decode,
     decode_status,
-    dumps,
     encode,
-    node_error,
     node_for,
     plan,
     read_plan,
     reply_nodes,
-    request_error,
 )
+from .errors import (
+    RequestRefused,
+    RpcError,
+    login_error,
+    node_error,
+    permission_error,
+    request_error,
+    session_error,
+    stop_error,
+)
+from .rpc import WebApi
 
 _LOGGER = logging.getLogger(__name__)
 
-PATH = "/Web_api"
 LOGOUT_TIMEOUT = 2.0
 _DATE_POINT = Point("DATE", "signed")
 _KINDS = {
@@ -72,16 +68,6 @@ _KINDS = {
 }
 
 
-def cookie_header(token: str) -> str:
-    """Return the Cookie header for a login token.
-
-    The manual's examples send "Session-Id=<base64>" (curl -b), but do not say whether login
-    returns the pair or the bare token. A name=value pair is sent as given; a bare token (whose
-    base64 padding may end in "=") gets the name the examples show.
-    """
-    return token if "=" in token.rstrip("=") else f"Session-Id={token}"
-
-
 @dataclass(frozen=True, slots=True)
 class _PollPlan:
     """A poll parsed and grouped once: kept while the same points are polled again."""
@@ -90,25 +76,6 @@ class _PollPlan:
     invalid: dict[Point, PointResult]
     wanted: dict[Node, list[Point]]
     groups: list[tuple[list[Node], list[dict[str, Any]]]]
-
-
-READING = frozenset({"browse", "login", "get_permission", "read"})
-"""Methods sent again once when a kept-alive connection breaks before the answer: they change
-nothing in the CPU (a login sent twice leaves the second token, the one kept)."""
-
-
-class _RpcError(Exception):
-    """An error answer; `_call` turns it into a PlcError and never lets it out."""
-
-    def __init__(self, code: int, message: str) -> None:
-        super().__init__(code, message)
-        self.code = code
-        self.message = message
-
-
-def plc_words(err: _RpcError) -> str:
-    """Return what the PLC said about a refusal: its message and its code."""
-    return f"{err.message or 'no message'}, code {err.code}"
 
 
 class S7SmartClient(PlcClient):
@@ -130,8 +97,8 @@ class S7SmartClient(PlcClient):
         """Keep the settings; the transport is made and the login done in `connect`."""
         super().__init__(config, session)
         self._transport: HttpTransport | None = None
+        self._api: WebApi | None = None
         self._token: str | None = None
-        self._ids = itertools.count(1)
         self._zone = ZoneInfo(self.config.time_zone)
         self._plan: _PollPlan | None = None
         self._login_lock = asyncio.Lock()
@@ -188,9 +155,15 @@ class S7SmartClient(PlcClient):
             )
         return self._transport
 
+    async def _send(self, method: str, params: Any) -> dict[str, Any]:
+        """Send one call with the token held; return its result, raise RpcError for a refusal."""
+        if self._api is None:
+            self._api = WebApi(self._http())
+        return await self._api.call(method, params, self._token)
+
     async def connect(self) -> DeviceInfo:
         """Ask the API version, log in and ask the user's write permission."""
-        browse = await self._rpc("browse", None)
+        browse = await self._send("browse", None)
         version = str(browse.get("version", "")).strip().rstrip(".")  # the manual shows "x.y.z."
         await self._login()
         permission = (await self._call("get_permission", None)).get("permission")
@@ -232,22 +205,14 @@ class S7SmartClient(PlcClient):
         """Read every distinct point once, 32 nodes a request; status from the last reply."""
         while True:
             planned = self._poll_plan(points, keep=poll)
+            replies: list[dict[str, Any]] = []
             try:
-                replies = [await self._call("read", params) for _group, params in planned.groups]
+                for _group, params in planned.groups:
+                    replies.append(await self._call("read", params))
                 break
             except RequestRefused:
-                largest = max(len(group) for group, _params in planned.groups)
-                if largest <= 1:
+                if not await self._fewer_nodes(planned.groups[len(replies)][1]):
                     raise
-                # Refused even after a fresh login: perhaps a firmware taking fewer nodes than
-                # the manual's 32 (8.1). Halve, and keep the smaller limit for later polls.
-                self._max_nodes = largest // 2
-                _LOGGER.info(
-                    "%s refused %d nodes in one read; reading at most %d from now on",
-                    self.config.host,
-                    largest,
-                    self._max_nodes,
-                )
         values = dict(planned.invalid)
         status = PlcStatus()
         for (group, _params), result in zip(planned.groups, replies, strict=True):
@@ -257,6 +222,32 @@ class S7SmartClient(PlcClient):
                 for point in planned.wanted[node]:
                     values[point] = outcome
         return ReadResult(values=values, status=status)
+
+    async def _fewer_nodes(self, params: list[dict[str, Any]]) -> bool:
+        """Learn how many nodes a read may hold, after the PLC refused these whole; False if none.
+
+        Reached with the session working (an empty read passed after a fresh login): perhaps a
+        firmware taking fewer nodes than the manual's 32 (8.1 c), whatever code or words it
+        refuses with. Halve until a read passes, then bisect up to the most that pass; the
+        limit is kept for later polls and writes.
+        """
+        taken, refused = 0, len(params)
+        while (size := (taken + refused) // 2 if taken else refused // 2) > taken:
+            try:
+                self._noted(await self._send("read", params[:size]))
+                taken = size
+            except RpcError:
+                refused = size
+        if not taken:
+            return False
+        self._max_nodes = taken
+        _LOGGER.info(
+            "%s refused %d nodes in one read; reading at most %d from now on",
+            self.config.host,
+            len(params),
+            taken,
+        )
+        return True
 
     def _outcome(self, node: Node, item: dict[str, Any]) -> PointResult:
         """Return the result of one read node: its value or its own error."""
@@ -276,13 +267,16 @@ class S7SmartClient(PlcClient):
             return item[0].request(encode(item[0].kind, item[2], self._zone), write=True)
 
         results: dict[Point, PointResult] = {}
-        for group in plan(items, wire):
+        for group in plan(items, wire, self._max_nodes):
             result = await self._call("write", [wire(item) for item in group])
+            stopped = self._mode not in (None, "RUN")  # this reply's status block (9.3.1)
             nodes = [node for node, _point, _value in group]
             for (node, point, value), data in zip(group, reply_nodes(result, nodes), strict=True):
                 code = data.get("code")
                 error = (
-                    node_error(code, node.address.text, data.get("message"), write=True)
+                    node_error(
+                        code, node.address.text, data.get("message"), write=True, stopped=stopped
+                    )
                     if code != 0
                     else None
                 )
@@ -309,11 +303,12 @@ class S7SmartClient(PlcClient):
             try:
                 # Short: an unreachable PLC must not hold up Home Assistant's unload or shutdown.
                 async with asyncio.timeout(LOGOUT_TIMEOUT):
-                    await self._rpc("logout", None)
-            except (PlcError, _RpcError, TimeoutError) as err:
+                    await self._send("logout", None)
+            except (PlcError, RpcError, TimeoutError) as err:
                 _LOGGER.debug("Logout from %s failed: %s", self.config.host, err)
         self._token = None
         self._transport = None
+        self._api = None
         await self._close_own_session()
 
     async def _login(self, seen: int | None = None) -> None:
@@ -330,12 +325,9 @@ class S7SmartClient(PlcClient):
             password = hashlib.sha512(self.config.password.encode()).hexdigest()
             params = {"username": self.config.username, "password": password}
             try:
-                result = await self._rpc("login", params)
-            except _RpcError as err:
-                # Manual 5.3.2: a login fails with an error object, whatever its code says.
-                raise PlcAuthenticationError(
-                    f"the PLC refused the user name or password ({plc_words(err)})"
-                ) from None
+                result = await self._send("login", params)
+            except RpcError as err:
+                raise login_error(err) from None
             cookie = result.get("cookie")
             if not isinstance(cookie, str) or not cookie:
                 raise PlcProtocolError("the PLC accepted the login but sent no token")
@@ -343,91 +335,59 @@ class S7SmartClient(PlcClient):
             self._logins += 1
 
     async def _call(self, method: str, params: Any) -> dict[str, Any]:
-        """Call a method that needs a login; after any refusal log in once and retry once.
+        """Call a method that needs a login; after a refusal log in once and retry once.
 
         The manual defines no session error code (its error page is missing), only that a
         request needs a login first (7.1 a, 8.1 a, 9.1 a) and that a token ends with another
-        login or half an hour idle (5.1 b, 5.1 c): so a refusal is first taken as a lost
-        session. A refused write is first checked against the status an empty read returns
-        (8.1 d): out of RUN, it is the STOP refusal ("You can ONLY write data while CPU in run",
-        9.1 d), with the PLC's own words; a write refused again after a fresh login, by a user
-        get_permission (7) said may not write, is that. Known codes refine the message; they
-        never decide the path.
+        login or half an hour idle (5.1 b, 5.1 c). So what a refusal means is told by
+        structure, never by its code: an empty read (8.1 d) that passes shows the session
+        works; its status block tells STOP (9.1 d); get_permission (7) told whether the user
+        may write. A refused write with the session working is not sent again; any other
+        refusal is taken as a lost session: one fresh login, one retry. A renewal is counted
+        when a call with the new token passes where the old one's was refused.
         """
         if self._token is None:
             await self._login(self._logins)  # callers at once share the one login
         seen = self._logins
+        write = method == "write"
         try:
-            return self._noted(await self._rpc(method, params))
-        except _RpcError as err:
-            if method == "write" and await self._stopped():
-                raise PlcWriteRefusedError(f"{STOP_MESSAGE} ({plc_words(err)})") from None
-        self.metrics.session_renewals += 1
+            return self._noted(await self._send(method, params))
+        except RpcError as err:
+            # Another caller's login since then would make the empty read pass on its token.
+            if write and self._logins == seen and await self._session_works():
+                raise self._write_refused(err) from None
         await self._login(seen)
         try:
-            return self._noted(await self._rpc(method, params))
-        except _RpcError as err:
-            if method == "write" and await self._stopped():
-                raise PlcWriteRefusedError(f"{STOP_MESSAGE} ({plc_words(err)})") from None
-            if method == "write" and not self._can_write:
-                raise PlcWriteRefusedError(
-                    f"the PLC user has no write permission ({plc_words(err)})"
-                ) from None
-            if err.code == INVALID_TOKEN:
-                # The login just worked: the password is right, another client took the
-                # session (the same PLC user logged in elsewhere). Not a case for reauth.
-                raise PlcConnectionError(
-                    "the PLC dropped the session again right after a new login "
-                    "(another client logs in as the same PLC user)"
-                ) from None
-            raise request_error(err.code, err.message) from None
+            result = self._noted(await self._send(method, params))
+        except RpcError as err:
+            if not await self._session_works():
+                raise session_error(err) from None
+            if write:
+                self.metrics.session_renewals += 1  # the status read passed, the old one not
+                raise self._write_refused(err) from None
+            raise request_error(err, write=False) from None
+        self.metrics.session_renewals += 1
+        return result
 
-    async def _stopped(self) -> bool:
-        """Ask the status (an empty read, manual 8.1 d) and say whether the CPU is out of RUN."""
+    def _write_refused(self, err: RpcError) -> PlcError:
+        """Return the error of a write refused whole while the session works."""
+        if self._mode not in (None, "RUN"):
+            return stop_error(err.words)
+        if not self._can_write:
+            return permission_error(err)
+        return request_error(err, write=True)
+
+    async def _session_works(self) -> bool:
+        """Send an empty read (manual 8.1 d): say whether it passed, and note its status."""
         try:
-            self._noted(await self._rpc("read", []))
-        except (_RpcError, PlcError):
+            self._noted(await self._send("read", []))
+        except RpcError:
             return False
-        return self._mode not in (None, "RUN")
+        return True
 
     def _noted(self, result: dict[str, Any]) -> dict[str, Any]:
         """Remember the operating mode a reply's status block reports (read and write replies)."""
         status = result.get("status")
         if isinstance(status, dict) and isinstance(status.get("Operating Mode"), str):
             self._mode = status["Operating Mode"].strip().upper()
-        return result
-
-    async def _rpc(self, method: str, params: Any) -> dict[str, Any]:
-        """Send one JSON-RPC call (never a batch) and return its result object."""
-        call_id = next(self._ids)
-        body = dumps({"jsonrpc": "2.0", "method": method, "id": call_id, "params": params})
-        headers = {"Content-Type": "application/json"}
-        if self._token is not None:
-            headers["Cookie"] = cookie_header(self._token)
-        status, _headers, raw = await self._http().request(
-            "POST", PATH, data=body.encode(), headers=headers, idempotent=method in READING
-        )
-        try:
-            reply = json.loads(raw)
-        except ValueError:
-            raise PlcProtocolError(
-                f"the PLC answered {method} with HTTP {status}, not JSON"
-            ) from None
-        if not isinstance(reply, dict) or reply.get("jsonrpc") != "2.0":
-            raise PlcProtocolError(f"the PLC's answer to {method} is not JSON-RPC 2.0")
-        error = reply.get("error")
-        # The manual's templates quote the echoed id ("${id_in_requests}"): accept it as text too.
-        # An error about the request itself (parse error, too large) may carry a null id.
-        if reply.get("id") not in (call_id, str(call_id)) and not (
-            reply.get("id") is None and isinstance(error, dict)
-        ):
-            raise PlcProtocolError(
-                f"the PLC answered id {reply.get('id')!r} to request id {call_id} ({method})"
-            )
-        if isinstance(error, dict):
-            code = error.get("code")
-            raise _RpcError(code if isinstance(code, int) else 0, str(error.get("message", "")))
-        result = reply.get("result")
-        if not isinstance(result, dict):
-            raise PlcProtocolError(f"the PLC's answer to {method} has no result")
         return result

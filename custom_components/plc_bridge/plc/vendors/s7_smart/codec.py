@@ -1,4 +1,4 @@
-"""S7-200 SMART wire format: result codes, nodes packed into requests, values per mode."""
+"""S7-200 SMART wire format: nodes packed into requests, values per mode, the status block."""
 
 from __future__ import annotations
 
@@ -7,6 +7,7 @@ from dataclasses import dataclass
 from datetime import datetime, tzinfo
 from functools import lru_cache
 import json
+import reprlib
 from typing import Any
 
 from ...codec import (
@@ -17,97 +18,18 @@ from ...codec import (
     integer_range,
     local_time,
 )
-from ...errors import (
-    PlcAddressError,
-    PlcError,
-    PlcProtocolError,
-    PlcValueError,
-    PlcWriteRefusedError,
-)
+from ...errors import PlcProtocolError, PlcValueError
 from ...planning import pack
 from ...types import PlcStatus, Point, Value
 from .address import BOOL, DATE, MODES, Address, parse_address, point_kind
 
-# The manual's error page is missing: only 3004 "Invalid address." is the vendor's own (it appears
-# in the read and write examples). Every other code here is a guess that only refines a message:
-# what happened is decided from the structure the manual defines (client.S7SmartClient._call).
-# The simulator answers with these or, with foreign_codes, with others; tests run both.
-PARSE_ERROR = -32700
-INVALID_REQUEST = -32600
-METHOD_NOT_FOUND = -32601
-INVALID_PARAMS = -32602
-LOGIN_FAILED = 1001
-INVALID_TOKEN = 1002  # missing, replaced by a newer login of the same user, logged out or idle
-PERMISSION_DENIED = 1003
-NOT_IN_RUN = 2001
-TOO_MANY_NODES = 2002
-PAYLOAD_TOO_LARGE = 2003
-INVALID_ADDRESS = 3004
-INVALID_MODE = 3005
-INVALID_VALUE = 3006  # out of range, or the wrong JSON type for the mode
-READ_ONLY = 3007
-ERRORS: dict[int, str] = {
-    PARSE_ERROR: "Parse error.",
-    INVALID_REQUEST: "Invalid Request.",
-    METHOD_NOT_FOUND: "Method not found.",
-    INVALID_PARAMS: "Invalid params.",
-    LOGIN_FAILED: "Login failed.",
-    INVALID_TOKEN: "Invalid token.",
-    PERMISSION_DENIED: "Permission denied.",
-    NOT_IN_RUN: "CPU not in RUN.",
-    TOO_MANY_NODES: "Too many nodes.",
-    PAYLOAD_TOO_LARGE: "Payload too large.",
-    INVALID_ADDRESS: "Invalid address.",
-    INVALID_MODE: "Invalid mode.",
-    INVALID_VALUE: "Invalid value.",
-    READ_ONLY: "Read-only address.",
-}
-
-STOP_MESSAGE = "the PLC is in STOP; S7-200 SMART accepts writes only in RUN"
 DATE_FORMAT = "%Y-%m-%d %H:%M:%S"
 MAX_NODES = 32  # "max to 32 nodes" (manual 8.1, 9.1)
 PAYLOAD_LIMIT = 15 * 1024  # "The overall payload shall not exceed 15KB" (manual 4.3)
+NODE_CACHE = 1 << 14
+"""Points whose parsed node is kept (about 320 bytes each): above the largest poll planned for
+(10,000 points), since a poll past the cap parses every point again at each new plan."""
 MAX_STRING = 254  # an S7-200 SMART string: one length byte, then up to 254 ASCII characters
-_NODE_ERRORS: dict[int, tuple[type[PlcError], str]] = {
-    INVALID_ADDRESS: (PlcAddressError, "the PLC has no such address"),
-    INVALID_MODE: (PlcAddressError, "the PLC refused this data type for the address"),
-    INVALID_VALUE: (PlcAddressError, "the PLC refused the value (out of range or wrong type)"),
-    READ_ONLY: (PlcWriteRefusedError, "the address is read-only"),
-}
-
-
-class RequestRefused(PlcProtocolError):
-    """The PLC answered a whole request with an error object that no fresh login cured."""
-
-
-def request_error(code: int, message: str) -> PlcError:
-    """Return the exception for a refused request that a fresh login did not cure.
-
-    Never an authentication error: the login just worked. A code this table knows refines the
-    kind; any other keeps the PLC's own words.
-    """
-    text = message or ERRORS.get(code, "no message")
-    if code == PERMISSION_DENIED:
-        return PlcWriteRefusedError(f"the PLC user has no write permission ({text})")
-    if code == NOT_IN_RUN:
-        return PlcWriteRefusedError(STOP_MESSAGE)
-    return RequestRefused(f"the PLC refused the request: {text} (code {code})")
-
-
-def node_error(code: Any, var: str, message: Any = None, *, write: bool = False) -> PlcError:
-    """Return the exception for a node whose result code is not 0, with the PLC's own words.
-
-    A code this table knows refines the kind; any other is, by structure, the PLC refusing that
-    node: a write it did not take, or a read it could not answer (manual 8.3.1, 9.3.1: "If
-    errors exist, nodes shall return the exact reason").
-    """
-    words = f": {message}" if isinstance(message, str) and message.strip() else ""
-    if code in _NODE_ERRORS:
-        kind, text = _NODE_ERRORS[code]
-        said = "" if message == ERRORS.get(code) else words  # no echo of what the table says
-        return kind(f"{var}: {text}{said} (code {code})")
-    kind = PlcWriteRefusedError if write else PlcProtocolError
-    return kind(f"{var}: the PLC refused it{words or ' without a reason'} (code {code!r})")
 
 
 def check_value(address: Address, kind: str, value: Value) -> Value:
@@ -181,7 +103,9 @@ def decode(address: Address, kind: str, raw: Any, zone: tzinfo) -> Value:
             return check_integer(raw, low, high)
     except ValueError:
         pass
-    raise PlcProtocolError(f"{address.text}: the PLC sent {raw!r}, which is no {kind} value")
+    raise PlcProtocolError(
+        f"{address.text}: the PLC sent {reprlib.repr(raw)}, which is no {kind} value"
+    )
 
 
 def decode_status(status: Any, zone: tzinfo) -> PlcStatus:
@@ -233,7 +157,7 @@ class Node:
         return node
 
 
-@lru_cache(maxsize=4096)
+@lru_cache(maxsize=NODE_CACHE)
 def node_for(point: Point) -> Node:
     """Parse a point into its wire node (cached: polls ask again); raise PlcAddressError."""
     address = parse_address(point.address)

@@ -1,0 +1,150 @@
+"""One JSON-RPC 2.0 call to an S7-200 SMART (POST /Web_api): the HTTP answer, resend, back-off."""
+
+from __future__ import annotations
+
+import asyncio
+from collections.abc import Mapping
+from datetime import UTC, datetime
+from email.utils import parsedate_to_datetime
+import itertools
+import json
+import logging
+import time
+from typing import Any
+
+from ...errors import PlcConnectionError, PlcProtocolError
+from ...http import HttpTransport
+from .codec import dumps
+from .errors import RpcError
+
+_LOGGER = logging.getLogger(__name__)
+
+PATH = "/Web_api"
+READING = frozenset({"browse", "login", "get_permission", "read"})
+"""Methods that change nothing in the CPU, sent again once after a broken connection or an HTTP
+5xx/404 without a JSON-RPC answer (a login sent twice leaves the second token, the one kept)."""
+BACKOFF = 2.0
+"""Seconds waited after a 429 that names no Retry-After (twice the manual's pacing, 4.2)."""
+MAX_BACKOFF = 60.0
+"""The longest Retry-After honoured: a PLC asking for more is asked again after a minute."""
+MAX_WAIT = 5.0
+"""The longest back-off a call waits out; during a longer one, calls fail without sending."""
+
+
+def cookie_header(token: str) -> str:
+    """Return the Cookie header for a login token.
+
+    The manual's examples send "Session-Id=<base64>" (curl -b), but do not say whether login
+    returns the pair or the bare token. A name=value pair is sent as given; a bare token (whose
+    base64 padding may end in "=") gets the name the examples show.
+    """
+    return token if "=" in token.rstrip("=") else f"Session-Id={token}"
+
+
+def retry_after(headers: Mapping[str, str], now: datetime | None = None) -> float:
+    """Return the seconds a 429 asks to wait (RFC 9110 10.2.3: seconds or a date), bounded."""
+    value = headers.get("Retry-After", "").strip()
+    if value.isascii() and value.isdigit():
+        return min(float(value[:6]), MAX_BACKOFF)
+    try:
+        when = parsedate_to_datetime(value)
+    except (TypeError, ValueError, IndexError):
+        return BACKOFF
+    if when.tzinfo is None:
+        when = when.replace(tzinfo=UTC)
+    seconds = (when - (now or datetime.now(UTC))).total_seconds()
+    return min(max(seconds, 0.0), MAX_BACKOFF)
+
+
+def _json(raw: bytes) -> Any:
+    """Return the parsed body, or None when it is no JSON (nor JSON this parser can nest)."""
+    try:
+        return json.loads(raw)
+    except (ValueError, RecursionError):
+        return None
+
+
+class WebApi:
+    """The client's JSON-RPC endpoint: call ids, the HTTP status of each answer, back-off."""
+
+    def __init__(self, transport: HttpTransport) -> None:
+        """Send through the client's one transport (its lock paces every request)."""
+        self._transport = transport
+        self._ids = itertools.count(1)
+        self._not_before = 0.0
+
+    async def call(self, method: str, params: Any, token: str | None) -> dict[str, Any]:
+        """Send one call (never a batch) and return its result object; raise RpcError.
+
+        An HTTP 5xx or 404 without a JSON-RPC answer (a busy web server, a proxy) is sent
+        again once for a method that only reads; a write never twice. A 429 is waited out
+        (its Retry-After, bounded) before a read is sent again, and before any later call.
+        """
+        call_id = next(self._ids)
+        body = dumps({"jsonrpc": "2.0", "method": method, "id": call_id, "params": params})
+        headers = {"Content-Type": "application/json"}
+        if token is not None:
+            headers["Cookie"] = cookie_header(token)
+        reading = method in READING
+        for attempt in (1, 2):
+            await self._wait(method)
+            status, answer_headers, raw = await self._transport.request(
+                "POST", PATH, data=body.encode(), headers=headers, idempotent=reading
+            )
+            reply = _json(raw)
+            if 200 <= status < 300 or _answers(reply, call_id):
+                return _result(method, call_id, status, reply)
+            if status == 429:
+                self._not_before = time.monotonic() + retry_after(answer_headers)
+            elif status < 500 and status != 404:
+                raise PlcProtocolError(f"the PLC answered {method} with HTTP {status}")
+            if not reading or attempt == 2:
+                raise PlcConnectionError(f"the PLC answered {method} with HTTP {status}")
+            _LOGGER.debug("%s answered HTTP %s: %s sent again", PATH, status, method)
+        raise AssertionError  # pragma: no cover - the loop returns or raises
+
+    async def _wait(self, method: str) -> None:
+        """Wait out a short back-off a 429 asked for; refuse to send during a long one."""
+        left = self._not_before - time.monotonic()
+        if left > MAX_WAIT:
+            raise PlcConnectionError(
+                f"the PLC asked to wait {left:.0f} s more before {method} (HTTP 429)"
+            )
+        if left > 0:
+            await asyncio.sleep(left)
+
+
+def _answers(reply: Any, call_id: int) -> bool:
+    """Say whether a body is a JSON-RPC answer to this call (a firmware may send one with 500)."""
+    return (
+        isinstance(reply, dict)
+        and reply.get("jsonrpc") == "2.0"
+        and (reply.get("id") in (call_id, str(call_id)) or reply.get("id") is None)
+        and isinstance(reply.get("error"), dict)
+    )
+
+
+def _result(method: str, call_id: int, status: int, reply: Any) -> dict[str, Any]:
+    """Return the result object of an answer; raise RpcError for its error object."""
+    if reply is None:
+        raise PlcProtocolError(f"the PLC answered {method} with HTTP {status}, not JSON")
+    if not isinstance(reply, dict) or reply.get("jsonrpc") != "2.0":
+        raise PlcProtocolError(f"the PLC's answer to {method} is not JSON-RPC 2.0")
+    error = reply.get("error")
+    # The manual's templates quote the echoed id ("${id_in_requests}"): accept it as text too.
+    # An error about the request itself (parse error, too large) may carry a null id.
+    if reply.get("id") not in (call_id, str(call_id)) and not (
+        reply.get("id") is None and isinstance(error, dict)
+    ):
+        raise PlcProtocolError(
+            f"the PLC answered id {reply.get('id')!r} to request id {call_id} ({method})"
+        )
+    if isinstance(error, dict):
+        code, message = error.get("code"), error.get("message")
+        raise RpcError(
+            code if isinstance(code, int) else 0, message if isinstance(message, str) else ""
+        )
+    result = reply.get("result")
+    if not isinstance(result, dict):
+        raise PlcProtocolError(f"the PLC's answer to {method} has no result")
+    return result
