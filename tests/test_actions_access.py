@@ -9,7 +9,7 @@ from pytest_homeassistant_custom_component.common import MockConfigEntry, MockUs
 
 from custom_components.plc_bridge.const import DOMAIN
 from custom_components.plc_bridge.plc.vendors.s7_smart import S7SmartClient
-from custom_components.plc_bridge.point_table import parse_points
+from custom_components.plc_bridge.point_table import parse_points, point_order
 from simulators.s7_smart import S7SmartSimulator
 
 from .ha_fixtures import POINTS, call, make_entry, point
@@ -109,4 +109,4 @@ async def test_export_points_round_trips(
     assert set(response["devices"]) == {"S7-200 SMART"}
     points, errors = parse_points(S7SmartClient, str(response["points"]))
     assert errors == []
-    assert points == [data for _, data in POINTS]
+    assert points == sorted((data for _, data in POINTS), key=point_order)

@@ -9,7 +9,12 @@ import pytest
 
 from custom_components.plc_bridge.plc import Point
 from custom_components.plc_bridge.plc.vendors import client_class
-from custom_components.plc_bridge.point_table import COLUMNS, export_points, parse_points
+from custom_components.plc_bridge.point_table import (
+    COLUMNS,
+    export_points,
+    parse_points,
+    point_order,
+)
 
 SMART = client_class("s7_smart")
 S7 = client_class("s7")
@@ -38,8 +43,18 @@ def test_round_trip() -> None:
     assert points[3]["name"] == "Two\nlines"
     again, errors = parse_points(SMART, export_points(points))
     assert errors == []
-    assert again == points
+    assert again == sorted(points, key=point_order)
     assert export_points(again) == export_points(points)
+
+
+def test_export_in_name_order_whatever_the_stored_order() -> None:
+    """Points export by name (numbers by value), then address: the same text after a restart."""
+    table = f"{HEADER}\nWord 10,VW10,signed\nword 2,VW2,signed\nWord 2,VW0,signed\n"
+    points, errors = parse_points(SMART, table)
+    assert errors == []
+    exported = export_points(points)
+    assert [line.split(",")[1] for line in exported.splitlines()[1:]] == ["VW0", "VW2", "VW10"]
+    assert export_points(reversed(points)) == exported
 
 
 def test_semicolons_and_decimal_commas() -> None:

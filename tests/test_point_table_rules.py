@@ -13,7 +13,12 @@ from pytest_homeassistant_custom_component.common import MockConfigEntry
 from custom_components.plc_bridge.const import DOMAIN
 from custom_components.plc_bridge.plc.vendors import client_class
 from custom_components.plc_bridge.point_form import check_point
-from custom_components.plc_bridge.point_table import COLUMNS, export_points, parse_points
+from custom_components.plc_bridge.point_table import (
+    COLUMNS,
+    export_points,
+    parse_points,
+    point_order,
+)
 from custom_components.plc_bridge.repairs import async_check_tls
 from simulators.tecomat import TecomatSimulator
 
@@ -143,7 +148,7 @@ def test_export_escapes_formulas_and_round_trips() -> None:
     assert ",-5," in exported
     again, errors = parse_points(SMART, exported)
     assert errors == []
-    assert again == points
+    assert again == sorted(points, key=point_order)
 
 
 @pytest.fixture

@@ -236,9 +236,7 @@ class PlcBridgeConfigFlow(ConfigFlow, domain=DOMAIN):
         except PlcValueError as err:
             self._problem = str(err)
             field = err.option if isinstance(err, PlcOptionError) else "base"
-            if self._vendor in SECOND_PAGES and (
-                field == "base" or field in self._second_fields()
-            ):
+            if self._vendor in SECOND_PAGES and (field == "base" or field in self._second_fields()):
                 return self._second_form({field: "invalid_options"})
             return self._connection_form({field: "invalid_options"})
         self._data[CONF_FINGERPRINT] = ""

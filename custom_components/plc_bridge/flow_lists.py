@@ -21,7 +21,7 @@ import voluptuous as vol
 from .const import CONF_ADDRESS, CONF_DATA_TYPE, DOMAIN
 from .plc import BrowseItem, PlcClient, Point
 from .point_form import browse_values, point_data
-from .point_table import Describe
+from .point_table import Describe, point_order
 
 CONF_FILTER = "filter"
 CONF_VARIABLES = "variables"
@@ -44,14 +44,7 @@ def listing(lines: list[str], limit: int = MAX_SHOWN) -> str:
 
 def in_order(points: Mapping[str, Mapping[str, Any]]) -> list[tuple[str, Mapping[str, Any]]]:
     """Return a device's points by name (Word 2 before Word 10), then address, every time."""
-    return sorted(
-        points.items(), key=lambda pair: (natural(pair[1][CONF_NAME]), pair[1][CONF_ADDRESS])
-    )
-
-
-def natural(text: str) -> list[Any]:
-    """Return a sort key that orders the numbers in a text by value."""
-    return [int(part) if part.isdigit() else part.casefold() for part in re.split(r"(\d+)", text)]
+    return sorted(points.items(), key=lambda pair: point_order(pair[1]))
 
 
 def menu_listing(points: Mapping[str, Mapping[str, Any]], types: Mapping[str, str]) -> str:

@@ -266,11 +266,11 @@ def parse_points(
 
 
 def export_points(points: Iterable[Mapping[str, Any]]) -> str:
-    """Return points in the import format (a header, then one line per point)."""
+    """Return points in the import format (a header, then one line per point, by name)."""
     out = io.StringIO()
     writer = csv.writer(out, lineterminator="\n")
     writer.writerow(COLUMNS)
-    for data in points:
+    for data in sorted(points, key=point_order):
         row = {**data, "unit": data.get(CONF_UNIT_OF_MEASUREMENT)}
         row[CONF_READ_ONLY] = "true" if data.get(CONF_READ_ONLY) else "false"
         writer.writerow([_cell(row.get(column)) for column in COLUMNS])
@@ -293,3 +293,13 @@ def _cell(value: Any) -> str:
 def _unescaped(cell: str) -> str:
     """Return a cell without the `'` export puts before text a spreadsheet would run."""
     return cell[1:] if cell.startswith("'") and cell[1:].startswith(FORMULA) else cell
+
+
+def point_order(data: Mapping[str, Any]) -> tuple[list[Any], str]:
+    """Return the key that orders points by name (Word 2 before Word 10), then address."""
+    return natural(data[CONF_NAME]), data[CONF_ADDRESS]
+
+
+def natural(text: str) -> list[Any]:
+    """Return a sort key that orders the numbers in a text by value."""
+    return [int(part) if part.isdigit() else part.casefold() for part in re.split(r"(\d+)", text)]
