@@ -78,7 +78,7 @@ async def test_write_refused_per_point(
     with pytest.raises(HomeAssistantError) as err:
         await call(hass, "write", setup_integration, points=points)
     assert str(err.value) == (
-        "The PLC did not write every value: VW2000: VW2000: the PLC has no such address (code 3004)"
+        "The PLC did not write every value: VW2000: the PLC has no such address (code 3004)"
     )
     assert s7_smart_sim.get("VW30") == 7
 

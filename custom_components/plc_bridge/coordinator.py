@@ -224,10 +224,16 @@ class PlcCoordinator(DataUpdateCoordinator[ReadResult]):
             self.data = replace(self.data, values={**self.data.values, **taken})
             self.async_update_listeners()
         await self.async_request_refresh()
-        failed = [f"{point.address}: {res.error}" for point, res in results.items() if res.error]
+        failed = [named(point, res.error) for point, res in results.items() if res.error]
         if failed:
             raise HomeAssistantError(
                 translation_domain=DOMAIN,
                 translation_key="write_failed",
                 translation_placeholders={"error": "; ".join(failed)},
             )
+
+
+def named(point: Point, error: PlcError) -> str:
+    """Return a point's error led by its address, unless the vendor's words already are."""
+    text = str(error)
+    return text if text.startswith(f"{point.address}:") else f"{point.address}: {text}"
