@@ -53,6 +53,11 @@ class PointConfig:
         return str(self.data[CONF_PLATFORM])
 
     @property
+    def platforms(self) -> tuple[str, ...]:
+        """Every platform with entities of the point (an alarm word: also one per named bit)."""
+        return (self.platform, *ALSO_SHOWN_ON.get(self.platform, ()))
+
+    @property
     def name(self) -> str:
         """The point's (entity's) name."""
         return str(self.data[CONF_NAME])
@@ -73,7 +78,10 @@ def entry_points(entry: PlcBridgeConfigEntry) -> dict[str, PointConfig]:
     }
 
 
-type PointFactory = Callable[[PlcBridgeConfigEntry, PointConfig], Entity]
+type PointFactory = Callable[[PlcBridgeConfigEntry, PointConfig], Entity | list[Entity]]
+"""Makes a point's entity on one platform (or several: the named bits of an alarm word)."""
+ALSO_SHOWN_ON: dict[str, tuple[str, ...]] = {"event": ("binary_sensor",)}
+"""Platforms a point shows on besides its own: an alarm word's event has a sensor per bit."""
 
 
 @callback
@@ -131,7 +139,7 @@ class PointEntities:
         self._entry = entry
         self.configs = entry_points(entry)
         self._platforms: dict[str, tuple[PointFactory, AddConfigEntryEntitiesCallback]] = {}
-        self._entities: dict[str, Entity] = {}
+        self._entities: dict[str, list[Entity]] = {}
         self._lock = asyncio.Lock()
         self.areas: dict[str, str | None] = {}  # each device subentry's area, as last seen
 
@@ -141,17 +149,22 @@ class PointEntities:
     ) -> None:
         """Remember how a platform makes and adds entities, and add its points."""
         self._platforms[platform] = (factory, add)
-        self._add([config for config in self.configs.values() if config.platform == platform])
+        self._add(
+            [config for config in self.configs.values() if platform in config.platforms],
+            platform,
+        )
 
-    def _add(self, configs: list[PointConfig]) -> None:
-        """Make the entities of these points and add each under its device subentry."""
+    def _add(self, configs: list[PointConfig], only: str | None = None) -> None:
+        """Make the entities of these points (on one platform) and add each under its device."""
         groups: dict[tuple[str, str], list[Entity]] = {}
         for config in configs:
-            if config.platform not in self._platforms:
-                continue
-            entity = self._platforms[config.platform][0](self._entry, config)
-            self._entities[config.point_id] = entity
-            groups.setdefault((config.platform, config.subentry_id), []).append(entity)
+            for platform in config.platforms:
+                if platform not in self._platforms or only not in (None, platform):
+                    continue
+                made = self._platforms[platform][0](self._entry, config)
+                entities = made if isinstance(made, list) else [made]
+                self._entities.setdefault(config.point_id, []).extend(entities)
+                groups.setdefault((platform, config.subentry_id), []).extend(entities)
         for (platform, subentry_id), entities in groups.items():
             self._platforms[platform][1](entities, config_subentry_id=subentry_id)
 
@@ -164,14 +177,16 @@ class PointEntities:
             gone = [pid for pid, config in old.items() if new.get(pid) != config]
             registry = er.async_get(hass)
             for point_id in gone:
-                entity = self._entities.pop(point_id, None)
-                if entity is None or entity.hass is None:
-                    continue
-                same_place = point_id in new and new[point_id].platform == old[point_id].platform
-                if not same_place and registry.async_get(entity.entity_id):
-                    registry.async_remove(entity.entity_id)
-                elif same_place:
-                    await entity.async_remove()  # keeps its registry entry: same id, history
+                for entity in self._entities.pop(point_id, []):
+                    if getattr(entity, "hass", None) is None:  # never added
+                        continue
+                    same_place = (
+                        point_id in new and new[point_id].platforms == old[point_id].platforms
+                    )
+                    if not same_place and registry.async_get(entity.entity_id):
+                        registry.async_remove(entity.entity_id)
+                    elif same_place:
+                        await entity.async_remove()  # keeps its registry entry: same id, history
             self.configs = new
             async_register_devices(hass, entry, plc_device, self.areas)
             await entry.runtime_data.coordinator.async_set_points(new)
