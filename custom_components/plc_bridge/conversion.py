@@ -167,7 +167,8 @@ class Conversion:
         exact = self.linear.shown(raw)
         if self.precision is not None:
             exact = round(exact, self.precision)
-        if exact == exact.to_integral_value() and (self.precision == 0 or isinstance(raw, int)):
+        whole = self.precision == 0 or (self.precision is None and isinstance(raw, int))
+        if whole and exact == exact.to_integral_value():
             return int(exact)
         return float(exact)
 
