@@ -9,8 +9,8 @@ from homeassistant.components.button import DOMAIN as BUTTON_DOMAIN, SERVICE_PRE
 from homeassistant.const import ATTR_ENTITY_ID, EVENT_HOMEASSISTANT_STOP
 from homeassistant.core import HomeAssistant
 from homeassistant.helpers import issue_registry as ir
-from pytest_homeassistant_custom_component.common import MockConfigEntry, async_fire_time_changed
 import pytest
+from pytest_homeassistant_custom_component.common import MockConfigEntry, async_fire_time_changed
 
 from custom_components.plc_bridge.const import DOMAIN
 from simulators.s7_smart import S7SmartSimulator
@@ -83,6 +83,7 @@ async def test_pulse(
 
 async def test_failed_off_write_retried_then_reported(
     hass: HomeAssistant,
+    *,
     freezer: FrozenDateTimeFactory,
     s7_smart_sim: S7SmartSimulator,
     buttons: MockConfigEntry,

@@ -20,8 +20,8 @@ from homeassistant.const import (
 from homeassistant.core import Event, EventStateChangedData, HomeAssistant
 from homeassistant.exceptions import ServiceValidationError
 from homeassistant.helpers.event import async_track_state_change_event
-from pytest_homeassistant_custom_component.common import MockConfigEntry
 import pytest
+from pytest_homeassistant_custom_component.common import MockConfigEntry
 
 from simulators.s7_smart import S7SmartSimulator
 
@@ -153,7 +153,10 @@ async def test_switch_codes(
 ) -> None:
     """On is written as 5; a value that is neither code shows as unknown."""
     await hass.services.async_call(
-        SWITCH_DOMAIN, SERVICE_TURN_ON, {ATTR_ENTITY_ID: "switch.s7_200_smart_heater"}, blocking=True
+        SWITCH_DOMAIN,
+        SERVICE_TURN_ON,
+        {ATTR_ENTITY_ID: "switch.s7_200_smart_heater"},
+        blocking=True,
     )
     assert s7_smart_sim.get("VW50") == 5
     assert hass.states.get("switch.s7_200_smart_heater").state == STATE_ON
