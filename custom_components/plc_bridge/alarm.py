@@ -24,9 +24,6 @@ from .entity import PlcPointDescription, PlcPointEntity, device_class, point_fie
 from .plc import Value
 from .points import PointConfig
 
-BIT_LIMIT = 63
-"""The highest bit number a word can name (an LWORD's)."""
-
 
 def word_bits(config: PointConfig) -> Pairs:
     """Return the named bits of an alarm word point."""

@@ -21,15 +21,13 @@ from homeassistant.helpers import issue_registry as ir
 from homeassistant.helpers.entity_platform import AddConfigEntryEntitiesCallback
 from homeassistant.helpers.event import async_call_later
 
-from .const import CONF_PULSE, DOMAIN, LOGGER
+from .const import CONF_PULSE, DOMAIN, LOGGER, PULSE_MAX, PULSE_MIN
 from .coordinator import PlcBridgeConfigEntry
 from .entity import PlcPointDescription, PlcPointEntity, point_fields
 from .plc import ValueKind
 from .points import PointConfig
 
 PARALLEL_UPDATES = 1
-PULSE_MIN = 0.1
-PULSE_MAX = 60.0
 PULSE_FAILED = "pulse_failed"
 
 
@@ -43,6 +41,7 @@ class PlcButtonDescription(ButtonEntityDescription, PlcPointDescription):
 def point_button(entry: PlcBridgeConfigEntry, config: PointConfig) -> PlcButton:
     """Return the button of a point."""
     pulse = float(config.data.get(CONF_PULSE) or 0.0)
+    pulse = min(max(pulse, PULSE_MIN), PULSE_MAX) if pulse else 0.0
     description = PlcButtonDescription(**point_fields(entry, config), pulse=pulse)
     return PlcButton(entry, config, description)
 

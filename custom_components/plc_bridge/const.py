@@ -42,6 +42,11 @@ CONF_ON_VALUE: Final = "on_value"
 CONF_OFF_VALUE: Final = "off_value"
 CONF_PULSE: Final = "pulse"
 CONF_BITS: Final = "bits"
+PULSE_MIN: Final = 0.1
+PULSE_MAX: Final = 60.0
+"""The shortest and longest pulse of a button, in seconds."""
+BIT_LIMIT: Final = 63
+"""The highest bit number an alarm word can name (an LWORD's)."""
 
 POINT_PLATFORMS: Final = (
     "sensor",
