@@ -5,7 +5,8 @@ Value maps (select, enum sensor), a linear range, on/off codes and invert, alarm
 
 from __future__ import annotations
 
-from freezegun.api import FrozenDateTimeFactory
+from unittest.mock import patch
+
 from homeassistant.components.number import DOMAIN as NUMBER_DOMAIN, SERVICE_SET_VALUE
 from homeassistant.components.select import DOMAIN as SELECT_DOMAIN, SERVICE_SELECT_OPTION
 from homeassistant.components.switch import DOMAIN as SWITCH_DOMAIN
@@ -16,16 +17,20 @@ from homeassistant.const import (
     STATE_OFF,
     STATE_ON,
     STATE_UNKNOWN,
+    Platform,
 )
 from homeassistant.core import Event, EventStateChangedData, HomeAssistant
 from homeassistant.exceptions import ServiceValidationError
+from homeassistant.helpers import entity_registry as er
 from homeassistant.helpers.event import async_track_state_change_event
 import pytest
-from pytest_homeassistant_custom_component.common import MockConfigEntry
+from pytest_homeassistant_custom_component.common import MockConfigEntry, snapshot_platform
+from syrupy.assertion import SnapshotAssertion
 
 from simulators.s7_smart import S7SmartSimulator
 
-from .ha_fixtures import make_entry, point, poll
+from .conftest import current_release_only
+from .ha_fixtures import make_entry, point
 
 MAP = "0=Off;1=Auto;2=Manual"
 POINTS = [
@@ -46,6 +51,7 @@ POINTS = [
     point("heater", "Heater", "switch", "VW50", "signed", on_value=5, off_value=2),
     point("contact", "Contact", "binary_sensor", "I0.0", "signed", invert=True),
     point("alarms", "Alarms", "event", "VW70", "signed", bits="0=Overheat;3=Low water"),
+    point("step", "Step", "button", "Q0.2", "signed", pulse=2.0),
 ]
 
 
@@ -60,6 +66,29 @@ async def machines(hass: HomeAssistant, s7_smart_sim: S7SmartSimulator) -> MockC
     assert await hass.config_entries.async_setup(entry.entry_id)
     await hass.async_block_till_done()
     return entry
+
+
+@current_release_only
+@pytest.mark.parametrize("platform", [Platform.SELECT, Platform.BUTTON, Platform.EVENT])
+async def test_snapshot(
+    hass: HomeAssistant,
+    s7_smart_sim: S7SmartSimulator,
+    entity_registry: er.EntityRegistry,
+    snapshot: SnapshotAssertion,
+    platform: Platform,
+) -> None:
+    """The entities of the new platforms, one platform at a time."""
+    entry = make_entry(hass, s7_smart_sim, POINTS)
+    with patch("custom_components.plc_bridge.PLATFORMS", [platform]):
+        assert await hass.config_entries.async_setup(entry.entry_id)
+        await hass.async_block_till_done()
+    await snapshot_platform(hass, entity_registry, snapshot, entry.entry_id)
+
+
+async def refresh(entry: MockConfigEntry, times: int = 1) -> None:
+    """Poll the PLC now (`times` times), as the poll interval would."""
+    for _ in range(times):
+        await entry.runtime_data.coordinator.async_refresh()
 
 
 async def test_states_shown(hass: HomeAssistant, machines: MockConfigEntry) -> None:
@@ -95,31 +124,29 @@ async def test_select_writes_the_code(
 
 async def test_unmapped_value_logged_once(
     hass: HomeAssistant,
-    freezer: FrozenDateTimeFactory,
     s7_smart_sim: S7SmartSimulator,
     machines: MockConfigEntry,
     caplog: pytest.LogCaptureFixture,
 ) -> None:
     """Unknown outside the map, logged once; again after the value was in the map and left."""
     s7_smart_sim.set("VW32", 7)
-    await poll(hass, freezer, 3)
+    await refresh(machines, 3)
     assert hass.states.get("sensor.s7_200_smart_state").state == STATE_UNKNOWN
     logged = [r for r in caplog.records if "value map does not name" in r.getMessage()]
     assert [r.getMessage() for r in logged] == [
         "State: the PLC holds 7, which its value map does not name; shown as unknown"
     ]
     s7_smart_sim.set("VW32", 0)
-    await poll(hass, freezer)
+    await refresh(machines)
     assert hass.states.get("sensor.s7_200_smart_state").state == "Off"
     s7_smart_sim.set("VW32", 9)
-    await poll(hass, freezer, 2)
+    await refresh(machines, 2)
     logged = [r for r in caplog.records if "value map does not name" in r.getMessage()]
     assert len(logged) == 2
 
 
 async def test_linear_range_written_back(
     hass: HomeAssistant,
-    freezer: FrozenDateTimeFactory,
     s7_smart_sim: S7SmartSimulator,
     machines: MockConfigEntry,
 ) -> None:
@@ -141,13 +168,12 @@ async def test_linear_range_written_back(
         )
     assert s7_smart_sim.calls["write"] == writes
     s7_smart_sim.set("VW40", 30000)
-    await poll(hass, freezer)
+    await refresh(machines)
     assert hass.states.get("number.s7_200_smart_valve").state == "100.0"
 
 
 async def test_switch_codes(
     hass: HomeAssistant,
-    freezer: FrozenDateTimeFactory,
     s7_smart_sim: S7SmartSimulator,
     machines: MockConfigEntry,
 ) -> None:
@@ -161,13 +187,12 @@ async def test_switch_codes(
     assert s7_smart_sim.get("VW50") == 5
     assert hass.states.get("switch.s7_200_smart_heater").state == STATE_ON
     s7_smart_sim.set("VW50", 7)
-    await poll(hass, freezer)
+    await refresh(machines)
     assert hass.states.get("switch.s7_200_smart_heater").state == STATE_UNKNOWN
 
 
 async def test_alarm_word(
     hass: HomeAssistant,
-    freezer: FrozenDateTimeFactory,
     s7_smart_sim: S7SmartSimulator,
     machines: MockConfigEntry,
 ) -> None:
@@ -182,10 +207,10 @@ async def test_alarm_word(
     async_track_state_change_event(hass, "event.s7_200_smart_alarms", seen)
     reads = s7_smart_sim.calls["read"]
     s7_smart_sim.set("VW70", 0b0001)
-    await poll(hass, freezer)
+    await refresh(machines)
     assert hass.states.get("binary_sensor.s7_200_smart_overheat").state == STATE_ON
     s7_smart_sim.set("VW70", 0b1110)  # bits 1 and 2 have no name
-    await poll(hass, freezer)
+    await refresh(machines)
     assert hass.states.get("binary_sensor.s7_200_smart_overheat").state == STATE_OFF
     assert hass.states.get("binary_sensor.s7_200_smart_low_water").state == STATE_ON
     assert fired == [("raised", "Overheat"), ("cleared", "Overheat"), ("raised", "Low water")]
