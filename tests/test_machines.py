@@ -30,7 +30,7 @@ from syrupy.assertion import SnapshotAssertion
 from simulators.s7_smart import S7SmartSimulator
 
 from .conftest import current_release_only
-from .ha_fixtures import make_entry, point
+from .ha_fixtures import edit_point, make_entry, point, remove_point
 
 MAP = "0=Off;1=Auto;2=Manual"
 POINTS = [
@@ -215,3 +215,22 @@ async def test_alarm_word(
     assert hass.states.get("binary_sensor.s7_200_smart_low_water").state == STATE_ON
     assert fired == [("raised", "Overheat"), ("cleared", "Overheat"), ("raised", "Low water")]
     assert s7_smart_sim.calls["read"] - reads == 2  # one read per poll for every kind
+
+
+async def test_edited_bits(
+    hass: HomeAssistant,
+    s7_smart_sim: S7SmartSimulator,
+    machines: MockConfigEntry,
+    entity_registry: er.EntityRegistry,
+) -> None:
+    """A bit taken out of the word goes from the registry; the others keep their entities."""
+    overheat = entity_registry.async_get("binary_sensor.s7_200_smart_overheat")
+    edit_point(hass, machines, "alarms", bits="0=Overheat;5=Pump fault")
+    await hass.async_block_till_done()
+    assert entity_registry.async_get("binary_sensor.s7_200_smart_low_water") is None
+    assert entity_registry.async_get("binary_sensor.s7_200_smart_overheat").id == overheat.id
+    assert hass.states.get("binary_sensor.s7_200_smart_pump_fault").state == STATE_OFF
+    remove_point(hass, machines, "alarms")
+    await hass.async_block_till_done()
+    assert entity_registry.async_get("binary_sensor.s7_200_smart_overheat") is None
+    assert entity_registry.async_get("event.s7_200_smart_alarms") is None

@@ -150,21 +150,32 @@ class PointEntities:
         """Remember how a platform makes and adds entities, and add its points."""
         self._platforms[platform] = (factory, add)
         self._add(
-            [config for config in self.configs.values() if platform in config.platforms],
-            platform,
+            self._make(
+                [config for config in self.configs.values() if platform in config.platforms],
+                platform,
+            )
         )
 
-    def _add(self, configs: list[PointConfig], only: str | None = None) -> None:
-        """Make the entities of these points (on one platform) and add each under its device."""
-        groups: dict[tuple[str, str], list[Entity]] = {}
+    def _make(
+        self, configs: list[PointConfig], only: str | None = None
+    ) -> list[tuple[PointConfig, str, Entity]]:
+        """Make the entities of these points (on one platform), not added yet."""
+        made: list[tuple[PointConfig, str, Entity]] = []
         for config in configs:
             for platform in config.platforms:
                 if platform not in self._platforms or only not in (None, platform):
                     continue
-                made = self._platforms[platform][0](self._entry, config)
-                entities = made if isinstance(made, list) else [made]
-                self._entities.setdefault(config.point_id, []).extend(entities)
-                groups.setdefault((platform, config.subentry_id), []).extend(entities)
+                result = self._platforms[platform][0](self._entry, config)
+                entities = result if isinstance(result, list) else [result]
+                made += [(config, platform, entity) for entity in entities]
+        return made
+
+    def _add(self, made: list[tuple[PointConfig, str, Entity]]) -> None:
+        """Add made entities, each under its point's device subentry."""
+        groups: dict[tuple[str, str], list[Entity]] = {}
+        for config, platform, entity in made:
+            self._entities.setdefault(config.point_id, []).append(entity)
+            groups.setdefault((platform, config.subentry_id), []).append(entity)
         for (platform, subentry_id), entities in groups.items():
             self._platforms[platform][1](entities, config_subentry_id=subentry_id)
 
@@ -175,19 +186,18 @@ class PointEntities:
             new = entry_points(entry)
             old = self.configs
             gone = [pid for pid, config in old.items() if new.get(pid) != config]
+            made = self._make([config for pid, config in new.items() if old.get(pid) != config])
+            kept = {(platform, entity.unique_id) for _, platform, entity in made}
             registry = er.async_get(hass)
             for point_id in gone:
                 for entity in self._entities.pop(point_id, []):
                     if getattr(entity, "hass", None) is None:  # never added
                         continue
-                    same_place = (
-                        point_id in new and new[point_id].platforms == old[point_id].platforms
-                    )
-                    if not same_place and registry.async_get(entity.entity_id):
-                        registry.async_remove(entity.entity_id)
-                    elif same_place:
+                    if (entity.entity_id.partition(".")[0], entity.unique_id) in kept:
                         await entity.async_remove()  # keeps its registry entry: same id, history
+                    elif registry.async_get(entity.entity_id):
+                        registry.async_remove(entity.entity_id)  # a removed point or named bit
             self.configs = new
             async_register_devices(hass, entry, plc_device, self.areas)
             await entry.runtime_data.coordinator.async_set_points(new)
-            self._add([config for pid, config in new.items() if old.get(pid) != config])
+            self._add(made)
