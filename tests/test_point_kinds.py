@@ -67,6 +67,11 @@ def test_select_stores_its_map_normalized() -> None:
         ),
         (base("number", "VW40", precision=1.5), {"precision": "precision_invalid"}, {}),
         (base("button", "IB0", "unsigned"), {"platform": "address_not_writable"}, {}),
+        (
+            base("sensor", "VW32", value_map="0=Off", unit_of_measurement="°C"),
+            {"value_map": "map_shows_labels"},
+            {},
+        ),
     ],
 )
 def test_refused(

@@ -11,6 +11,8 @@ from __future__ import annotations
 from collections.abc import Mapping
 from typing import Any
 
+from homeassistant.components.sensor import CONF_STATE_CLASS
+from homeassistant.const import CONF_DEVICE_CLASS, CONF_UNIT_OF_MEASUREMENT
 from homeassistant.helpers.selector import (
     BooleanSelector,
     NumberSelector,
@@ -65,6 +67,9 @@ KIND_COLUMNS = (
 )
 """The columns import and export add for these kinds, in export order (value maps in one
 cell, `0=Off;1=Auto`)."""
+
+NOT_WITH_MAP = (CONF_UNIT_OF_MEASUREMENT, CONF_DEVICE_CLASS, CONF_STATE_CLASS)
+"""What a sensor that shows labels (an enum sensor) cannot have."""
 
 _NUMBER = NumberSelector(NumberSelectorConfig(mode=NumberSelectorMode.BOX, step="any"))
 _PAIRS = TextSelector(TextSelectorConfig(multiline=True))
@@ -143,6 +148,8 @@ def kind_data(
     if CONF_INVERT in asked and values.get(CONF_INVERT):
         data[CONF_INVERT] = True  # stored only when set: older points compare unchanged
     errors |= _number_errors(data)
+    if platform == "sensor" and CONF_VALUE_MAP in data and any(map(values.get, NOT_WITH_MAP)):
+        errors[CONF_VALUE_MAP] = "map_shows_labels"
     return data, errors, placeholders
 
 
