@@ -65,8 +65,6 @@ class PlcButton(PlcPointEntity, ButtonEntity):
     ) -> None:
         """Bind the button to its point; no pulse runs yet."""
         super().__init__(entry, config, description)
-        self._entry = entry
-        self._point_id = config.point_id
         self._timer: CALLBACK_TYPE | None = None
         self._unlisten: CALLBACK_TYPE | None = None
 
@@ -120,7 +118,8 @@ class PlcButton(PlcPointEntity, ButtonEntity):
     async def _async_write_off(self) -> None:
         """Write "off", once more if that fails; then log it and raise a repair issue."""
         self._cancel()
-        issue = f"{PULSE_FAILED}_{self._entry.entry_id}_{self._point_id}"
+        entry = self.coordinator.config_entry
+        issue = f"{PULSE_FAILED}_{entry.entry_id}_{self.entity_description.key}"
         error: HomeAssistantError | None = None
         for _ in range(2):
             try:
@@ -140,7 +139,7 @@ class PlcButton(PlcPointEntity, ButtonEntity):
             severity=ir.IssueSeverity.ERROR,
             translation_key=PULSE_FAILED,
             translation_placeholders={
-                "title": self._entry.title,
+                "title": entry.title,
                 "point": str(self.entity_description.name),
                 "address": address,
                 "error": str(error),

@@ -212,7 +212,7 @@ class Conversion:
 
     def is_on(self, raw: Value | None) -> bool | None:
         """Return whether a raw value means on (codes and invert applied), None if neither."""
-        if raw is None or isinstance(raw, str | list):
+        if not isinstance(raw, bool | int | float):
             return None
         if self.on_value is not None:
             if raw != self.on_value and self.off_value is not None and raw != self.off_value:
