@@ -16,6 +16,7 @@ from homeassistant.const import (
     SERVICE_TURN_ON,
     STATE_OFF,
     STATE_ON,
+    STATE_UNAVAILABLE,
     STATE_UNKNOWN,
     Platform,
 )
@@ -234,3 +235,32 @@ async def test_edited_bits(
     await hass.async_block_till_done()
     assert entity_registry.async_get("binary_sensor.s7_200_smart_overheat") is None
     assert entity_registry.async_get("event.s7_200_smart_alarms") is None
+
+
+async def test_refused_and_failing_alone(
+    hass: HomeAssistant, s7_smart_sim: S7SmartSimulator
+) -> None:
+    """A read-only select is never written; an alarm word at a bad address fails alone."""
+    s7_smart_sim.set("VW30", 1)
+    entry = make_entry(
+        hass,
+        s7_smart_sim,
+        [
+            point("mode", "Mode", "select", "VW30", "signed", value_map=MAP, read_only=True),
+            point("alarms", "Alarms", "event", "VX1", "signed", bits="0=Overheat"),
+        ],
+    )
+    assert await hass.config_entries.async_setup(entry.entry_id)
+    await hass.async_block_till_done()
+    with pytest.raises(ServiceValidationError) as err:
+        await hass.services.async_call(
+            SELECT_DOMAIN,
+            SERVICE_SELECT_OPTION,
+            {ATTR_ENTITY_ID: "select.s7_200_smart_mode", ATTR_OPTION: "Off"},
+            blocking=True,
+        )
+    assert err.value.translation_key == "read_only"
+    assert s7_smart_sim.calls["write"] == 0
+    assert hass.states.get("select.s7_200_smart_mode").state == "Auto"
+    assert hass.states.get("event.s7_200_smart_alarms").state == STATE_UNAVAILABLE
+    assert hass.states.get("binary_sensor.s7_200_smart_overheat").state == STATE_UNAVAILABLE
