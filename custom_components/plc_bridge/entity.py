@@ -163,7 +163,7 @@ class PlcPointEntity(PlcEntity):
     def __init__(
         self, entry: PlcBridgeConfigEntry, config: PointConfig, description: PlcPointDescription
     ) -> None:
-        """Bind the entity to its point (the description's key is the point id) and device."""
+        """Bind the entity to its point and device (the key: the point id, or it and a bit)."""
         super().__init__(entry, description.key)
         self._attr_device_info = DeviceInfo(identifiers={(DOMAIN, config.subentry_id)})
         self.entity_description = description
