@@ -64,6 +64,7 @@ def test_details_fit_the_entity_type() -> None:
     """Each entity type gets only its own settings; a device class's units are offered."""
     assert set(fields(details_schema("binary_sensor", ValueKind.BOOL))) == {
         "device_class",
+        "invert",
         "read_only",
     }
     assert set(fields(details_schema("text", ValueKind.TEXT))) == {"read_only"}

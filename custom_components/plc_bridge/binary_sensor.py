@@ -10,8 +10,10 @@ from homeassistant.components.binary_sensor import (  # type: ignore[attr-define
     BinarySensorEntityDescription,
 )
 from homeassistant.core import HomeAssistant
+from homeassistant.helpers.entity import Entity
 from homeassistant.helpers.entity_platform import AddConfigEntryEntitiesCallback
 
+from .alarm import bit_sensors
 from .coordinator import PlcBridgeConfigEntry
 from .entity import (
     PlcPointDescription,
@@ -29,8 +31,12 @@ class PlcBinarySensorDescription(BinarySensorEntityDescription, PlcPointDescript
     """A point shown as a binary sensor."""
 
 
-def point_binary_sensor(entry: PlcBridgeConfigEntry, config: PointConfig) -> PlcBinarySensor:
-    """Return the binary sensor of a point."""
+def point_binary_sensor(
+    entry: PlcBridgeConfigEntry, config: PointConfig
+) -> PlcBinarySensor | list[Entity]:
+    """Return the binary sensor of a point; an alarm word's: one per named bit."""
+    if config.platform == "event":
+        return bit_sensors(entry, config)
     description = PlcBinarySensorDescription(
         **point_fields(entry, config),
         device_class=device_class(config, BinarySensorDeviceClass),
@@ -50,12 +56,11 @@ async def async_setup_entry(
 
 
 class PlcBinarySensor(PlcPointEntity, BinarySensorEntity):
-    """A BOOL point (any non-zero number counts as on)."""
+    """A BOOL point (any non-zero number counts as on, unless codes or invert say otherwise)."""
 
     entity_description: PlcBinarySensorDescription
 
     @property
     def is_on(self) -> bool | None:
-        """Return the point's state."""
-        value = self.raw_value
-        return None if value is None else bool(value)
+        """Return the point's state (its on/off codes and invert applied)."""
+        return self.entity_description.convert.is_on(self.raw_value)

@@ -30,8 +30,35 @@ CONF_READ_ONLY: Final = "read_only"
 CONF_MIN: Final = "min"
 CONF_MAX: Final = "max"
 CONF_STEP: Final = "step"
+# Conversions of one point (see conversion.py) and what a button or an alarm word adds.
+CONF_VALUE_MAP: Final = "value_map"
+CONF_RAW_MIN: Final = "raw_min"
+CONF_RAW_MAX: Final = "raw_max"
+CONF_SHOWN_MIN: Final = "shown_min"
+CONF_SHOWN_MAX: Final = "shown_max"
+CONF_PRECISION: Final = "precision"
+CONF_INVERT: Final = "invert"
+CONF_ON_VALUE: Final = "on_value"
+CONF_OFF_VALUE: Final = "off_value"
+CONF_PULSE: Final = "pulse"
+CONF_BITS: Final = "bits"
+PULSE_MIN: Final = 0.1
+PULSE_MAX: Final = 60.0
+"""The shortest and longest pulse of a button, in seconds."""
+BIT_LIMIT: Final = 63
+"""The highest bit number an alarm word can name (an LWORD's)."""
 
-POINT_PLATFORMS: Final = ("sensor", "binary_sensor", "switch", "number", "datetime", "text")
+POINT_PLATFORMS: Final = (
+    "sensor",
+    "binary_sensor",
+    "switch",
+    "number",
+    "datetime",
+    "text",
+    "select",
+    "button",
+    "event",
+)
 
 ATTR_CONFIG_ENTRY_ID: Final = "config_entry_id"
 ATTR_POINTS: Final = "points"

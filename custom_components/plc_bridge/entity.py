@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 from dataclasses import dataclass
-from decimal import Decimal
 from enum import StrEnum
 from typing import Any
 
@@ -16,6 +15,7 @@ from homeassistant.helpers.update_coordinator import CoordinatorEntity
 from yarl import URL
 
 from .const import CONF_OFFSET, CONF_SCALE, CONF_TLS, DOMAIN
+from .conversion import Conversion, conversion_of
 from .coordinator import PlcBridgeConfigEntry, PlcCoordinator
 from .plc import PlcError, Point, PointResult, TlsMode, Value, ValueKind
 from .points import PointConfig
@@ -31,40 +31,34 @@ MANUFACTURERS = {
 
 @dataclass(frozen=True, kw_only=True)
 class PlcPointDescription(EntityDescription):
-    """One point as an entity: its address and type, what it holds, and its scaling."""
+    """One point as an entity: its address and type, what it holds, and its conversion."""
 
     point: Point
     kind: ValueKind | None = None
     scale: float = 1.0
     offset: float = 0.0
     read_only: bool = False
+    conversion: Conversion | None = None
+    """The point's conversions; None: scale and offset alone."""
+
+    @property
+    def convert(self) -> Conversion:
+        """The point's conversions (scale and offset where no other was given)."""
+        return self.conversion or Conversion(scale=self.scale, offset=self.offset)
 
     def value_fn(self, raw: Value | None) -> Any:
-        """Return what Home Assistant shows for a raw value: numbers scaled, bytes as hex."""
+        """Return what Home Assistant shows for a raw value: numbers converted, bytes as hex."""
         if isinstance(raw, bool):
             return raw
         if isinstance(raw, int | float):
-            return scaled(raw, self.scale, self.offset)
+            return self.convert.shown(raw)
         if isinstance(raw, list):
             return " ".join(f"{byte:02X}" for byte in raw)
         return raw
 
     def raw_fn(self, value: float) -> int | float:
-        """Return the raw value to write for a shown number (scaling inverted)."""
-        raw = (Decimal(repr(float(value))) - Decimal(repr(self.offset))) / Decimal(
-            repr(self.scale or 1.0)
-        )
-        return round(raw) if self.kind is ValueKind.INTEGER else float(raw)
-
-
-def scaled(raw: int | float, scale: float, offset: float) -> int | float:
-    """Return raw × scale + offset, computed in decimal so 23 × 0.1 shows as 2.3."""
-    if scale == 1 and offset == 0:
-        return raw
-    value = Decimal(repr(raw)) * Decimal(repr(scale)) + Decimal(repr(offset))
-    return (
-        int(value) if isinstance(raw, int) and value == value.to_integral_value() else float(value)
-    )
+        """Return the raw value to write for a shown number (conversion inverted)."""
+        return self.convert.raw(value, integer=self.kind is ValueKind.INTEGER)
 
 
 def point_fields(entry: PlcBridgeConfigEntry, config: PointConfig) -> dict[str, Any]:
@@ -82,6 +76,7 @@ def point_fields(entry: PlcBridgeConfigEntry, config: PointConfig) -> dict[str, 
         "scale": float(config.data.get(CONF_SCALE, 1.0)),
         "offset": float(config.data.get(CONF_OFFSET, 0.0)),
         "read_only": config.read_only,
+        "conversion": conversion_of(config.data),
     }
 
 
@@ -186,7 +181,7 @@ class PlcPointEntity(PlcEntity):
     def __init__(
         self, entry: PlcBridgeConfigEntry, config: PointConfig, description: PlcPointDescription
     ) -> None:
-        """Bind the entity to its point (the description's key is the point id) and device."""
+        """Bind the entity to its point and device (the key: the point id, or it and a bit)."""
         super().__init__(entry, description.key)
         self._attr_device_info = DeviceInfo(identifiers={(DOMAIN, config.subentry_id)})
         self.entity_description = description

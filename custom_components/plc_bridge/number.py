@@ -42,15 +42,21 @@ def point_number(entry: PlcBridgeConfigEntry, config: PointConfig) -> PlcNumber:
     """Return the number of a point; the step defaults to one raw count for integers."""
     fields = point_fields(entry, config)
     data = config.data
+    precision = fields["conversion"].precision
     step = data.get(CONF_STEP) or (
-        abs(fields["scale"]) if fields["kind"] is ValueKind.INTEGER else 0.001
+        10.0**-precision
+        if precision is not None
+        else abs(fields["scale"])
+        if fields["kind"] is ValueKind.INTEGER
+        else 0.001
     )
+    low, high = fields["conversion"].bounds or (DEFAULT_MIN, DEFAULT_MAX)
     description = PlcNumberDescription(
         **fields,
         device_class=device_class(config, NumberDeviceClass),
         native_unit_of_measurement=data.get(CONF_UNIT_OF_MEASUREMENT),
-        native_min_value=float(data.get(CONF_MIN, DEFAULT_MIN)),
-        native_max_value=float(data.get(CONF_MAX, DEFAULT_MAX)),
+        native_min_value=float(data.get(CONF_MIN, low)),
+        native_max_value=float(data.get(CONF_MAX, high)),
         native_step=float(step),
         # A box, not a slider: dragging would write every value it passes to the machine.
         mode=NumberMode.BOX,

@@ -51,6 +51,7 @@ from .const import (
     POINT_PLATFORMS,
 )
 from .plc import BrowseItem, PlcAddressError, PlcClient, Point, ValueKind
+from .point_kinds import KIND_CONTROLS, KIND_PLATFORMS, kind_data, kind_fields
 
 NUMERIC = frozenset({ValueKind.INTEGER, ValueKind.FLOAT})
 COUNTED = NUMERIC | {ValueKind.BOOL}
@@ -61,9 +62,10 @@ PLATFORM_KINDS: dict[str, tuple[frozenset[ValueKind], str]] = {
     "number": (NUMERIC, "needs_number"),
     "datetime": (frozenset({ValueKind.DATETIME}), "needs_datetime"),
     "text": (frozenset({ValueKind.TEXT}), "needs_text"),
+    **KIND_PLATFORMS,
 }
 """The kinds of value a platform can show, and the error when a point is not one (sensor: all)."""
-CONTROLS = frozenset({"switch", "number", "datetime", "text"})
+CONTROLS = frozenset({"switch", "number", "datetime", "text"}) | KIND_CONTROLS
 """Platforms that write their point: a point only gets one where it asks for it."""
 
 DEVICE_CLASSES: dict[str, type[StrEnum]] = {
@@ -191,9 +193,8 @@ def details_schema(
         fields[vol.Optional(CONF_STEP)] = NumberSelector(
             NumberSelectorConfig(min=0, mode=NumberSelectorMode.BOX, step="any")
         )
-    fields[vol.Required(CONF_READ_ONLY, default=platform in ("sensor", "binary_sensor"))] = (
-        BooleanSelector()
-    )
+    fields |= kind_fields(platform, kind)
+    fields[vol.Required(CONF_READ_ONLY, default=platform not in CONTROLS)] = BooleanSelector()
     return vol.Schema(fields)
 
 
@@ -290,7 +291,8 @@ def point_data(
     for key in (CONF_MIN, CONF_MAX, CONF_STEP):
         if values.get(key) is not None and platform == "number":
             data[key] = float(values[key])
-    return data, errors, placeholders
+    extra, found, details = kind_data(platform, kind, values)
+    return data | extra, errors | found, placeholders | details
 
 
 def browse_values(client: type[PlcClient], item: BrowseItem) -> dict[str, Any]:

@@ -22,6 +22,7 @@ from homeassistant.helpers.translation import async_get_translations
 from .const import (
     CONF_ADDRESS,
     CONF_DATA_TYPE,
+    CONF_INVERT,
     CONF_MAX,
     CONF_MIN,
     CONF_OFFSET,
@@ -34,6 +35,7 @@ from .const import (
 )
 from .plc import PlcAddressError, PlcClient, Point, ValueKind
 from .point_form import CONTROLS, point_data, point_key, suggested_platform
+from .point_kinds import KIND_COLUMNS, NUMBER_FIELDS, PAIRS_FIELDS
 
 COLUMNS = (
     CONF_NAME,
@@ -49,6 +51,7 @@ COLUMNS = (
     CONF_MAX,
     CONF_STEP,
     CONF_READ_ONLY,
+    *KIND_COLUMNS,
 )
 """The columns of the format, in the order export writes them."""
 COMMENT = "comment"
@@ -76,7 +79,7 @@ WRITABLE_HEADER = re.compile(
 )
 """An engineering tool's "may be written" column: TIA Portal's Hmi Writeable (in the export),
 Writable from HMI/OPC UA/Web API (in the editor), Schreibbar aus HMI/OPC UA/Web API."""
-NUMBERS = (CONF_SCALE, CONF_OFFSET, CONF_MIN, CONF_MAX, CONF_STEP)
+NUMBERS = (CONF_SCALE, CONF_OFFSET, CONF_MIN, CONF_MAX, CONF_STEP, *NUMBER_FIELDS)
 TRUE = {"1", "true", "yes", "y", "on", "x"}
 FALSE = {"", "0", "false", "no", "n", "off"}
 SIGNED = ("signed", "INT", "DINT")
@@ -190,7 +193,7 @@ def _values(
             except ValueError:
                 return {}, "import_not_a_number", {"column": key, "text": text}
     flags: dict[str, bool | None] = {}
-    for column in (CONF_READ_ONLY, WRITABLE):
+    for column in (CONF_READ_ONLY, WRITABLE, CONF_INVERT):
         if text := cells.get(column, "").strip():
             flags[column] = _flag(text)
             if flags[column] is None:
@@ -201,6 +204,10 @@ def _values(
         read_only = platform not in CONTROLS
     read_only = read_only or flags.get(WRITABLE) is False
     values[CONF_READ_ONLY] = read_only
+    values[CONF_INVERT] = bool(flags.get(CONF_INVERT))
+    for key in PAIRS_FIELDS:
+        if cells.get(key, "").strip():
+            values[key] = cells[key].strip()
     for key, column in (
         (CONF_UNIT_OF_MEASUREMENT, "unit"),
         (CONF_DEVICE_CLASS, CONF_DEVICE_CLASS),
@@ -273,6 +280,7 @@ def export_points(points: Iterable[Mapping[str, Any]]) -> str:
     for data in sorted(points, key=point_order):
         row = {**data, "unit": data.get(CONF_UNIT_OF_MEASUREMENT)}
         row[CONF_READ_ONLY] = "true" if data.get(CONF_READ_ONLY) else "false"
+        row[CONF_INVERT] = "true" if data.get(CONF_INVERT) else None
         writer.writerow([_cell(row.get(column)) for column in COLUMNS])
     return out.getvalue()
 

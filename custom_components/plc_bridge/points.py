@@ -53,6 +53,11 @@ class PointConfig:
         return str(self.data[CONF_PLATFORM])
 
     @property
+    def platforms(self) -> tuple[str, ...]:
+        """Every platform with entities of the point (an alarm word: also one per named bit)."""
+        return (self.platform, *ALSO_SHOWN_ON.get(self.platform, ()))
+
+    @property
     def name(self) -> str:
         """The point's (entity's) name."""
         return str(self.data[CONF_NAME])
@@ -73,7 +78,10 @@ def entry_points(entry: PlcBridgeConfigEntry) -> dict[str, PointConfig]:
     }
 
 
-type PointFactory = Callable[[PlcBridgeConfigEntry, PointConfig], Entity]
+type PointFactory = Callable[[PlcBridgeConfigEntry, PointConfig], Entity | list[Entity]]
+"""Makes a point's entity on one platform (or several: the named bits of an alarm word)."""
+ALSO_SHOWN_ON: dict[str, tuple[str, ...]] = {"event": ("binary_sensor",)}
+"""Platforms a point shows on besides its own: an alarm word's event has a sensor per bit."""
 
 
 @callback
@@ -131,7 +139,7 @@ class PointEntities:
         self._entry = entry
         self.configs = entry_points(entry)
         self._platforms: dict[str, tuple[PointFactory, AddConfigEntryEntitiesCallback]] = {}
-        self._entities: dict[str, Entity] = {}
+        self._entities: dict[str, list[Entity]] = {}
         self._lock = asyncio.Lock()
         self.areas: dict[str, str | None] = {}  # each device subentry's area, as last seen
 
@@ -141,17 +149,33 @@ class PointEntities:
     ) -> None:
         """Remember how a platform makes and adds entities, and add its points."""
         self._platforms[platform] = (factory, add)
-        self._add([config for config in self.configs.values() if config.platform == platform])
+        self._add(
+            self._make(
+                [config for config in self.configs.values() if platform in config.platforms],
+                platform,
+            )
+        )
 
-    def _add(self, configs: list[PointConfig]) -> None:
-        """Make the entities of these points and add each under its device subentry."""
-        groups: dict[tuple[str, str], list[Entity]] = {}
+    def _make(
+        self, configs: list[PointConfig], only: str | None = None
+    ) -> list[tuple[PointConfig, str, Entity]]:
+        """Make the entities of these points (on one platform), not added yet."""
+        made: list[tuple[PointConfig, str, Entity]] = []
         for config in configs:
-            if config.platform not in self._platforms:
-                continue
-            entity = self._platforms[config.platform][0](self._entry, config)
-            self._entities[config.point_id] = entity
-            groups.setdefault((config.platform, config.subentry_id), []).append(entity)
+            for platform in config.platforms:
+                if platform not in self._platforms or only not in (None, platform):
+                    continue
+                result = self._platforms[platform][0](self._entry, config)
+                entities = result if isinstance(result, list) else [result]
+                made += [(config, platform, entity) for entity in entities]
+        return made
+
+    def _add(self, made: list[tuple[PointConfig, str, Entity]]) -> None:
+        """Add made entities, each under its point's device subentry."""
+        groups: dict[tuple[str, str], list[Entity]] = {}
+        for config, platform, entity in made:
+            self._entities.setdefault(config.point_id, []).append(entity)
+            groups.setdefault((platform, config.subentry_id), []).append(entity)
         for (platform, subentry_id), entities in groups.items():
             self._platforms[platform][1](entities, config_subentry_id=subentry_id)
 
@@ -162,17 +186,18 @@ class PointEntities:
             new = entry_points(entry)
             old = self.configs
             gone = [pid for pid, config in old.items() if new.get(pid) != config]
+            made = self._make([config for pid, config in new.items() if old.get(pid) != config])
+            kept = {(platform, entity.unique_id) for _, platform, entity in made}
             registry = er.async_get(hass)
             for point_id in gone:
-                entity = self._entities.pop(point_id, None)
-                if entity is None or entity.hass is None:
-                    continue
-                same_place = point_id in new and new[point_id].platform == old[point_id].platform
-                if not same_place and registry.async_get(entity.entity_id):
-                    registry.async_remove(entity.entity_id)
-                elif same_place:
-                    await entity.async_remove()  # keeps its registry entry: same id, history
+                for entity in self._entities.pop(point_id, []):
+                    if getattr(entity, "hass", None) is None:  # never added
+                        continue
+                    if (entity.entity_id.partition(".")[0], entity.unique_id) in kept:
+                        await entity.async_remove()  # keeps its registry entry: same id, history
+                    elif registry.async_get(entity.entity_id):
+                        registry.async_remove(entity.entity_id)  # a removed point or named bit
             self.configs = new
             async_register_devices(hass, entry, plc_device, self.areas)
             await entry.runtime_data.coordinator.async_set_points(new)
-            self._add([config for pid, config in new.items() if old.get(pid) != config])
+            self._add(made)

@@ -19,6 +19,8 @@ from homeassistant.core import HomeAssistant
 from homeassistant.helpers.entity_platform import AddConfigEntryEntitiesCallback
 from homeassistant.util import dt as dt_util
 
+from .const import LOGGER
+from .conversion import UnmappedLog
 from .coordinator import PlcBridgeConfigEntry
 from .entity import (
     PlcEntity,
@@ -149,11 +151,17 @@ def point_sensor(entry: PlcBridgeConfigEntry, config: PointConfig) -> PlcPointSe
     """Return the sensor of a point: numbers keep unit and classes, other values show as text."""
     fields = point_fields(entry, config)
     extra: dict[str, Any] = {}
+    if labels := [label for _, label in fields["conversion"].value_map]:
+        description = PlcSensorDescription(
+            **fields, device_class=SensorDeviceClass.ENUM, options=labels
+        )
+        return PlcEnumSensor(entry, config, description)
     if fields["kind"] in NUMERIC or fields["kind"] is None:
         extra = {
             "native_unit_of_measurement": config.data.get(CONF_UNIT_OF_MEASUREMENT),
             "device_class": device_class(config, SensorDeviceClass),
             "state_class": config.data.get(CONF_STATE_CLASS),
+            "suggested_display_precision": fields["conversion"].precision,
         }
         if extra["state_class"]:
             extra["state_class"] = SensorStateClass(extra["state_class"])
@@ -193,6 +201,27 @@ class PlcPointSensor(PlcPointEntity, SensorEntity):
         """Return the scaled value (text for strings and raw bytes)."""
         value = self.entity_description.value_fn(self.raw_value)
         return int(value) if isinstance(value, bool) else value
+
+
+class PlcEnumSensor(PlcPointSensor):
+    """A read-only point with a value map: the label of its value, unknown outside the map."""
+
+    def __init__(
+        self, entry: PlcBridgeConfigEntry, config: PointConfig, description: PlcSensorDescription
+    ) -> None:
+        """Bind the sensor to its point and note raw values outside the map."""
+        super().__init__(entry, config, description)
+        self._unmapped = UnmappedLog(LOGGER, config.name)
+
+    @property
+    def native_value(self) -> str | None:
+        """Return the label of the point's value."""
+        return self.entity_description.convert.label(self.raw_value)
+
+    def observed(self) -> Any:
+        """The point's value as read in the last poll (a value outside the map logged once)."""
+        self._unmapped.check(self.entity_description.convert, self.raw_value)
+        return self.raw_value
 
 
 class PlcStatusSensor(PlcEntity, SensorEntity):

@@ -49,15 +49,14 @@ async def async_setup_entry(
 
 
 class PlcSwitch(PlcPointEntity, SwitchEntity):
-    """A BOOL point the user can set (an integer point is written 1 or 0)."""
+    """A BOOL point the user can set (an integer point is written its on/off codes, 1 or 0)."""
 
     entity_description: PlcSwitchDescription
 
     @property
     def is_on(self) -> bool | None:
-        """Return the point's state."""
-        value = self.raw_value
-        return None if value is None else bool(value)
+        """Return the point's state (its on/off codes and invert applied)."""
+        return self.entity_description.convert.is_on(self.raw_value)
 
     async def async_turn_on(self, **kwargs: Any) -> None:
         """Write true."""
@@ -67,6 +66,7 @@ class PlcSwitch(PlcPointEntity, SwitchEntity):
         """Write false."""
         await self.async_write(self._state(on=False))
 
-    def _state(self, *, on: bool) -> bool | int:
-        """Return the value that means on or off for the point's type."""
-        return on if self.entity_description.kind is ValueKind.BOOL else int(on)
+    def _state(self, *, on: bool) -> bool | int | float:
+        """Return the value that means on or off for the point's type, codes and invert."""
+        description = self.entity_description
+        return description.convert.state_value(on, boolean=description.kind is ValueKind.BOOL)

@@ -1,0 +1,85 @@
+"""Events: an alarm or status word fires `raised` / `cleared` as its named bits change."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any
+
+from homeassistant.components.event import EventEntity, EventEntityDescription
+from homeassistant.core import HomeAssistant, callback
+from homeassistant.helpers.entity_platform import AddConfigEntryEntitiesCallback
+
+from .alarm import bit_set, word_bits
+from .coordinator import PlcBridgeConfigEntry
+from .entity import PlcPointDescription, PlcPointEntity, point_fields
+from .points import PointConfig
+
+PARALLEL_UPDATES = 0
+RAISED = "raised"
+CLEARED = "cleared"
+
+
+@dataclass(frozen=True, kw_only=True)
+class PlcEventDescription(EventEntityDescription, PlcPointDescription):
+    """An alarm word shown as an event entity."""
+
+    bits: tuple[tuple[int, str], ...] = ()
+
+
+def point_event(entry: PlcBridgeConfigEntry, config: PointConfig) -> PlcAlarmEvent:
+    """Return the event entity of an alarm word."""
+    description = PlcEventDescription(
+        **point_fields(entry, config),
+        translation_key="alarm_word",
+        event_types=[RAISED, CLEARED],
+        bits=word_bits(config),
+    )
+    return PlcAlarmEvent(entry, config, description)
+
+
+async def async_setup_entry(
+    hass: HomeAssistant,
+    entry: PlcBridgeConfigEntry,
+    async_add_entities: AddConfigEntryEntitiesCallback,
+) -> None:
+    """Add an event entity for each alarm word."""
+    entry.runtime_data.points.async_setup_platform("event", point_event, async_add_entities)
+
+
+class PlcAlarmEvent(PlcPointEntity, EventEntity):
+    """Fires when a named bit of the word is set (`raised`) or reset (`cleared`).
+
+    The first value read is the baseline: bits already set when Home Assistant starts fire
+    nothing. A failed read keeps the baseline, so a bit that changed meanwhile fires after.
+    """
+
+    entity_description: PlcEventDescription
+    _last: int | None = None
+
+    async def async_added_to_hass(self) -> None:
+        """Take the word as read now as the baseline."""
+        await super().async_added_to_hass()
+        self._last = self._word()
+
+    def _word(self) -> int | None:
+        """Return the word of the last poll as an integer, None when it did not read."""
+        raw = self.raw_value
+        return raw if isinstance(raw, int) and not isinstance(raw, bool) else None
+
+    def observed(self) -> Any:
+        """Only availability writes the state; events write their own."""
+        return None
+
+    @callback
+    def _handle_coordinator_update(self) -> None:
+        """Fire an event for each named bit that changed since the last word read."""
+        word = self._word()
+        if word is not None and self._last is not None and self.available:
+            for bit, label in self.entity_description.bits:
+                now, before = bit_set(word, bit), bit_set(self._last, bit)
+                if now != before:
+                    self._trigger_event(RAISED if now else CLEARED, {"bit": bit, "name": label})
+                    self.async_write_ha_state()
+        if word is not None:
+            self._last = word
+        super()._handle_coordinator_update()
