@@ -9,7 +9,7 @@ import pytest
 from custom_components.plc_bridge.plc import ValueKind
 from custom_components.plc_bridge.plc.vendors import client_class
 from custom_components.plc_bridge.point_form import details_schema, point_data
-from custom_components.plc_bridge.point_table import export_points, parse_points
+from custom_components.plc_bridge.point_table import export_points, parse_points, point_order
 
 SMART = client_class("s7_smart")
 TECOMAT = client_class("tecomat")
@@ -117,7 +117,7 @@ def test_table_round_trips_every_kind() -> None:
     assert "'-1=Fault;0=Idle" in exported
     again, errors = parse_points(SMART, exported)
     assert errors == []
-    assert again == points
+    assert again == sorted(points, key=point_order)
 
 
 def test_tecomat_select() -> None:
