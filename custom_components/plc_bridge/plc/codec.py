@@ -132,7 +132,13 @@ _BOOL_WORDS = {"1": True, "true": True, "on": True, "0": False, "false": False, 
 
 def check_ascii(value: Value, max_length: int, what: str = "value") -> str:
     """Return value as ASCII text (control characters included) of at most max_length."""
-    return check_text(value, max_length, what)
+    if not isinstance(value, str):
+        raise PlcValueError(f"{what} must be text, not {value!r}")
+    if not value.isascii():
+        raise PlcValueError(f"{what} may contain ASCII characters only")
+    if len(value) > max_length:
+        raise PlcValueError(f"{what} is longer than {max_length} characters")
+    return value
 
 
 def check_text(
