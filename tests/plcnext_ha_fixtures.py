@@ -18,7 +18,7 @@ from custom_components.plc_bridge.const import (
     CONF_VENDOR,
 )
 from simulators.plcnext import DEFAULT_PASSWORD, DEFAULT_USER, PlcnextSimulator
-from tests.ha_fixtures import PointData, add_entry, point, unload_all
+from tests.ha_fixtures import PointData, add_entry, point, serving, set_up, unload_all
 
 PLCNEXT_ENTRY_ID = "01JPLCBR1DGE00000000PLCNEXT"
 
@@ -87,11 +87,8 @@ async def plcnext_sim(
     hass: HomeAssistant, freezer: FrozenDateTimeFactory
 ) -> AsyncGenerator[PlcnextSimulator]:
     """A started PLCnext simulator (HTTPS, user authentication on); time frozen meanwhile."""
-    sim = PlcnextSimulator()
-    await sim.start()
-    yield sim
-    await unload_all(hass)
-    await sim.stop()
+    async with serving(hass, PlcnextSimulator()) as sim:
+        yield sim
 
 
 @pytest.fixture
@@ -99,8 +96,5 @@ async def plcnext_entry(
     hass: HomeAssistant, plcnext_sim: PlcnextSimulator
 ) -> AsyncGenerator[MockConfigEntry]:
     """The simulator's entry with PLCNEXT_POINTS, set up (unloaded afterwards)."""
-    entry = make_plcnext_entry(hass, plcnext_sim)
-    assert await hass.config_entries.async_setup(entry.entry_id)
-    await hass.async_block_till_done()
-    yield entry
+    yield await set_up(hass, make_plcnext_entry(hass, plcnext_sim))
     await unload_all(hass)

@@ -26,7 +26,8 @@ from custom_components.plc_bridge.const import (
     CONF_VENDOR,
 )
 from simulators.tecomat import DEFAULT_PASSWORD, DEFAULT_USER, TecomatSimulator
-from tests.ha_fixtures import PointData, add_entry, point, unload_all
+from tests.ha_fixtures import PointData, add_entry, point, serving, set_up, unload_all
+from tests.plc.tecomat_fixtures import basic_sim  # noqa: F401  (one fixture, both layers)
 
 TECOMAT_ENTRY_ID = "01JPLCBR1DGE00000000TECOMAT"
 TECOMAT_SERIAL = "PP 0004"  # GetInfo's plc.serialNumber: the entry's unique id
@@ -105,11 +106,8 @@ async def tecomat_sim(
 
     Time is frozen until every entry is unloaded, as for the S7-200 SMART fixture.
     """
-    sim = TecomatSimulator(bench=0)
-    await sim.start()
-    yield sim
-    await unload_all(hass)
-    await sim.stop()
+    async with serving(hass, TecomatSimulator(bench=0)) as sim:
+        yield sim
 
 
 @pytest.fixture
@@ -117,8 +115,5 @@ async def tecomat_entry(
     hass: HomeAssistant, tecomat_sim: TecomatSimulator
 ) -> AsyncGenerator[MockConfigEntry]:
     """The simulator's entry with TECOMAT_POINTS, set up (unloaded afterwards)."""
-    entry = make_tecomat_entry(hass, tecomat_sim)
-    assert await hass.config_entries.async_setup(entry.entry_id)
-    await hass.async_block_till_done()
-    yield entry
+    yield await set_up(hass, make_tecomat_entry(hass, tecomat_sim))
     await unload_all(hass)

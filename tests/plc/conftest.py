@@ -19,10 +19,11 @@ from .softplc_fixtures import (
     softplc_sim,
     softplc_tls_sim,
 )
-from .tecomat_fixtures import tecomat_client, tecomat_config, tecomat_sim
+from .tecomat_fixtures import basic_sim, tecomat_client, tecomat_config, tecomat_sim
 
 __all__ = [
     "ConfigFactory",
+    "basic_sim",
     "plcnext_client",
     "plcnext_config",
     "plcnext_sim",

@@ -11,13 +11,20 @@ from custom_components.plc_bridge.plc.vendors.tecomat import TecomatClient
 from simulators.tecomat import DEFAULT_PASSWORD, DEFAULT_USER, TecomatSimulator
 from tests.loopback import ConfigFactory, config_factory, connected, running
 
-__all__ = ["ConfigFactory", "tecomat_client", "tecomat_config", "tecomat_sim"]
+__all__ = ["ConfigFactory", "basic_sim", "tecomat_client", "tecomat_config", "tecomat_sim"]
 
 
 @pytest.fixture
 async def tecomat_sim() -> AsyncGenerator[TecomatSimulator]:
     """A Tecomat simulator on 127.0.0.1: plain HTTP, digest, no benchmark variables."""
     async with running(TecomatSimulator(bench=0)) as sim:
+        yield sim
+
+
+@pytest.fixture
+async def basic_sim() -> AsyncGenerator[TecomatSimulator]:
+    """A Tecomat simulator taking Basic authentication over plain HTTP (also for HA tests)."""
+    async with running(TecomatSimulator(auth="basic", bench=0)) as sim:
         yield sim
 
 
