@@ -136,19 +136,28 @@ POINTS = [
 """A point of every platform and of every S7-200 SMART data mode."""
 
 
+def entry_data(
+    vendor: str,
+    sim: Server,
+    credentials: tuple[str, str] | None,
+    tls: str = "none",
+    options: dict[str, Any] | None = None,
+) -> dict[str, Any]:
+    """Return the entry data the config flow stores for a simulator (its pin, if it has one).
+
+    `credentials` (user, password) are stored for a vendor that asks for them, None for one that
+    does not.
+    """
+    data: dict[str, Any] = {CONF_VENDOR: vendor, CONF_HOST: sim.host, CONF_PORT: sim.port}
+    if credentials is not None:
+        data[CONF_USERNAME], data[CONF_PASSWORD] = credentials
+    fingerprint = getattr(sim, "fingerprint", None) or ""
+    return data | {CONF_TLS: tls, CONF_FINGERPRINT: fingerprint, CONF_OPTIONS: options or {}}
+
+
 def sim_data(sim: S7SmartSimulator, **changes: Any) -> dict[str, Any]:
     """Return entry data for the simulator: pinned certificate, default user."""
-    data = {
-        CONF_VENDOR: "s7_smart",
-        CONF_HOST: sim.host,
-        CONF_PORT: sim.port,
-        CONF_USERNAME: DEFAULT_USER,
-        CONF_PASSWORD: DEFAULT_PASSWORD,
-        CONF_TLS: "pin",
-        CONF_FINGERPRINT: sim.fingerprint,
-        CONF_OPTIONS: {},
-    }
-    return data | changes
+    return entry_data("s7_smart", sim, (DEFAULT_USER, DEFAULT_PASSWORD), "pin") | changes
 
 
 def add_entry(

@@ -6,19 +6,20 @@ from collections.abc import AsyncGenerator, Iterable
 from typing import Any
 
 from freezegun.api import FrozenDateTimeFactory
-from homeassistant.const import CONF_HOST, CONF_PASSWORD, CONF_PORT, CONF_USERNAME
 from homeassistant.core import HomeAssistant
 import pytest
 from pytest_homeassistant_custom_component.common import MockConfigEntry
 
-from custom_components.plc_bridge.const import (
-    CONF_FINGERPRINT,
-    CONF_OPTIONS,
-    CONF_TLS,
-    CONF_VENDOR,
-)
 from simulators.plcnext import DEFAULT_PASSWORD, DEFAULT_USER, PlcnextSimulator
-from tests.ha_fixtures import PointData, add_entry, point, serving, set_up, unload_all
+from tests.ha_fixtures import (
+    PointData,
+    add_entry,
+    entry_data,
+    point,
+    serving,
+    set_up,
+    unload_all,
+)
 
 PLCNEXT_ENTRY_ID = "01JPLCBR1DGE00000000PLCNEXT"
 
@@ -52,17 +53,9 @@ PLCNEXT_POINTS = [  # full paths, as the point form stores them
 
 def plcnext_data(sim: PlcnextSimulator, **changes: Any) -> dict[str, Any]:
     """Return entry data for the simulator: pinned certificate, default user, a clock variable."""
-    data = {
-        CONF_VENDOR: "plcnext",
-        CONF_HOST: sim.host,
-        CONF_PORT: sim.port,
-        CONF_USERNAME: DEFAULT_USER,
-        CONF_PASSWORD: DEFAULT_PASSWORD,
-        CONF_TLS: "pin",
-        CONF_FINGERPRINT: sim.fingerprint,
-        CONF_OPTIONS: {"clock_variable": "Arp.Plc.Eclr/MainInstance.Clock"},
-    }
-    return data | changes
+    clock = {"clock_variable": "Arp.Plc.Eclr/MainInstance.Clock"}
+    credentials = (DEFAULT_USER, DEFAULT_PASSWORD)
+    return entry_data("plcnext", sim, credentials, "pin", clock) | changes
 
 
 def make_plcnext_entry(

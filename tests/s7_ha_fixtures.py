@@ -12,27 +12,15 @@ import threading
 from typing import Any
 
 from freezegun.api import FrozenDateTimeFactory
-from homeassistant.const import (
-    CONF_HOST,
-    CONF_PASSWORD,
-    CONF_PORT,
-    CONF_USERNAME,
-)
 from homeassistant.core import HomeAssistant
 import pytest
 from pytest_homeassistant_custom_component.common import MockConfigEntry
 
-from custom_components.plc_bridge.const import (
-    CONF_FINGERPRINT,
-    CONF_OPTIONS,
-    CONF_TLS,
-    CONF_VENDOR,
-)
 from custom_components.plc_bridge.plc.vendors.s7 import S7Client
 from simulators.s7 import S7Simulator
 from tests.loopback import running
 
-from .ha_fixtures import PointData, add_entry, point, set_up, unload_all
+from .ha_fixtures import PointData, add_entry, entry_data, point, set_up, unload_all
 
 S7_ENTRY_ID = "01JPLCBR1DGE00000000S7TEST"
 S7_TITLE = "S7-300"
@@ -64,16 +52,7 @@ S7_POINTS = [
 
 def s7_data(sim: S7Simulator, **options: Any) -> dict[str, Any]:
     """Return the entry data the config flow stores for the simulator (rack 0, slot 1)."""
-    return {
-        CONF_VENDOR: "s7",
-        CONF_HOST: sim.host,
-        CONF_PORT: sim.port,
-        CONF_USERNAME: "",
-        CONF_PASSWORD: "",
-        CONF_TLS: "none",
-        CONF_FINGERPRINT: "",
-        CONF_OPTIONS: RACK_SLOT | options,
-    }
+    return entry_data("s7", sim, ("", ""), options=RACK_SLOT | options)
 
 
 def make_s7_entry(
