@@ -5,7 +5,8 @@ Registered for every test through `pytest_plugins` in tests/conftest.py.
 
 from __future__ import annotations
 
-from collections.abc import AsyncGenerator, Generator, Iterable
+from collections.abc import AsyncGenerator, AsyncIterator, Generator, Iterable
+from contextlib import asynccontextmanager
 from datetime import datetime, timedelta
 from typing import Any
 from unittest.mock import patch
@@ -45,6 +46,7 @@ from custom_components.plc_bridge.const import (
     SUBENTRY_POINT,
 )
 from simulators.s7_smart import DEFAULT_PASSWORD, DEFAULT_USER, S7SmartSimulator
+from tests.loopback import Server, running
 
 SCAN_INTERVAL = 10.0
 ENTRY_ID = "01JPLCBR1DGE0000000000TEST"
@@ -134,19 +136,28 @@ POINTS = [
 """A point of every platform and of every S7-200 SMART data mode."""
 
 
+def entry_data(
+    vendor: str,
+    sim: Server,
+    credentials: tuple[str, str] | None,
+    tls: str = "none",
+    options: dict[str, Any] | None = None,
+) -> dict[str, Any]:
+    """Return the entry data the config flow stores for a simulator (its pin, if it has one).
+
+    `credentials` (user, password) are stored for a vendor that asks for them, None for one that
+    does not.
+    """
+    data: dict[str, Any] = {CONF_VENDOR: vendor, CONF_HOST: sim.host, CONF_PORT: sim.port}
+    if credentials is not None:
+        data[CONF_USERNAME], data[CONF_PASSWORD] = credentials
+    fingerprint = getattr(sim, "fingerprint", None) or ""
+    return data | {CONF_TLS: tls, CONF_FINGERPRINT: fingerprint, CONF_OPTIONS: options or {}}
+
+
 def sim_data(sim: S7SmartSimulator, **changes: Any) -> dict[str, Any]:
     """Return entry data for the simulator: pinned certificate, default user."""
-    data = {
-        CONF_VENDOR: "s7_smart",
-        CONF_HOST: sim.host,
-        CONF_PORT: sim.port,
-        CONF_USERNAME: DEFAULT_USER,
-        CONF_PASSWORD: DEFAULT_PASSWORD,
-        CONF_TLS: "pin",
-        CONF_FINGERPRINT: sim.fingerprint,
-        CONF_OPTIONS: {},
-    }
-    return data | changes
+    return entry_data("s7_smart", sim, (DEFAULT_USER, DEFAULT_PASSWORD), "pin") | changes
 
 
 def add_entry(
@@ -227,6 +238,23 @@ async def unload_all(hass: HomeAssistant) -> None:
             assert await hass.config_entries.async_unload(entry.entry_id)
 
 
+@asynccontextmanager
+async def serving[S: Server](hass: HomeAssistant, sim: S) -> AsyncIterator[S]:
+    """Start a simulator; afterwards unload every entry (their clients log out), then stop it."""
+    async with running(sim):
+        try:
+            yield sim
+        finally:
+            await unload_all(hass)
+
+
+async def set_up(hass: HomeAssistant, entry: MockConfigEntry) -> MockConfigEntry:
+    """Set an entry up and wait until it is; return it."""
+    assert await hass.config_entries.async_setup(entry.entry_id)
+    await hass.async_block_till_done()
+    return entry
+
+
 @pytest.fixture
 async def s7_smart_sim(
     hass: HomeAssistant, freezer: FrozenDateTimeFactory
@@ -244,10 +272,8 @@ async def s7_smart_sim(
     sim.set("VD300", [1, 2, 171, 205], "raw")
     sim.set("I0.0", True)
     sim.set("VW20", 40)
-    await sim.start()
-    yield sim
-    await unload_all(hass)
-    await sim.stop()
+    async with serving(hass, sim):
+        yield sim
 
 
 @pytest.fixture

@@ -6,19 +6,20 @@ from collections.abc import AsyncGenerator, Iterable
 from typing import Any
 
 from freezegun.api import FrozenDateTimeFactory
-from homeassistant.const import CONF_HOST, CONF_PASSWORD, CONF_PORT, CONF_USERNAME
 from homeassistant.core import HomeAssistant
 import pytest
 from pytest_homeassistant_custom_component.common import MockConfigEntry
 
-from custom_components.plc_bridge.const import (
-    CONF_FINGERPRINT,
-    CONF_OPTIONS,
-    CONF_TLS,
-    CONF_VENDOR,
-)
 from simulators.plcnext import DEFAULT_PASSWORD, DEFAULT_USER, PlcnextSimulator
-from tests.ha_fixtures import PointData, add_entry, point, unload_all
+from tests.ha_fixtures import (
+    PointData,
+    add_entry,
+    entry_data,
+    point,
+    serving,
+    set_up,
+    unload_all,
+)
 
 PLCNEXT_ENTRY_ID = "01JPLCBR1DGE00000000PLCNEXT"
 
@@ -52,17 +53,9 @@ PLCNEXT_POINTS = [  # full paths, as the point form stores them
 
 def plcnext_data(sim: PlcnextSimulator, **changes: Any) -> dict[str, Any]:
     """Return entry data for the simulator: pinned certificate, default user, a clock variable."""
-    data = {
-        CONF_VENDOR: "plcnext",
-        CONF_HOST: sim.host,
-        CONF_PORT: sim.port,
-        CONF_USERNAME: DEFAULT_USER,
-        CONF_PASSWORD: DEFAULT_PASSWORD,
-        CONF_TLS: "pin",
-        CONF_FINGERPRINT: sim.fingerprint,
-        CONF_OPTIONS: {"clock_variable": "Arp.Plc.Eclr/MainInstance.Clock"},
-    }
-    return data | changes
+    clock = {"clock_variable": "Arp.Plc.Eclr/MainInstance.Clock"}
+    credentials = (DEFAULT_USER, DEFAULT_PASSWORD)
+    return entry_data("plcnext", sim, credentials, "pin", clock) | changes
 
 
 def make_plcnext_entry(
@@ -87,11 +80,8 @@ async def plcnext_sim(
     hass: HomeAssistant, freezer: FrozenDateTimeFactory
 ) -> AsyncGenerator[PlcnextSimulator]:
     """A started PLCnext simulator (HTTPS, user authentication on); time frozen meanwhile."""
-    sim = PlcnextSimulator()
-    await sim.start()
-    yield sim
-    await unload_all(hass)
-    await sim.stop()
+    async with serving(hass, PlcnextSimulator()) as sim:
+        yield sim
 
 
 @pytest.fixture
@@ -99,8 +89,5 @@ async def plcnext_entry(
     hass: HomeAssistant, plcnext_sim: PlcnextSimulator
 ) -> AsyncGenerator[MockConfigEntry]:
     """The simulator's entry with PLCNEXT_POINTS, set up (unloaded afterwards)."""
-    entry = make_plcnext_entry(hass, plcnext_sim)
-    assert await hass.config_entries.async_setup(entry.entry_id)
-    await hass.async_block_till_done()
-    yield entry
+    yield await set_up(hass, make_plcnext_entry(hass, plcnext_sim))
     await unload_all(hass)

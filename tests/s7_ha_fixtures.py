@@ -7,30 +7,20 @@ Registered for every test through `pytest_plugins` in tests/conftest.py. The nam
 from __future__ import annotations
 
 from collections.abc import AsyncGenerator, Awaitable, Callable, Iterable
+from contextlib import AsyncExitStack
 import threading
 from typing import Any
 
 from freezegun.api import FrozenDateTimeFactory
-from homeassistant.const import (
-    CONF_HOST,
-    CONF_PASSWORD,
-    CONF_PORT,
-    CONF_USERNAME,
-)
 from homeassistant.core import HomeAssistant
 import pytest
 from pytest_homeassistant_custom_component.common import MockConfigEntry
 
-from custom_components.plc_bridge.const import (
-    CONF_FINGERPRINT,
-    CONF_OPTIONS,
-    CONF_TLS,
-    CONF_VENDOR,
-)
 from custom_components.plc_bridge.plc.vendors.s7 import S7Client
 from simulators.s7 import S7Simulator
+from tests.loopback import running
 
-from .ha_fixtures import PointData, add_entry, point, unload_all
+from .ha_fixtures import PointData, add_entry, entry_data, point, set_up, unload_all
 
 S7_ENTRY_ID = "01JPLCBR1DGE00000000S7TEST"
 S7_TITLE = "S7-300"
@@ -62,16 +52,7 @@ S7_POINTS = [
 
 def s7_data(sim: S7Simulator, **options: Any) -> dict[str, Any]:
     """Return the entry data the config flow stores for the simulator (rack 0, slot 1)."""
-    return {
-        CONF_VENDOR: "s7",
-        CONF_HOST: sim.host,
-        CONF_PORT: sim.port,
-        CONF_USERNAME: "",
-        CONF_PASSWORD: "",
-        CONF_TLS: "none",
-        CONF_FINGERPRINT: "",
-        CONF_OPTIONS: RACK_SLOT | options,
-    }
+    return entry_data("s7", sim, ("", ""), options=RACK_SLOT | options)
 
 
 def make_s7_entry(
@@ -122,18 +103,13 @@ async def s7_ha_sims(
 
     Time is frozen (the client's reconnect backoff runs on the monotonic clock the freezer moves).
     """
-    sims: list[S7Simulator] = []
+    async with AsyncExitStack() as running_sims:
 
-    async def make(**settings: Any) -> S7Simulator:
-        sim = S7Simulator(**settings)
-        await sim.start()
-        sims.append(sim)
-        return sim
+        async def make(**settings: Any) -> S7Simulator:
+            return await running_sims.enter_async_context(running(S7Simulator(**settings)))
 
-    yield make
-    await unload_all(hass)
-    for sim in sims:
-        await sim.stop()
+        yield make
+        await unload_all(hass)
     lingering = [t.name for t in threading.enumerate() if t.name.endswith(SNAP7_THREADS)]
     assert not lingering, f"snap7 server threads left running: {lingering}"
 
@@ -155,9 +131,7 @@ def s7_entry(hass: HomeAssistant, s7_ha_sim: S7Simulator) -> MockConfigEntry:
 @pytest.fixture
 async def s7_setup(hass: HomeAssistant, s7_entry: MockConfigEntry) -> MockConfigEntry:
     """The simulator's entry, set up (unloaded by `s7_ha_sims`)."""
-    assert await hass.config_entries.async_setup(s7_entry.entry_id)
-    await hass.async_block_till_done()
-    return s7_entry
+    return await set_up(hass, s7_entry)
 
 
 @pytest.fixture

@@ -9,14 +9,12 @@ from collections.abc import AsyncGenerator, Iterable
 from typing import Any
 
 from freezegun.api import FrozenDateTimeFactory
-from homeassistant.const import CONF_HOST, CONF_PORT
 from homeassistant.core import HomeAssistant
 import pytest
 from pytest_homeassistant_custom_component.common import MockConfigEntry
 
-from custom_components.plc_bridge.const import CONF_FINGERPRINT, CONF_OPTIONS, CONF_TLS, CONF_VENDOR
 from simulators.softplc import SoftplcSimulator
-from tests.ha_fixtures import PointData, add_entry, point, unload_all
+from tests.ha_fixtures import PointData, add_entry, entry_data, point, serving
 
 SOFTPLC_ENTRY_ID = "01JPLCBR1DGE00000000SOFTPLC"
 
@@ -33,15 +31,7 @@ SOFTPLC_POINTS = [
 
 def softplc_data(sim: SoftplcSimulator, **changes: Any) -> dict[str, Any]:
     """Return entry data for the simulator (plain HTTP unless it speaks TLS: then pinned)."""
-    data = {
-        CONF_VENDOR: "softplc",
-        CONF_HOST: sim.host,
-        CONF_PORT: sim.port,
-        CONF_TLS: "pin" if sim.tls else "none",
-        CONF_FINGERPRINT: sim.fingerprint or "",
-        CONF_OPTIONS: {},
-    }
-    return data | changes
+    return entry_data("softplc", sim, None, "pin" if sim.tls else "none") | changes
 
 
 def make_softplc_entry(
@@ -66,21 +56,15 @@ async def softplc_sim(
     hass: HomeAssistant, freezer: FrozenDateTimeFactory
 ) -> AsyncGenerator[SoftplcSimulator]:
     """A started SoftPLC simulator over HTTPS that takes PUTs only with a client certificate."""
-    sim = SoftplcSimulator(tls=True, put_auth=True)
-    await sim.start()
-    yield sim
-    await unload_all(hass)
-    await sim.stop()
+    async with serving(hass, SoftplcSimulator(tls=True, put_auth=True)) as sim:
+        yield sim
 
 
 @pytest.fixture
 async def softplc_http_sim(hass: HomeAssistant) -> AsyncGenerator[SoftplcSimulator]:
     """A started SoftPLC simulator over plain HTTP, without PUT authentication."""
-    sim = SoftplcSimulator(bench=0)
-    await sim.start()
-    yield sim
-    await unload_all(hass)
-    await sim.stop()
+    async with serving(hass, SoftplcSimulator(bench=0)) as sim:
+        yield sim
 
 
 def pem_pair(sim: SoftplcSimulator, *, trusted: bool = True) -> dict[str, str]:

@@ -9,24 +9,21 @@ from collections.abc import AsyncGenerator, Iterable
 from typing import Any
 
 from freezegun.api import FrozenDateTimeFactory
-from homeassistant.const import (
-    CONF_HOST,
-    CONF_PASSWORD,
-    CONF_PORT,
-    CONF_USERNAME,
-)
 from homeassistant.core import HomeAssistant
 import pytest
 from pytest_homeassistant_custom_component.common import MockConfigEntry
 
-from custom_components.plc_bridge.const import (
-    CONF_FINGERPRINT,
-    CONF_OPTIONS,
-    CONF_TLS,
-    CONF_VENDOR,
-)
 from simulators.tecomat import DEFAULT_PASSWORD, DEFAULT_USER, TecomatSimulator
-from tests.ha_fixtures import PointData, add_entry, point, unload_all
+from tests.ha_fixtures import (
+    PointData,
+    add_entry,
+    entry_data,
+    point,
+    serving,
+    set_up,
+    unload_all,
+)
+from tests.plc.tecomat_fixtures import basic_sim  # noqa: F401  (one fixture, both layers)
 
 TECOMAT_ENTRY_ID = "01JPLCBR1DGE00000000TECOMAT"
 TECOMAT_SERIAL = "PP 0004"  # GetInfo's plc.serialNumber: the entry's unique id
@@ -67,17 +64,9 @@ TECOMAT_POINTS = [
 
 def tecomat_data(sim: TecomatSimulator, **changes: Any) -> dict[str, Any]:
     """Return entry data for the simulator: plain HTTP, default user, Digest, a clock variable."""
-    data = {
-        CONF_VENDOR: "tecomat",
-        CONF_HOST: sim.host,
-        CONF_PORT: sim.port,
-        CONF_USERNAME: DEFAULT_USER,
-        CONF_PASSWORD: DEFAULT_PASSWORD,
-        CONF_TLS: "none",
-        CONF_FINGERPRINT: "",
-        CONF_OPTIONS: {"auth": sim.auth.method, "clock_variable": "setTime"},
-    }
-    return data | changes
+    options = {"auth": sim.auth.method, "clock_variable": "setTime"}
+    credentials = (DEFAULT_USER, DEFAULT_PASSWORD)
+    return entry_data("tecomat", sim, credentials, options=options) | changes
 
 
 def make_tecomat_entry(
@@ -105,11 +94,8 @@ async def tecomat_sim(
 
     Time is frozen until every entry is unloaded, as for the S7-200 SMART fixture.
     """
-    sim = TecomatSimulator(bench=0)
-    await sim.start()
-    yield sim
-    await unload_all(hass)
-    await sim.stop()
+    async with serving(hass, TecomatSimulator(bench=0)) as sim:
+        yield sim
 
 
 @pytest.fixture
@@ -117,8 +103,5 @@ async def tecomat_entry(
     hass: HomeAssistant, tecomat_sim: TecomatSimulator
 ) -> AsyncGenerator[MockConfigEntry]:
     """The simulator's entry with TECOMAT_POINTS, set up (unloaded afterwards)."""
-    entry = make_tecomat_entry(hass, tecomat_sim)
-    assert await hass.config_entries.async_setup(entry.entry_id)
-    await hass.async_block_till_done()
-    yield entry
+    yield await set_up(hass, make_tecomat_entry(hass, tecomat_sim))
     await unload_all(hass)

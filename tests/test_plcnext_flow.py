@@ -24,6 +24,7 @@ from custom_components.plc_bridge.plc.http import format_fingerprint
 from simulators.plcnext import DEFAULT_PASSWORD, DEFAULT_USER, VIEWER_USER, PlcnextSimulator
 from tests.flow_fixtures import error_message, suggested, translated
 from tests.ha_fixtures import poll
+from tests.loopback import running
 from tests.plcnext_ha_fixtures import make_plcnext_entry, plcnext_data
 
 CONFIG = ("config",)
@@ -34,10 +35,8 @@ flow_only = pytest.mark.usefixtures("mock_setup_entry")
 @pytest.fixture
 async def open_sim() -> AsyncGenerator[PlcnextSimulator]:
     """A PLCnext simulator with user authentication off in its WBM."""
-    sim = PlcnextSimulator(auth=False)
-    await sim.start()
-    yield sim
-    await sim.stop()
+    async with running(PlcnextSimulator(auth=False)) as sim:
+        yield sim
 
 
 async def submit(hass: HomeAssistant, result: Any, values: dict[str, Any]) -> Any:

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from collections.abc import AsyncGenerator, Mapping
+from collections.abc import Mapping
 from typing import Any
 
 from homeassistant.core import HomeAssistant
@@ -149,15 +149,6 @@ def test_export_escapes_formulas_and_round_trips() -> None:
     again, errors = parse_points(SMART, exported)
     assert errors == []
     assert again == sorted(points, key=point_order)
-
-
-@pytest.fixture
-async def basic_sim() -> AsyncGenerator[TecomatSimulator]:
-    """A Tecomat simulator taking Basic authentication over plain HTTP."""
-    sim = TecomatSimulator(auth="basic", bench=0)
-    await sim.start()
-    yield sim
-    await sim.stop()
 
 
 async def test_basic_over_plain_http_raises_an_issue(

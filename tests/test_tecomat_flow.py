@@ -16,6 +16,7 @@ from custom_components.plc_bridge.const import CONF_TLS, CONF_VENDOR, DOMAIN, SU
 from simulators.tecomat import DEFAULT_PASSWORD, DEFAULT_USER, TecomatSimulator
 from tests.flow_fixtures import error_message, translated
 from tests.ha_fixtures import point
+from tests.loopback import running
 from tests.tecomat_ha_fixtures import TECOMAT_SERIAL, make_tecomat_entry
 
 CONFIG = ("config",)
@@ -25,10 +26,8 @@ DEVICES = ("config_subentries", SUBENTRY_DEVICE)
 @pytest.fixture(params=["digest", "basic"])
 async def auth_sim(request: pytest.FixtureRequest) -> AsyncGenerator[TecomatSimulator]:
     """A Tecomat simulator asking for Digest or for Basic authentication."""
-    sim = TecomatSimulator(auth=request.param, bench=0)
-    await sim.start()
-    yield sim
-    await sim.stop()
+    async with running(TecomatSimulator(auth=request.param, bench=0)) as sim:
+        yield sim
 
 
 async def connection_form(hass: HomeAssistant) -> dict[str, Any]:

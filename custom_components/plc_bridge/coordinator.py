@@ -18,7 +18,6 @@ from homeassistant.exceptions import (
 from homeassistant.helpers.update_coordinator import DataUpdateCoordinator, UpdateFailed
 
 from .const import CONF_TLS, DOMAIN, LOGGER
-from .helpers import check_can_write, translated_errors
 from .models import PlcBridgeConfigEntry, PlcRuntimeData
 from .plc import (
     PlcAddressError,
@@ -43,6 +42,7 @@ from .repairs import (
     async_raise_issue,
     async_raise_point_issue,
 )
+from .translated_errors import check_can_write, translated_errors
 from .write_guard import WriteGuard
 
 if TYPE_CHECKING:

@@ -11,7 +11,7 @@ from homeassistant.core import HomeAssistant
 
 from .const import CONF_FINGERPRINT
 from .coordinator import PlcBridgeConfigEntry
-from .helpers import json_value
+from .services import json_value
 
 TO_REDACT = {
     CONF_PASSWORD,

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from datetime import datetime
 from typing import Any
 
 from homeassistant.config_entries import ConfigEntryState
@@ -27,10 +28,10 @@ from .const import (
     DOMAIN,
 )
 from .coordinator import PlcBridgeConfigEntry
-from .helpers import invalid, json_value, translated_errors
 from .plc import PlcClient, PlcError, Point, Value
 from .point_table import export_points
 from .points import entry_points
+from .translated_errors import invalid, translated_errors
 
 SERVICE_WRITE = "write"
 SERVICE_READ = "read"
@@ -121,6 +122,11 @@ async def async_read(call: ServiceCall) -> ServiceResponse:
         if outcome is None or outcome.error is not None:
             errors[point.address] = str(outcome.error if outcome else "no answer for this point")
     return {"values": values, "errors": errors}
+
+
+def json_value(value: Value | None) -> Any:
+    """Return a point value as action responses carry it (date and time as ISO 8601 text)."""
+    return value.isoformat() if isinstance(value, datetime) else value
 
 
 async def async_export_points(call: ServiceCall) -> ServiceResponse:

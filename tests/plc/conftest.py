@@ -1,66 +1,41 @@
-"""Protocol-layer fixtures: simulators on loopback and clients connected to them."""
+"""Protocol-layer fixtures: simulators on loopback and clients connected to them.
+
+Each vendor's live in one module, tests/plc/<vendor>_fixtures.py, started and stopped through
+tests/loopback.py. Imported into this conftest, they override the Home Assistant tests' fixtures
+of the same names (which set up entries) here and nowhere else. (`pytest_plugins` in a test
+module would register them for the whole run, where the last module collected would win.)
+"""
 
 from __future__ import annotations
 
-from collections.abc import AsyncGenerator, Callable
-from typing import Any
+from tests.loopback import ConfigFactory
 
-import pytest
-
-from custom_components.plc_bridge.plc import ConnectionConfig, TlsMode
-from custom_components.plc_bridge.plc.vendors.s7_smart import S7SmartClient
-from simulators.s7_smart import DEFAULT_PASSWORD, DEFAULT_USER, S7SmartSimulator
-
-# The other vendors' protocol fixtures, for the tests of this folder only: imported into this
-# conftest, they override the Home Assistant tests' fixtures of the same names (which set up
-# entries) here and nowhere else. (`pytest_plugins` in a test module would register them for
-# the whole run, where the last module collected would win.)
-from .plcnext_fixtures import plcnext_client, plcnext_config, plcnext_sim  # noqa: F401
-from .softplc_fixtures import (  # noqa: F401
+from .plcnext_fixtures import plcnext_client, plcnext_config, plcnext_sim
+from .s7_smart_fixtures import s7_smart_client, s7_smart_config, s7_smart_sim
+from .softplc_fixtures import (
     softplc_client,
     softplc_reading,
     softplc_settings,
     softplc_sim,
     softplc_tls_sim,
 )
-from .tecomat_fixtures import tecomat_client, tecomat_config, tecomat_sim  # noqa: F401
+from .tecomat_fixtures import basic_sim, tecomat_client, tecomat_config, tecomat_sim
 
-type ConfigFactory = Callable[..., ConnectionConfig]
-
-
-@pytest.fixture
-async def s7_smart_sim() -> AsyncGenerator[S7SmartSimulator]:
-    """An S7-200 SMART simulator on 127.0.0.1 (HTTPS with its own device CA)."""
-    sim = S7SmartSimulator()
-    await sim.start()
-    yield sim
-    await sim.stop()
-
-
-@pytest.fixture
-def s7_smart_config(s7_smart_sim: S7SmartSimulator) -> ConfigFactory:
-    """Make the settings of a client of the simulator: pinned certificate, Prague clock."""
-
-    def make(**changes: Any) -> ConnectionConfig:
-        settings: dict[str, Any] = {
-            "host": s7_smart_sim.host,
-            "port": s7_smart_sim.port,
-            "username": DEFAULT_USER,
-            "password": DEFAULT_PASSWORD,
-            "tls": TlsMode.PIN,
-            "fingerprint": s7_smart_sim.fingerprint or "",
-            "timeout": 5.0,
-            "time_zone": "Europe/Prague",
-        }
-        return ConnectionConfig(**(settings | changes))
-
-    return make
-
-
-@pytest.fixture
-async def s7_smart_client(s7_smart_config: ConfigFactory) -> AsyncGenerator[S7SmartClient]:
-    """A client connected to the simulator (its own HTTP session), closed afterwards."""
-    client = S7SmartClient(s7_smart_config())
-    await client.connect()
-    yield client
-    await client.close()
+__all__ = [
+    "ConfigFactory",
+    "basic_sim",
+    "plcnext_client",
+    "plcnext_config",
+    "plcnext_sim",
+    "s7_smart_client",
+    "s7_smart_config",
+    "s7_smart_sim",
+    "softplc_client",
+    "softplc_reading",
+    "softplc_settings",
+    "softplc_sim",
+    "softplc_tls_sim",
+    "tecomat_client",
+    "tecomat_config",
+    "tecomat_sim",
+]

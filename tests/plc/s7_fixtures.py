@@ -9,11 +9,10 @@ from typing import Any
 
 import pytest
 
-from custom_components.plc_bridge.plc import ConnectionConfig
 from custom_components.plc_bridge.plc.vendors.s7 import S7Client
 from simulators.s7 import S7Simulator
+from tests.loopback import ConfigFactory, config_factory, connected, running
 
-type ConfigFactory = Callable[..., ConnectionConfig]
 type Answer = Callable[[bytes], bytes | None]
 
 DBS = {1: 512, 2: 64, 3: 300, 4: 300}
@@ -38,36 +37,27 @@ def item_reading(sim: S7Simulator, reading: str) -> S7Simulator:
 @pytest.fixture
 async def s7_sim() -> AsyncGenerator[S7Simulator]:
     """An S7-300-like CPU (rack 0, slot 1, PDU 480) on a free loopback port."""
-    sim = S7Simulator(dbs=DBS)
-    await sim.start()
-    yield sim
-    await sim.stop()
+    async with running(S7Simulator(dbs=DBS)) as sim:
+        yield sim
 
 
 @pytest.fixture
 def s7_config(s7_sim: S7Simulator) -> ConfigFactory:
     """Make the settings of a client of the simulator (Prague clock, short timeout)."""
 
-    def make(**changes: Any) -> ConnectionConfig:
-        settings: dict[str, Any] = {
-            "host": s7_sim.host,
-            "port": s7_sim.port,
-            "timeout": 2.0,
-            "time_zone": "Europe/Prague",
-            "options": {"connection": "rack_slot", "rack": 0, "slot": 1},
-        }
-        return ConnectionConfig(**(settings | changes))
-
-    return make
+    return config_factory(
+        s7_sim,
+        timeout=2.0,
+        time_zone="Europe/Prague",
+        options={"connection": "rack_slot", "rack": 0, "slot": 1},
+    )
 
 
 @pytest.fixture
 async def s7_client(s7_config: ConfigFactory) -> AsyncGenerator[S7Client]:
     """A client connected to the simulator, closed afterwards."""
-    client = S7Client(s7_config())
-    await client.connect()
-    yield client
-    await client.close()
+    async with connected(S7Client(s7_config())) as client:
+        yield client
 
 
 @pytest.fixture

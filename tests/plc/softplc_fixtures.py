@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from collections.abc import AsyncGenerator, Callable
+from collections.abc import AsyncGenerator
 from typing import Any
 
 import pytest
@@ -10,42 +10,31 @@ import pytest
 from custom_components.plc_bridge.plc import ConnectionConfig, TlsMode
 from custom_components.plc_bridge.plc.vendors.softplc import SoftplcClient
 from simulators.softplc import SoftplcSimulator
-
-type ConfigFactory = Callable[..., ConnectionConfig]
+from tests.loopback import ConfigFactory, config_factory, connected, running
 
 
 @pytest.fixture
 async def softplc_sim() -> AsyncGenerator[SoftplcSimulator]:
     """A SoftPLC simulator on 127.0.0.1: plain HTTP, addresses echoed, no PUT authentication."""
-    sim = SoftplcSimulator()
-    await sim.start()
-    yield sim
-    await sim.stop()
+    async with running(SoftplcSimulator()) as sim:
+        yield sim
 
 
 @pytest.fixture
 async def softplc_tls_sim() -> AsyncGenerator[SoftplcSimulator]:
     """A SoftPLC simulator over HTTPS that takes PUTs only with a client certificate."""
-    sim = SoftplcSimulator(tls=True, put_auth=True)
-    await sim.start()
-    yield sim
-    await sim.stop()
+    async with running(SoftplcSimulator(tls=True, put_auth=True)) as sim:
+        yield sim
 
 
 def softplc_config(sim: SoftplcSimulator, **changes: Any) -> ConnectionConfig:
     """Return the settings of a client of the simulator (pinned when it speaks TLS)."""
-    settings: dict[str, Any] = {
-        "host": sim.host,
-        "port": sim.port,
-        "tls": TlsMode.PIN if sim.tls else TlsMode.NONE,
-        "fingerprint": sim.fingerprint or "",
-        "timeout": 5.0,
-    }
-    return ConnectionConfig(**(settings | changes))
+    tls = TlsMode.PIN if sim.tls else TlsMode.NONE
+    return config_factory(sim, tls=tls, timeout=5.0)(**changes)
 
 
 @pytest.fixture
-def softplc_settings() -> Callable[..., ConnectionConfig]:
+def softplc_settings() -> ConfigFactory:
     """Return `softplc_config`, for tests that start simulators of their own."""
     return softplc_config
 
@@ -53,10 +42,8 @@ def softplc_settings() -> Callable[..., ConnectionConfig]:
 @pytest.fixture
 async def softplc_client(softplc_sim: SoftplcSimulator) -> AsyncGenerator[SoftplcClient]:
     """A client connected to the plain simulator (its own HTTP session), closed afterwards."""
-    client = SoftplcClient(softplc_config(softplc_sim))
-    await client.connect()
-    yield client
-    await client.close()
+    async with connected(SoftplcClient(softplc_config(softplc_sim))) as client:
+        yield client
 
 
 VARIANTS: dict[str, dict[str, Any]] = {
@@ -99,11 +86,5 @@ async def softplc_reading(
     for switch, value in switches.items():
         assert hasattr(sim, switch), switch
         setattr(sim, switch, value)
-    await sim.start()
-    client = SoftplcClient(softplc_config(sim))
-    try:
-        await client.connect()
+    async with running(sim), connected(SoftplcClient(softplc_config(sim))) as client:
         yield sim, client
-    finally:
-        await client.close()
-        await sim.stop()

@@ -2,17 +2,24 @@
 
 from __future__ import annotations
 
+from datetime import datetime
 import math
 
 import pytest
 
-from custom_components.plc_bridge.plc import PlcValueError
+from custom_components.plc_bridge.plc import PlcValueError, Value, ValueKind
 from custom_components.plc_bridge.plc.codec import (
+    CHECKED,
     INTEGER_RANGES,
+    as_single,
     check_ascii,
     check_bool,
     check_float,
+    check_iec,
     check_integer,
+    check_text,
+    decode_error,
+    iec_kinds,
     integer_range,
     plain_decimal,
     shortest_real,
@@ -104,3 +111,68 @@ def test_shortest_real(value: float, shown: float) -> None:
 def test_shortest_real_passes_what_is_no_real() -> None:
     assert shortest_real(1e300) == 1e300
     assert math.isinf(shortest_real(float("inf")))
+
+
+@pytest.mark.parametrize(
+    ("kind", "value", "expected"),
+    [
+        ("BOOL", "on", True),
+        ("SINT", "-128", -128),
+        ("ULINT", 2**64 - 1, 2**64 - 1),
+        ("REAL", 3, 3.0),
+        ("LREAL", "1e300", 1e300),
+        ("DT", "2024-05-06T07:08:09", datetime(2024, 5, 6, 7, 8, 9)),
+        ("DATE", datetime(1970, 1, 1), datetime(1970, 1, 1)),
+    ],
+)
+def test_check_iec_accepts(kind: str, value: Value, expected: Value) -> None:
+    """The checks PLCnext, TecoApi and S7 share: one function for every IEC elementary type."""
+    assert check_iec(kind, value, "x") == expected
+    assert kind in CHECKED
+
+
+@pytest.mark.parametrize(
+    ("kind", "value"),
+    [("BOOL", 2), ("SINT", 128), ("REAL", 1e39), ("DT", "1969-12-31T23:59:59"), ("TIME", 1)],
+)
+def test_check_iec_refuses(kind: str, value: Value) -> None:
+    """A value out of its type's range, or a type the shared check does not know."""
+    with pytest.raises(PlcValueError):
+        check_iec(kind, value, "x")
+
+
+@pytest.mark.parametrize(
+    ("encoding", "text", "message"),
+    [
+        ("ascii", "Žluť", "a STRING takes ASCII text only; 'Ž' is not ASCII"),
+        ("latin-1", "ok €", "a STRING takes Latin-1 text only; '€' is not Latin-1"),
+        ("utf-16", "a\ud800", "a STRING takes UTF-16 text only; '\\\\ud800' is not UTF-16"),
+    ],
+)
+def test_check_text_refuses_what_the_encoding_cannot_write(
+    encoding: str, text: str, message: str
+) -> None:
+    """One byte a character (ASCII, Latin-1), or UTF-16 with no lone surrogate (a WSTRING)."""
+    with pytest.raises(PlcValueError, match=message):
+        check_text(text, 10, "x", encoding=encoding)
+    assert check_text("Straße ✓", 10, encoding="utf-16") == "Straße ✓"
+    with pytest.raises(PlcValueError, match="a WSTRING holds at most 3 characters"):
+        check_text("abcd", 3, kind="WSTRING", encoding="utf-16")
+
+
+def test_decode_error_names_a_structure_or_an_array() -> None:
+    """A member-less answer says what it is; any other is quoted, cut at 40 characters."""
+    assert "is a structure, not a INT" in str(decode_error("INT", {"a": 1}, "x"))
+    assert "is an array, not a INT" in str(decode_error("INT", [1], "x"))
+    assert (
+        str(decode_error("BOOL", "y" * 99, "x"))
+        == f"x: the PLC sent {'y' * 40!r}, which is no BOOL"
+    )
+
+
+def test_iec_kinds_and_as_single() -> None:
+    """A vendor's kinds are the IEC ones but where it says otherwise; a REAL's 32-bit float."""
+    kinds = iec_kinds(("BOOL", "STRING", "TIME"), TIME=ValueKind.INTEGER)
+    assert kinds == {"BOOL": ValueKind.BOOL, "STRING": ValueKind.TEXT, "TIME": ValueKind.INTEGER}
+    assert as_single(0.1) == 0.10000000149011612
+    assert as_single(1e39) is None

@@ -29,6 +29,7 @@ from custom_components.plc_bridge.plc.http import (
     format_fingerprint,
 )
 from simulators.base import HttpSimulator
+from tests.loopback import running
 
 
 class EchoSimulator(HttpSimulator):
@@ -73,10 +74,8 @@ async def session() -> AsyncGenerator[aiohttp.ClientSession]:
 
 @pytest.fixture
 async def tls_sim() -> AsyncGenerator[TlsEchoSimulator]:
-    sim = TlsEchoSimulator()
-    await sim.start()
-    yield sim
-    await sim.stop()
+    async with running(TlsEchoSimulator()) as sim:
+        yield sim
 
 
 def _transport(

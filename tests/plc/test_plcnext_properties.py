@@ -3,11 +3,9 @@
 from __future__ import annotations
 
 import contextlib
-from datetime import UTC
 from typing import Any
-from zoneinfo import ZoneInfo
 
-from hypothesis import HealthCheck, given, settings, strategies as st
+from hypothesis import given, strategies as st
 
 from custom_components.plc_bridge.plc import PlcError, Point
 from custom_components.plc_bridge.plc.vendors.plcnext import PlcnextClient, codec
@@ -16,37 +14,7 @@ from custom_components.plc_bridge.plc.vendors.plcnext.errors import parse_error
 from custom_components.plc_bridge.plc.vendors.plcnext.paths import parse_path
 from custom_components.plc_bridge.plc.vendors.plcnext.placing import Reading, place
 
-BOUNDED = settings(
-    max_examples=150,
-    deadline=None,
-    suppress_health_check=[HealthCheck.too_slow],
-    derandomize=True,
-    database=None,
-)
-ZONE = ZoneInfo("Europe/Prague")
-JSON = st.recursive(
-    st.none()
-    | st.booleans()
-    | st.integers(min_value=-(10**30), max_value=10**30)
-    | st.floats(allow_nan=True, allow_infinity=True)
-    | st.text(max_size=30),
-    lambda inner: (
-        st.lists(inner, max_size=4) | st.dictionaries(st.text(max_size=8), inner, max_size=4)
-    ),
-    max_leaves=10,
-)
-VALUES = (
-    st.none()
-    | st.booleans()
-    | st.integers()
-    | st.floats()
-    | st.text(max_size=40)
-    | st.datetimes(timezones=st.just(UTC) | st.none())
-    | st.lists(st.integers(), max_size=5)
-)
-ADDRESSES = st.text(max_size=40) | st.from_regex(
-    r"([A-Za-z.]{0,12}/)?[A-Za-z_][A-Za-z0-9_.\[\] ;/-]{0,30}", fullmatch=True
-)
+from .strategies import BOUNDED, JSON, PLCNEXT_ADDRESSES as ADDRESSES, VALUES, ZONE
 
 
 @BOUNDED

@@ -1,16 +1,15 @@
 """Property tests: whatever the input, only the project's own errors escape (issue 10).
 
-Bounded (a fixed number of examples, no deadline) so that scripts/test stays quick and steady.
+Strategies and settings: tests/plc/strategies.py, shared by every property test.
 """
 
 from __future__ import annotations
 
 import contextlib
-from datetime import UTC, datetime
+from datetime import datetime
 from typing import Any
-from zoneinfo import ZoneInfo
 
-from hypothesis import HealthCheck, given, settings, strategies as st
+from hypothesis import given, strategies as st
 
 from custom_components.plc_bridge.plc import PlcError, Point
 from custom_components.plc_bridge.plc.vendors import client_class
@@ -18,40 +17,9 @@ from custom_components.plc_bridge.plc.vendors.s7 import address as s7_address, c
 from custom_components.plc_bridge.plc.vendors.s7_smart import codec as smart_codec
 from custom_components.plc_bridge.plc.vendors.tecomat import codec as teco_codec
 
-BOUNDED = settings(
-    max_examples=150,
-    deadline=None,
-    suppress_health_check=[HealthCheck.too_slow],
-    derandomize=True,
-    database=None,
-)
-ZONE = ZoneInfo("Europe/Prague")
+from .strategies import ADDRESSES, BOUNDED, JSON, VALUES, ZONE
+
 VENDORS = ["s7_smart", "s7", "tecomat"]
-JSON = st.recursive(
-    st.none()
-    | st.booleans()
-    | st.integers(min_value=-(10**30), max_value=10**30)
-    | st.floats(allow_nan=True, allow_infinity=True)
-    | st.text(max_size=30),
-    lambda inner: (
-        st.lists(inner, max_size=4) | st.dictionaries(st.text(max_size=8), inner, max_size=4)
-    ),
-    max_leaves=10,
-)
-VALUES = (
-    st.none()
-    | st.booleans()
-    | st.integers()
-    | st.floats()
-    | st.text(max_size=40)
-    | st.datetimes(timezones=st.just(UTC) | st.none())
-    | st.lists(st.integers(), max_size=5)
-)
-ADDRESSES = st.text(max_size=40) | st.from_regex(
-    r"(V|VB|VW|VD|M|MW|I|Q|SMB|AIW|T|C|HC|DB[0-9]{0,6}\.DB[XBWD]|arr)[0-9٣]{0,12}(\.[0-9]{0,3})?"
-    r"|[A-Za-z_][A-Za-z0-9_.\[\], ]{0,30}",
-    fullmatch=True,
-)
 
 
 @BOUNDED

@@ -1,14 +1,13 @@
 """SoftPLC property tests: whatever the input, only the project's own errors escape.
 
-Bounded and derandomized like tests/plc/test_properties.py.
+Strategies and settings: tests/plc/strategies.py, shared by every property test.
 """
 
 from __future__ import annotations
 
 import contextlib
-from datetime import UTC
 
-from hypothesis import HealthCheck, given, settings, strategies as st
+from hypothesis import given, strategies as st
 
 from custom_components.plc_bridge.plc import PlcError, Point
 from custom_components.plc_bridge.plc.vendors.softplc import SoftplcClient, document
@@ -16,27 +15,7 @@ from custom_components.plc_bridge.plc.vendors.softplc.address import parse_addre
 from custom_components.plc_bridge.plc.vendors.softplc.codec import TYPES
 from custom_components.plc_bridge.plc.vendors.softplc.planner import item_of, plan
 
-BOUNDED = settings(
-    max_examples=150,
-    deadline=None,
-    suppress_health_check=[HealthCheck.too_slow],
-    derandomize=True,
-    database=None,
-)
-ADDRESSES = st.text(max_size=30) | st.from_regex(
-    r"(PD|[OISBTCRNFX]|timer)[0-9٣]{0,7}(:[0-9]{0,7})?(\.[A-Za-z0-9]{0,4})?(/[0-9]{0,8})?",
-    fullmatch=True,
-)
-VALUES = (
-    st.none()
-    | st.booleans()
-    | st.integers()
-    | st.floats()
-    | st.text(max_size=20)
-    | st.from_regex(r"[+-]?0[xX][0-9a-fA-F]{0,10}", fullmatch=True)
-    | st.datetimes(timezones=st.just(UTC) | st.none())
-    | st.lists(st.integers(), max_size=3)
-)
+from .strategies import BOUNDED, HEX_WORDS, SOFTPLC_ADDRESSES as ADDRESSES, SOFTPLC_REPLIES, VALUES
 
 
 @BOUNDED
@@ -53,7 +32,7 @@ def test_address_parser(address: str, data_type: str) -> None:
 
 
 @BOUNDED
-@given(address=ADDRESSES, data_type=st.sampled_from(TYPES), value=VALUES)
+@given(address=ADDRESSES, data_type=st.sampled_from(TYPES), value=VALUES | HEX_WORDS)
 def test_value_check(address: str, data_type: str, value: object) -> None:
     """Value checks refuse with PlcError only."""
     with contextlib.suppress(PlcError):
@@ -61,14 +40,7 @@ def test_value_check(address: str, data_type: str, value: object) -> None:
 
 
 @BOUNDED
-@given(
-    body=st.binary(max_size=300)
-    | st.from_regex(
-        r"<files>(<data ad=\"[^\"]{0,12}\"( count=\"-?[0-9a-z]{0,4}\")?>"
-        r"[^<]{0,20}</data>){0,3}</files>",
-        fullmatch=True,
-    ).map(str.encode)
-)
+@given(body=SOFTPLC_REPLIES)
 def test_decoder(body: bytes) -> None:
     """The reply decoder refuses with PlcError only."""
     with contextlib.suppress(PlcError):

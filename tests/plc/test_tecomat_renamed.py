@@ -10,6 +10,7 @@ import pytest
 from custom_components.plc_bridge.plc import PlcAddressError, Point
 from custom_components.plc_bridge.plc.vendors.tecomat import TecomatClient, client as client_module
 from simulators.tecomat import TecomatSimulator
+from tests.loopback import running
 
 from .tecomat_fixtures import ConfigFactory
 
@@ -20,10 +21,8 @@ NAME = Point("plcName", "STRING")
 @pytest.fixture
 async def bench_sim() -> AsyncGenerator[TecomatSimulator]:
     """A simulator whose BENCH structure holds 1,000 INTs."""
-    sim = TecomatSimulator(bench=1000)
-    await sim.start()
-    yield sim
-    await sim.stop()
+    async with running(TecomatSimulator(bench=1000)) as sim:
+        yield sim
 
 
 @pytest.fixture

@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-from collections.abc import AsyncGenerator
 import hashlib
 import json
 import re
@@ -17,15 +16,6 @@ from simulators.tecomat import DEFAULT_PASSWORD, DEFAULT_USER, TecomatSimulator
 from simulators.tecomat.values import render
 
 AUTH = {"Authorization": basic_authorization(DEFAULT_USER, DEFAULT_PASSWORD)}
-
-
-@pytest.fixture
-async def basic_sim() -> AsyncGenerator[TecomatSimulator]:
-    """A simulator that takes Basic credentials (plain requests are easier to write)."""
-    sim = TecomatSimulator(auth="basic", bench=0)
-    await sim.start()
-    yield sim
-    await sim.stop()
 
 
 async def call(

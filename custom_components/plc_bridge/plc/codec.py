@@ -9,7 +9,7 @@ import math
 import re
 import struct
 
-from .errors import PlcAddressError, PlcValueError
+from .errors import PlcAddressError, PlcProtocolError, PlcValueError
 from .types import Value, ValueKind
 
 INTEGER_RANGES: dict[str, tuple[int, int]] = {
@@ -39,6 +39,14 @@ IEC_KINDS: dict[str, ValueKind] = {
     **dict.fromkeys(("DATE", "DT", "DATE_AND_TIME", "LDT"), ValueKind.DATETIME),
 }
 """The kind of value of the IEC 61131-3 elementary types a vendor may use as data types."""
+
+CHECKED = frozenset(("BOOL", *INTEGER_RANGES, "REAL", "LREAL", "DATE", "DT"))
+"""The IEC types whose write check is the same for every vendor (`check_iec`)."""
+
+
+def iec_kinds(types: Collection[str], **kinds: ValueKind) -> dict[str, ValueKind]:
+    """Return the kind of each of a vendor's types: the IEC kind unless `kinds` names another."""
+    return {name: kinds[name] if name in kinds else IEC_KINDS[name] for name in types}
 
 
 def integer_range(bits: int, *, signed: bool) -> tuple[int, int]:
@@ -100,6 +108,14 @@ def shortest_real(value: float) -> float:
     return single  # not reached: nine digits always name a 32-bit float
 
 
+def as_single(value: float) -> float | None:
+    """Return a float as the 32-bit float a REAL stores; None when no REAL holds it."""
+    try:
+        return float(struct.unpack("<f", struct.pack("<f", value))[0])
+    except OverflowError:
+        return None
+
+
 def check_bool(value: Value, what: str = "value") -> bool:
     """Return value as a bool; accept 0/1 and the usual words."""
     if isinstance(value, bool):
@@ -123,6 +139,48 @@ def check_ascii(value: Value, max_length: int, what: str = "value") -> str:
     if len(value) > max_length:
         raise PlcValueError(f"{what} is longer than {max_length} characters")
     return value
+
+
+def check_text(
+    value: Value,
+    max_length: int,
+    what: str = "value",
+    *,
+    kind: str = "STRING",
+    encoding: str = "ascii",
+    hint: str = "",
+) -> str:
+    """Return text of at most max_length characters that `encoding` can write.
+
+    "ascii" and "latin-1" for one byte a character, "utf-16" for a WSTRING (it refuses a lone
+    surrogate); `hint` is added to the refusal of a character.
+    """
+    if not isinstance(value, str):
+        raise PlcValueError(f"{what} takes text, not {value!r}")
+    try:
+        value.encode(encoding)
+    except UnicodeEncodeError as err:
+        name = _CHARSETS.get(encoding, encoding)
+        char = value[err.start]
+        raise PlcValueError(
+            f"{what}: a {kind} takes {name} text only; {char!r} is not {name}{hint}"
+        ) from None
+    if len(value) > max_length:
+        raise PlcValueError(
+            f"{what}: a {kind} holds at most {max_length} characters; the text is longer"
+        )
+    return value
+
+
+_CHARSETS = {"ascii": "ASCII", "latin-1": "Latin-1", "utf-16": "UTF-16"}
+
+
+def decode_error(kind: str, raw: object, what: str) -> PlcProtocolError:
+    """Return the error of a JSON value that is no `kind`: a structure or array says so."""
+    if isinstance(raw, dict | list):
+        shape = "a structure" if isinstance(raw, dict) else "an array"
+        return PlcProtocolError(f"{what} is {shape}, not a {kind}; choose one of its members")
+    return PlcProtocolError(f"{what}: the PLC sent {str(raw)[:40]!r}, which is no {kind}")
 
 
 def plain_decimal(value: float) -> str:
@@ -167,6 +225,19 @@ def check_moment(kind: str, value: Value, what: str) -> datetime:
     if value.year < 1970:
         raise PlcValueError(f"{what}: a {kind} starts on 1970-01-01")
     return value
+
+
+def check_iec(kind: str, value: Value, what: str) -> Value:
+    """Return a value checked for BOOL, an integer type, REAL, LREAL, DATE or DT (`CHECKED`)."""
+    if kind == "BOOL":
+        return check_bool(value, what)
+    if kind in INTEGER_RANGES:
+        return check_integer(value, *INTEGER_RANGES[kind], what)
+    if kind in ("REAL", "LREAL"):
+        return check_float(value, single=kind == "REAL", what=what)
+    if kind in ("DATE", "DT"):
+        return check_moment(kind, value, what)
+    raise PlcValueError(f"{what}: a {kind} has no common check")
 
 
 CLOCK_VARIABLE = "clock_variable"

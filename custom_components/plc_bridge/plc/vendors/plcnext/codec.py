@@ -14,34 +14,26 @@ import re
 from typing import Any
 
 from ...codec import (
+    CHECKED,
     INTEGER_RANGES,
-    check_bool,
-    check_float,
+    check_iec,
     check_integer,
-    check_moment,
+    check_text,
+    decode_error,
+    iec_kinds,
     local_time,
     shortest_real,
     type_name,
 )
-from ...errors import PlcProtocolError, PlcValueError
+from ...errors import PlcValueError
 from ...types import Value, ValueKind
 
 INTEGERS = tuple(INTEGER_RANGES)
 TYPES = ("BOOL", *INTEGERS, "REAL", "LREAL", "STRING", "WSTRING", "TIME", "LTIME", "DATE", "DT")
 """The elementary types a point may have, also the point form's data types."""
 ALIASES = {"DATE_AND_TIME": "DT", "LDT": "DT", "LDATE": "DATE"}
-KINDS: dict[str, ValueKind] = {
-    "BOOL": ValueKind.BOOL,
-    **dict.fromkeys(INTEGERS, ValueKind.INTEGER),
-    "REAL": ValueKind.FLOAT,
-    "LREAL": ValueKind.FLOAT,
-    "STRING": ValueKind.TEXT,
-    "WSTRING": ValueKind.TEXT,
-    "TIME": ValueKind.INTEGER,  # milliseconds (IEC TIME, a signed 32-bit count in PLCnext)
-    "LTIME": ValueKind.INTEGER,  # nanoseconds (IEC LTIME, 64 bits)
-    "DATE": ValueKind.DATETIME,
-    "DT": ValueKind.DATETIME,
-}
+# TIME: milliseconds (IEC TIME, a signed 32-bit count in PLCnext); LTIME: nanoseconds (64 bits)
+KINDS = iec_kinds(TYPES, TIME=ValueKind.INTEGER, LTIME=ValueKind.INTEGER)
 TIME_RANGES = {"TIME": INTEGER_RANGES["DINT"], "LTIME": INTEGER_RANGES["LINT"]}
 _LIMITS = {**INTEGER_RANGES, **TIME_RANGES}
 MAX_STRING = 255  # no source gives PLCnext's STRING limit; the PLC refuses a longer one itself
@@ -55,36 +47,17 @@ def data_type(text: str) -> str:
 
 
 def check_value(kind: str, value: Value, what: str) -> Value:
-    """Return a value coerced for an IEC type; raise PlcValueError before anything is sent."""
-    if kind == "BOOL":
-        return check_bool(value, what)
-    if kind in INTEGER_RANGES:
-        return check_integer(value, *INTEGER_RANGES[kind], what)
+    """Return a value coerced for an IEC type; raise PlcValueError before anything is sent.
+
+    A STRING holds one byte a character (IEC), a WSTRING UTF-16; TIME and LTIME are counts.
+    """
+    if kind in CHECKED:
+        return check_iec(kind, value, what)
     if kind in TIME_RANGES:
         return check_integer(value, *TIME_RANGES[kind], what)
-    if kind in ("REAL", "LREAL"):
-        return check_float(value, single=kind == "REAL", what=what)
-    if kind in ("DATE", "DT"):
-        return check_moment(kind, value, what)
-    return _check_text(kind, value, what)
-
-
-def _check_text(kind: str, value: Value, what: str) -> str:
-    """Return text a STRING (one byte a character, IEC) or WSTRING (UTF-16) can hold."""
-    if not isinstance(value, str):
-        raise PlcValueError(f"{what} takes text, not {value!r}")
     if kind == "STRING":
-        try:
-            value.encode("latin-1")
-        except UnicodeEncodeError:
-            raise PlcValueError(
-                f"{what}: a STRING holds one byte a character; use a WSTRING for {value!r}"
-            ) from None
-    elif any(0xD800 <= ord(char) <= 0xDFFF for char in value):
-        raise PlcValueError(f"{what}: the text holds a lone surrogate")
-    if len(value) > MAX_STRING:
-        raise PlcValueError(f"{what}: the text is longer than {MAX_STRING} characters")
-    return value
+        return check_text(value, MAX_STRING, what, encoding="latin-1", hint="; use a WSTRING")
+    return check_text(value, MAX_STRING, what, kind=kind, encoding="utf-16")
 
 
 def encode(kind: str, value: Value, zone: tzinfo) -> Any:
@@ -126,10 +99,7 @@ def decode(kind: str, raw: Any, zone: tzinfo, what: str) -> Value:
             return raw
     elif isinstance(raw, str) and (moment := parse_moment(kind, raw, zone)) is not None:
         return moment
-    if isinstance(raw, dict | list):
-        shape = "a structure" if isinstance(raw, dict) else "an array"
-        raise PlcProtocolError(f"{what} is {shape}, not a {kind}; choose one of its members")
-    raise PlcProtocolError(f"{what}: the PLC sent {str(raw)[:40]!r}, which is no {kind}")
+    raise decode_error(kind, raw, what)
 
 
 def same_json(old: Any, new: Any) -> bool:
@@ -145,7 +115,7 @@ def _bool(raw: Any, what: str) -> bool:
         return bool(raw)
     if isinstance(raw, str) and raw.strip().lower() in _TRUE + _FALSE:
         return raw.strip().lower() in _TRUE
-    raise PlcProtocolError(f"{what}: the PLC sent {str(raw)[:40]!r}, which is no BOOL")
+    raise decode_error("BOOL", raw, what)
 
 
 def _whole(raw: Any) -> int | None:

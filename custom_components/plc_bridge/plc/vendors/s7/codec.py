@@ -9,10 +9,9 @@ import struct
 from snap7.util import get_date_time_object, get_dtl, set_dt, set_dtl
 
 from ...codec import (
+    CHECKED,
     INTEGER_RANGES,
-    check_bool,
-    check_float,
-    check_integer,
+    check_iec,
     local_time,
     shortest_real,
 )
@@ -38,12 +37,8 @@ def check_value(variable: Variable, value: Value) -> Value:
     if variable.area == AREA_P and not variable.write_area:
         # A write to area 0x80 reaches the peripheral outputs of the same address.
         raise PlcValueError(f"{what}: peripheral inputs cannot be written")
-    if kind == "BOOL":
-        return check_bool(value, what)
-    if kind in INTEGER_RANGES:
-        return check_integer(value, *INTEGER_RANGES[kind], what=what)
-    if kind in ("REAL", "LREAL"):
-        return check_float(value, single=kind == "REAL", what=what)
+    if kind in CHECKED:  # S7 dates are DATE_AND_TIME and DTL, never DATE or DT
+        return check_iec(kind, value, what)
     if kind in YEARS:
         return _datetime(value, what)
     if not isinstance(value, str):

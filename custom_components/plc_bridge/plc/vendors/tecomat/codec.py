@@ -6,38 +6,29 @@ from datetime import datetime, tzinfo
 import json
 import math
 import re
-import struct
 from typing import Any
 
 from ...codec import (
+    CHECKED,
     INTEGER_RANGES,
-    check_bool,
-    check_float,
-    check_integer,
-    check_moment,
+    as_single,
+    check_iec,
+    check_text,
+    decode_error,
+    iec_kinds,
     local_time,
     plain_decimal,
     shortest_real,
     type_name,
 )
-from ...errors import PlcProtocolError, PlcValueError
+from ...errors import PlcValueError
 from ...types import Value, ValueKind
 
 INTEGERS = ("BYTE", "WORD", "DWORD", "SINT", "INT", "DINT", "USINT", "UINT", "UDINT")
 TYPES = ("BOOL", *INTEGERS, "REAL", "LREAL", "TIME", "TOD", "DATE", "DT", "STRING")
 """The elementary types of chapter 4, also the point form's data types."""
 ALIASES = {"TIME_OF_DAY": "TOD", "DATE_AND_TIME": "DT"}
-KINDS: dict[str, ValueKind] = {
-    "BOOL": ValueKind.BOOL,
-    **dict.fromkeys(INTEGERS, ValueKind.INTEGER),
-    "REAL": ValueKind.FLOAT,
-    "LREAL": ValueKind.FLOAT,
-    "TIME": ValueKind.TEXT,  # "hh:mm:ss.zzz", as the PLC sends it
-    "TOD": ValueKind.TEXT,
-    "DATE": ValueKind.DATETIME,
-    "DT": ValueKind.DATETIME,
-    "STRING": ValueKind.TEXT,
-}
+KINDS = iec_kinds(TYPES, TIME=ValueKind.TEXT, TOD=ValueKind.TEXT)  # "hh:mm:ss.zzz", as sent
 MAX_STRING = 255  # chapter 4: STRING holds at most 255 ASCII characters
 MAX_VALUE = 255  # 3.6: an item's value is at most 255 characters in a PutObject body
 MAX_TIME_MS = 2**31 - 1  # chapter 4: TIME and TOD run from 0 to 24d 20:31:23.647
@@ -55,16 +46,11 @@ def data_type(text: str) -> str:
 
 def check_value(kind: str, value: Value, what: str) -> Value:
     """Return a value coerced for an IEC type; raise PlcValueError before anything is sent."""
-    if kind == "BOOL":
-        return check_bool(value, what)
-    if kind in INTEGER_RANGES:
-        return check_integer(value, *INTEGER_RANGES[kind], what)
-    if kind in ("REAL", "LREAL"):
-        return _check_number(check_float(value, single=kind == "REAL", what=what), what)
+    if kind in CHECKED:
+        checked = check_iec(kind, value, what)
+        return _check_number(checked, what) if isinstance(checked, float) else checked
     if kind in ("TIME", "TOD"):
         return _format_clock(_check_clock(kind, value, what))
-    if kind in ("DATE", "DT"):
-        return check_moment(kind, value, what)
     return _check_text(value, what)
 
 
@@ -81,13 +67,7 @@ def _check_number(number: float, what: str) -> float:
 
 def _check_text(value: Value, what: str) -> str:
     """Return ASCII text the PutObject parser takes (3.6) that fits a STRING."""
-    if not isinstance(value, str):
-        raise PlcValueError(f"{what} takes text, not {value!r}")
-    for char in value:
-        if not char.isascii():
-            raise PlcValueError(f"{what}: the PLC takes ASCII text only; {char!r} is not ASCII")
-    if len(value) > MAX_STRING:
-        raise PlcValueError(f"{what}: a STRING holds at most {MAX_STRING} characters")
+    value = check_text(value, MAX_STRING, what)
     if len(json.dumps(value)) - 2 > MAX_VALUE:
         raise PlcValueError(f"{what}: with its escapes the text passes {MAX_VALUE} characters")
     return value
@@ -161,10 +141,8 @@ def same_value(kind: str, held: Value, sent: Value, zone: tzinfo) -> bool:
 
 def _single(value: float) -> float:
     """Return a float as the 32-bit float a REAL stores (unchanged when no REAL holds it)."""
-    try:
-        return float(struct.unpack("<f", struct.pack("<f", value))[0])
-    except OverflowError:
-        return value
+    single = as_single(value)
+    return value if single is None else single
 
 
 def decode(kind: str, raw: Any, zone: tzinfo, what: str) -> Value:
@@ -187,10 +165,7 @@ def decode(kind: str, raw: Any, zone: tzinfo, what: str) -> Value:
             return _format_clock(_clock_millis(match))
         if kind in ("DATE", "DT") and (moment := parse_datetime(kind, text, zone)):
             return moment
-    if isinstance(raw, dict | list):
-        shape = "a structure" if isinstance(raw, dict) else "an array"
-        raise PlcProtocolError(f"{what} is {shape}, not a {kind}; choose one of its members")
-    raise PlcProtocolError(f"{what}: the PLC sent {raw!r}, which is no {kind}")
+    raise decode_error(kind, raw, what)
 
 
 def parse_datetime(kind: str, text: str, zone: tzinfo) -> datetime | None:
@@ -217,11 +192,8 @@ def _fits_real(value: float) -> bool:
     """
     if not math.isfinite(value):
         return True
-    try:
-        single = struct.unpack("<f", struct.pack("<f", value))[0]
-    except OverflowError:
-        return False
-    return f"{single:.6f}" == f"{value:.6f}"
+    single = as_single(value)
+    return single is not None and f"{single:.6f}" == f"{value:.6f}"
 
 
 def guess_type(raw: Any) -> str | None:

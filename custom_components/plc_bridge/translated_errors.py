@@ -4,8 +4,6 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 from contextlib import contextmanager
-from datetime import datetime
-from typing import Any
 
 from homeassistant.core import HomeAssistant
 from homeassistant.exceptions import HomeAssistantError, ServiceValidationError
@@ -18,7 +16,6 @@ from .plc import (
     PlcError,
     PlcValueError,
     PlcWriteRefusedError,
-    Value,
 )
 
 
@@ -66,8 +63,3 @@ def check_can_write(entry: PlcBridgeConfigEntry) -> None:
             translation_key="no_write_permission",
             translation_placeholders={"title": entry.title},
         )
-
-
-def json_value(value: Value | None) -> Any:
-    """Return a point value as action responses carry it (date and time as ISO 8601 text)."""
-    return value.isoformat() if isinstance(value, datetime) else value
