@@ -10,6 +10,7 @@ from __future__ import annotations
 
 from contextlib import suppress
 from datetime import date, datetime, timedelta, tzinfo
+from decimal import Decimal
 import math
 
 from ...codec import check_integer, local_time
@@ -71,12 +72,19 @@ def check_time(kind: str, value: Value, what: str) -> Value:
     low, high = MS_RANGES[kind]
     if not low <= milliseconds <= high:
         raise PlcValueError(
-            f"{what}: a {kind} holds {low / 1000:g}..{high / 1000:g} s, "
-            f"not {milliseconds / 1000:g} s"
+            f"{what}: a {kind} holds {_seconds(low)}..{_seconds(high)} s, "
+            f"not {_seconds(milliseconds)} s"
         )
     if kind == "S5TIME":
         _s5_base(milliseconds, what)
     return timedelta(milliseconds=milliseconds)
+
+
+def _seconds(milliseconds: int) -> str:
+    """Return milliseconds as seconds in plain decimals (-2147483.648, 9990)."""
+    if abs(milliseconds) > 10**15:
+        return f"{milliseconds / 1000:g}"
+    return f"{Decimal(milliseconds).scaleb(-3):f}".rstrip("0").rstrip(".") or "0"
 
 
 def _milliseconds(value: Value, what: str) -> int:
