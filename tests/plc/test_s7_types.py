@@ -235,3 +235,32 @@ async def test_wstring_longer_than_the_plc_declares(
     assert "is a WSTRING[2] in the PLC: 3 characters" in str(written[long].error)
     assert isinstance(written[bad].error, PlcAddressError)
     assert s7_sim.get_db(1, 100, 6) == b"\x00\x02\x00\x00\x00\x00"
+
+
+@pytest.mark.parametrize("reading", ["bcd", "binary"])
+async def test_counters_under_each_reading(
+    s7_sim: S7Simulator, s7_client: S7Client, reading: str
+) -> None:
+    """BCD counts read as COUNTER; a binary one fails the point where it is no BCD (READINGS 15)."""
+    s7_sim.counters = reading
+    counts = {1: 7, 2: 123, 3: 999, 4: 300}
+    for number, count in counts.items():
+        s7_sim.set_counter(number, count)
+    points = [Point(f"C{number}", "COUNTER") for number in counts] + [Point("C2", "WORD")]
+    result = await s7_client.read(points)
+    shown = {
+        (point.address, point.data_type): outcome.value if outcome.ok else "failed"
+        for point, outcome in result.values.items()
+    }
+    if reading == "bcd":
+        want: dict[tuple[str, str], object] = {(f"C{n}", "COUNTER"): c for n, c in counts.items()}
+        assert shown == want | {("C2", "WORD"): 0x0123}
+    else:
+        # 7 is the same word either way; 0x007B, 0x03E7 and 0x012C are no BCD: never shown wrong
+        assert shown == {
+            ("C1", "COUNTER"): 7,
+            ("C2", "COUNTER"): "failed",
+            ("C3", "COUNTER"): "failed",
+            ("C4", "COUNTER"): "failed",
+            ("C2", "WORD"): 123,
+        }
