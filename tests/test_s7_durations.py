@@ -15,7 +15,7 @@ from custom_components.plc_bridge.plc.vendors.s7 import S7Client
 from custom_components.plc_bridge.point_form import suggested_platform
 from simulators.s7 import S7Simulator
 
-from .ha_fixtures import point, poll
+from .ha_fixtures import call, point, poll
 from .s7_ha_fixtures import SimFactory, make_s7_entry
 
 POINTS = [
@@ -62,6 +62,15 @@ async def test_durations(
     sim.set_db(1, 0, struct.pack(">i", -250))
     await poll(hass, freezer)
     assert hass.states.get(RUNTIME).state == "-0.25"
+
+    # The read action answers JSON: a duration in seconds.
+    points = [
+        {"address": "DB1.DBD0", "data_type": "TIME"},
+        {"address": "T1", "data_type": "S5TIME"},
+    ]
+    response = await call(hass, "read", entry, points=points)
+    assert response is not None
+    assert response["values"] == {"DB1.DBD0": -0.25, "T1": 0.0}
 
 
 def test_suggested_platforms() -> None:

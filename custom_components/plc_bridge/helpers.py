@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 from contextlib import contextmanager
-from datetime import datetime
+from datetime import datetime, timedelta
 from typing import Any
 
 from homeassistant.core import HomeAssistant
@@ -69,5 +69,7 @@ def check_can_write(entry: PlcBridgeConfigEntry) -> None:
 
 
 def json_value(value: Value | None) -> Any:
-    """Return a point value as action responses carry it (date and time as ISO 8601 text)."""
+    """Return a point value as action responses carry it (ISO 8601 dates, durations in s)."""
+    if isinstance(value, timedelta):
+        return value.total_seconds()
     return value.isoformat() if isinstance(value, datetime) else value
