@@ -172,10 +172,12 @@ def test_tia_portal_in_german() -> None:
 
 def test_tia_type_refused_by_the_parser() -> None:
     """A TIA type the S7 client cannot read is named on its line with the parser's words."""
-    table = "Name\tData Type\tLogical Address\nT\tS5Time\t%MW4\n"
+    table = "Name\tData Type\tLogical Address\nT\tLTime\t%MB4\n"
     _, errors = parse_points(S7, table)
     assert errors[0][0] == 2
-    assert "S5TIME" in errors[0][1].upper()
+    assert "LTIME" in errors[0][1].upper()
+    points, _ = parse_points(S7, table.replace("LTime\t%MB4", "S5Time\t%MW6"))
+    assert [(p["address"], p["data_type"]) for p in points] == [("MW6", "S5TIME")]
 
 
 def test_s7_type_from_the_address() -> None:

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from dataclasses import dataclass
+from datetime import timedelta
 
 from homeassistant.components.number import (
     NumberDeviceClass,
@@ -10,7 +11,7 @@ from homeassistant.components.number import (
     NumberEntityDescription,
     NumberMode,
 )
-from homeassistant.const import CONF_UNIT_OF_MEASUREMENT
+from homeassistant.const import CONF_UNIT_OF_MEASUREMENT, UnitOfTime
 from homeassistant.core import HomeAssistant
 from homeassistant.helpers.entity_platform import AddConfigEntryEntitiesCallback
 
@@ -51,10 +52,15 @@ def point_number(entry: PlcBridgeConfigEntry, config: PointConfig) -> PlcNumber:
         else 0.001
     )
     low, high = fields["conversion"].bounds or (DEFAULT_MIN, DEFAULT_MAX)
+    duration = fields["kind"] is ValueKind.DURATION  # written in seconds, the PLC checks them
     description = PlcNumberDescription(
         **fields,
-        device_class=device_class(config, NumberDeviceClass),
-        native_unit_of_measurement=data.get(CONF_UNIT_OF_MEASUREMENT),
+        device_class=NumberDeviceClass.DURATION
+        if duration
+        else device_class(config, NumberDeviceClass),
+        native_unit_of_measurement=UnitOfTime.SECONDS
+        if duration
+        else data.get(CONF_UNIT_OF_MEASUREMENT),
         native_min_value=float(data.get(CONF_MIN, low)),
         native_max_value=float(data.get(CONF_MAX, high)),
         native_step=float(step),
@@ -82,6 +88,8 @@ class PlcNumber(PlcPointEntity, NumberEntity):
     def native_value(self) -> float | None:
         """Return the scaled value."""
         value = self.entity_description.value_fn(self.raw_value)
+        if isinstance(value, timedelta):
+            return value.total_seconds()
         return value if isinstance(value, int | float) else None
 
     async def async_set_native_value(self, value: float) -> None:

@@ -59,7 +59,7 @@ COUNTED = NUMERIC | {ValueKind.BOOL}
 PLATFORM_KINDS: dict[str, tuple[frozenset[ValueKind], str]] = {
     "binary_sensor": (frozenset({ValueKind.BOOL}), "needs_bool"),
     "switch": (frozenset({ValueKind.BOOL}), "needs_bool"),
-    "number": (NUMERIC, "needs_number"),
+    "number": (NUMERIC | {ValueKind.DURATION}, "needs_number"),
     "datetime": (frozenset({ValueKind.DATETIME}), "needs_datetime"),
     "text": (frozenset({ValueKind.TEXT}), "needs_text"),
     **KIND_PLATFORMS,
@@ -112,13 +112,13 @@ def takes_unit(platform: str, kind: ValueKind | None) -> bool:
     """True when the platform shows the point as a number that can have a unit."""
     if platform == "sensor":
         return kind is None or kind in COUNTED
-    return platform == "number"
+    return platform == "number" and kind is not ValueKind.DURATION  # durations: seconds
 
 
 def device_classes(platform: str, kind: ValueKind | None) -> list[str]:
     """Return the device classes a point of this kind can carry on the platform."""
-    if platform not in DEVICE_CLASSES:
-        return []
+    if platform not in DEVICE_CLASSES or kind is ValueKind.DURATION:
+        return []  # a duration is always of class duration
     classes = [str(member) for member in DEVICE_CLASSES[platform]]
     if platform != "sensor":
         return classes
@@ -328,7 +328,7 @@ def suggested_platform(
     read_only = read_only or not client.address_writable(point)
     if kind is ValueKind.BOOL:
         return "binary_sensor" if read_only else "switch"
-    if kind in NUMERIC:
+    if kind in NUMERIC or kind is ValueKind.DURATION:
         return "sensor" if read_only else "number"
     if kind is ValueKind.DATETIME and not read_only:
         return "datetime"

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from dataclasses import dataclass
-from datetime import datetime
+from datetime import datetime, timedelta
 from typing import Any
 
 from homeassistant.components.sensor import (
@@ -50,6 +50,11 @@ KNOWN_EXTRA = (
 SHOWN_EXTRA = ("program", "program_compiled", "project_crc")
 """Extra keys whose sensors are enabled by default (the others are there, disabled)."""
 NUMERIC = (ValueKind.INTEGER, ValueKind.FLOAT, ValueKind.BOOL)
+DURATION: dict[str, Any] = {
+    "device_class": SensorDeviceClass.DURATION,
+    "native_unit_of_measurement": UnitOfTime.SECONDS,
+}
+"""A duration point (S7 TIME, S5TIME, TIME_OF_DAY) shows its seconds."""
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -167,6 +172,8 @@ def point_sensor(entry: PlcBridgeConfigEntry, config: PointConfig) -> PlcPointSe
             extra["state_class"] = SensorStateClass(extra["state_class"])
     elif fields["kind"] is ValueKind.DATETIME:
         extra = {"device_class": SensorDeviceClass.TIMESTAMP}
+    elif fields["kind"] is ValueKind.DURATION:
+        extra = DURATION
     return PlcPointSensor(entry, config, PlcSensorDescription(**fields, **extra))
 
 
@@ -200,6 +207,8 @@ class PlcPointSensor(PlcPointEntity, SensorEntity):
     def native_value(self) -> Any:
         """Return the scaled value (text for strings and raw bytes)."""
         value = self.entity_description.value_fn(self.raw_value)
+        if isinstance(value, timedelta):
+            return value.total_seconds()
         return int(value) if isinstance(value, bool) else value
 
 

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from datetime import datetime
+from datetime import datetime, timedelta
 from typing import Any
 
 from homeassistant.config_entries import ConfigEntryState
@@ -125,7 +125,9 @@ async def async_read(call: ServiceCall) -> ServiceResponse:
 
 
 def json_value(value: Value | None) -> Any:
-    """Return a point value as action responses carry it (date and time as ISO 8601 text)."""
+    """Return a point value as action responses carry it (ISO 8601 dates, durations in s)."""
+    if isinstance(value, timedelta):
+        return value.total_seconds()
     return value.isoformat() if isinstance(value, datetime) else value
 
 

@@ -66,6 +66,9 @@ class S7Simulator:
         self.connections = 0
         self.cpu_state: str | int = "RUN"  # RUN, STOP, STARTUP, HOLD, DEFECT, or a raw bzu-id
         self.write_protected = False
+        # How the CPU keeps a counter's value in the C area: three BCD digits (STEP 7's
+        # definition) or a binary word (what S7.Net's Counter type reads): READINGS.md row 15
+        self.counters = "bcd"
         self.put_get_refused = False  # an S7-1200/1500 without "Permit PUT/GET": jobs get 0x8104
         self.on_request: Callable[[bytes], None] | None = None  # runs in the server's thread
         # SZL 0x001C records by index, in a CPU's order: 1 name, 2 module, 5 serial, 7 type
@@ -140,6 +143,11 @@ class S7Simulator:
             raise ValueError(f"{area} has {len(memory)} bytes: {len(data)} at {start} do not fit")
         with lock:
             memory[start * unit : start * unit + len(data)] = data
+
+    def set_counter(self, number: int, count: int) -> None:
+        """Put a count (0..999) into counter C`number` the way `counters` says the CPU keeps it."""
+        word = count if self.counters == "binary" else int(str(count), 16)
+        self.set_bytes("C", number, word.to_bytes(2, "big"))
 
     def get_bytes(self, area: str, start: int, size: int, *, db: int = 0) -> bytes:
         """Return `size` bytes of DB/V/M/I/Q (from a byte) or T/C (from a number)."""

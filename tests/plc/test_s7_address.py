@@ -61,13 +61,25 @@ NORMALIZED = [
     ("DB1.DBB0", "DT", "DB1.DBB0", "DATE_AND_TIME"),
     ("VB0", "DATE_AND_TIME", "VB0", "DATE_AND_TIME"),
     ("DB1.DBB0", "DTL", "DB1.DBB0", "DTL"),
+    ("DB1.DBB0", "sint", "DB1.DBB0", "SINT"),
+    ("DB1.DBB0", "LWORD", "DB1.DBB0", "LWORD"),
+    ("DB1.DBD0", "TOD", "DB1.DBD0", "TIME_OF_DAY"),
+    ("DB1.DBD0", "TIME", "DB1.DBD0", "TIME"),
+    ("MW2", "S5TIME", "MW2", "S5TIME"),
+    ("T5", "S5TIME", "T5", "S5TIME"),
+    ("Z3", "COUNTER", "C3", "COUNTER"),
+    ("DB1.DBW0", "DATE", "DB1.DBW0", "DATE"),
+    ("DB1.DBW0", "WCHAR", "DB1.DBW0", "WCHAR"),
+    ("DB1.DBB0", "WSTRING[254]", "DB1.DBB0", "WSTRING"),
+    ("DB1.DBB0", "wstring[20]", "DB1.DBB0", "WSTRING[20]"),
 ]
 
 REFUSED = [
     (
         "DB1.DBW4",
         "REAL",
-        r"DB1.DBW4 is a word \(16 bits\) for WORD, INT or UINT; for REAL use DB1.DBD4",
+        r"DB1.DBW4 is a word \(16 bits\) for WORD, INT, UINT, S5TIME, DATE, WCHAR or COUNTER; "
+        "for REAL use DB1.DBD4",
     ),
     ("DB1.DBD4", "INT", "for INT use DB1.DBW4"),
     ("DB1.DBX0.0", "INT", "DB1.DBX0.0 is a bit for BOOL; for INT use DB1.DBW0"),
@@ -86,8 +98,20 @@ REFUSED = [
     ("MW70000", "INT", "byte offsets run from 0 to 65535"),
     ("DB1.DBW65535", "INT", "runs past byte 65535"),
     ("DB1.DBB65500", "STRING", "runs past byte 65535"),
-    ("T1", "INT", "T1 is a timer: read it as WORD"),
-    ("C1", "REAL", "C1 is a counter: read it as WORD"),
+    ("T1", "INT", "T1 is a timer: read it as S5TIME or as WORD"),
+    ("C1", "REAL", "C1 is a counter: read it as COUNTER or as WORD"),
+    ("T1", "COUNTER", "T1 is a timer"),
+    ("C1", "S5TIME", "C1 is a counter"),
+    ("DB1.DBW0", "TIME", "for TIME use DB1.DBD0"),
+    ("DB1.DBD0", "S5TIME", "for S5TIME use DB1.DBW0"),
+    ("DB1.DBW0", "TOD", "for TIME_OF_DAY use DB1.DBD0"),
+    ("DB1.DBB0", "DATE", "for DATE use DB1.DBW0"),
+    ("DB1.DBW0", "SINT", "for SINT use DB1.DBB0"),
+    ("DB1.DBD0", "LINT", "for LINT give its first byte, e.g. DB1.DBB0"),
+    ("DB1.DBW0", "WSTRING[4]", "for WSTRING give its first byte"),
+    ("DB1.DBB0", "WSTRING[0]", "a WSTRING holds 1..16382 characters, not 0"),
+    ("DB1.DBB0", "WSTRING[16383]", "not 16383"),
+    ("DB1.DBB40000", "WSTRING[16382]", "runs past byte 65535"),
     ("T70000", "WORD", "numbers run from 0 to 65535"),
     ("X1", "INT", "'X1' is not an S7 address; try DB1.DBX0.0"),
     ("AIW16", "INT", "not an S7 address"),
@@ -107,7 +131,8 @@ def test_client_is_registered() -> None:
     assert S7Client.default_scan_interval == 2
     assert S7Client.data_types == (
         "BOOL", "BYTE", "CHAR", "WORD", "INT", "UINT", "DWORD", "DINT", "UDINT",
-        "REAL", "LREAL", "STRING", "DATE_AND_TIME", "DTL",
+        "REAL", "LREAL", "STRING", "DATE_AND_TIME", "DTL", "SINT", "USINT", "LINT", "ULINT",
+        "LWORD", "TIME", "S5TIME", "TIME_OF_DAY", "DATE", "WCHAR", "WSTRING", "COUNTER",
     )  # fmt: skip
 
 
@@ -135,6 +160,10 @@ def test_areas_on_the_wire() -> None:
     assert (text.string_length, text.size) == (20, 22)
     assert variable(Point("DB1.DBB10", "STRING")).size == 256
     assert variable(Point("T5", "WORD")).counted
+    wide = variable(Point("DB1.DBB0", "WSTRING[20]"))
+    assert (wide.string_length, wide.header_size, wide.size) == (20, 4, 44)
+    assert variable(Point("DB1.DBB0", "WSTRING")).size == 4 + 2 * 254
+    assert variable(Point("C3", "COUNTER")).counted
 
 
 @pytest.mark.parametrize(
@@ -148,6 +177,15 @@ def test_areas_on_the_wire() -> None:
         ("STRING[20]", ValueKind.TEXT),
         ("DT", ValueKind.DATETIME),
         ("DTL", ValueKind.DATETIME),
+        ("LINT", ValueKind.INTEGER),
+        ("LWORD", ValueKind.INTEGER),
+        ("COUNTER", ValueKind.INTEGER),
+        ("TIME", ValueKind.DURATION),
+        ("S5TIME", ValueKind.DURATION),
+        ("TOD", ValueKind.DURATION),
+        ("DATE", ValueKind.DATETIME),
+        ("WCHAR", ValueKind.TEXT),
+        ("WSTRING[8]", ValueKind.TEXT),
         ("nonsense", None),
     ],
 )

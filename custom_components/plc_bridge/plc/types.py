@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from collections.abc import Iterable
 from dataclasses import dataclass, field
-from datetime import datetime
+from datetime import datetime, timedelta
 from enum import StrEnum
 import re
 
@@ -15,8 +15,8 @@ SECRET_OPTION = re.compile(r"key|password|secret|token", re.IGNORECASE)
 PATH_SEP = "\x1f"
 """Joins the names of a variable path in a footprint's area (no address or name holds it)."""
 
-type Value = bool | int | float | str | datetime | list[int]
-"""A decoded point value: BOOL, integers, REAL, STRING, date/time or raw bytes (list of ints)."""
+type Value = bool | int | float | str | datetime | timedelta | list[int]
+"""A decoded point value: BOOL, integers, REAL, STRING, date/time, duration or raw bytes."""
 
 
 class TlsMode(StrEnum):
@@ -36,6 +36,7 @@ class ValueKind(StrEnum):
     FLOAT = "float"
     TEXT = "text"
     DATETIME = "datetime"
+    DURATION = "duration"  # a timedelta: S7 TIME, S5TIME, TIME_OF_DAY (since midnight)
     BYTES = "bytes"
 
 

@@ -42,51 +42,80 @@ DATA_TYPES: tuple[str, ...] = (
     "STRING",
     "DATE_AND_TIME",
     "DTL",
+    "SINT",
+    "USINT",
+    "LINT",
+    "ULINT",
+    "LWORD",
+    "TIME",
+    "S5TIME",
+    "TIME_OF_DAY",
+    "DATE",
+    "WCHAR",
+    "WSTRING",
+    "COUNTER",
 )
-"""The point form's data types; STRING (read as STRING[254]) and STRING[n] are accepted.
+"""The point form's data types; STRING and WSTRING (read as [254]) and [n] forms are accepted.
 
-A write never trusts either length: it reads the STRING's header in the PLC first.
+A write never trusts either length: it reads the STRING's or WSTRING's header in the PLC first.
+COUNTER is a counter's value as the CPU keeps it: three BCD digits (0..999) in a word.
 """
 
 STRING_MAX = 254
+WSTRING_MAX = 16382
 SIZES: dict[str, int] = {
     "BOOL": 1,
     "BYTE": 1,
     "CHAR": 1,
+    "SINT": 1,
+    "USINT": 1,
     "WORD": 2,
     "INT": 2,
     "UINT": 2,
+    "S5TIME": 2,
+    "DATE": 2,
+    "WCHAR": 2,
+    "COUNTER": 2,
     "DWORD": 4,
     "DINT": 4,
     "UDINT": 4,
     "REAL": 4,
+    "TIME": 4,
+    "TIME_OF_DAY": 4,
     "LREAL": 8,
+    "LINT": 8,
+    "ULINT": 8,
+    "LWORD": 8,
     "DATE_AND_TIME": 8,
     "DTL": 12,
 }
 KINDS: dict[str, ValueKind] = {
     "BOOL": ValueKind.BOOL,
-    **dict.fromkeys(("BYTE", "WORD", "INT", "UINT", "DWORD", "DINT", "UDINT"), ValueKind.INTEGER),
+    **dict.fromkeys(
+        ("BYTE", "WORD", "INT", "UINT", "DWORD", "DINT", "UDINT", "SINT", "USINT", "LINT"),
+        ValueKind.INTEGER,
+    ),
+    **dict.fromkeys(("ULINT", "LWORD", "COUNTER"), ValueKind.INTEGER),
     "REAL": ValueKind.FLOAT,
     "LREAL": ValueKind.FLOAT,
-    "CHAR": ValueKind.TEXT,
-    "STRING": ValueKind.TEXT,
-    "DATE_AND_TIME": ValueKind.DATETIME,
-    "DTL": ValueKind.DATETIME,
+    **dict.fromkeys(("CHAR", "STRING", "WCHAR", "WSTRING"), ValueKind.TEXT),
+    **dict.fromkeys(("DATE_AND_TIME", "DTL", "DATE"), ValueKind.DATETIME),
+    **dict.fromkeys(("TIME", "S5TIME", "TIME_OF_DAY"), ValueKind.DURATION),
 }
 # Types longer than a double word have no width letter in STEP 7: they take their first byte.
-_FROM_BYTE = ("LREAL", "STRING", "DATE_AND_TIME", "DTL")
+_FROM_BYTE = ("LREAL", "LINT", "ULINT", "LWORD", "STRING", "WSTRING", "DATE_AND_TIME", "DTL")
 _FITS: dict[str, tuple[str, ...]] = {
     "X": ("BOOL",),
-    "B": ("BYTE", "CHAR", *_FROM_BYTE),
-    "W": ("WORD", "INT", "UINT"),
-    "D": ("DWORD", "DINT", "UDINT", "REAL"),
+    "B": ("BYTE", "CHAR", "SINT", "USINT", *_FROM_BYTE),
+    "W": ("WORD", "INT", "UINT", "S5TIME", "DATE", "WCHAR", "COUNTER"),
+    "D": ("DWORD", "DINT", "UDINT", "REAL", "TIME", "TIME_OF_DAY"),
 }
 _HOLDS = {
     "X": "BOOL",
-    "B": "BYTE or CHAR, or the first byte of an LREAL, STRING, DATE_AND_TIME or DTL",
-    "W": "WORD, INT or UINT",
-    "D": "DWORD, DINT, UDINT or REAL",
+    "B": "BYTE, CHAR, SINT or USINT, or the first byte of an LREAL, LINT, ULINT, LWORD, "
+    "STRING, WSTRING, DATE_AND_TIME or DTL",
+    "W": "WORD, INT, UINT, S5TIME, DATE, WCHAR or COUNTER",
+    "D": "DWORD, DINT, UDINT, REAL, TIME or TIME_OF_DAY",
 }
 _WIDTH_NAMES = {
     "X": "a bit",
@@ -94,7 +123,15 @@ _WIDTH_NAMES = {
     "W": "a word (16 bits)",
     "D": "a double word (32 bits)",
 }
-_ALIASES = {"E": "I", "A": "Q", "PE": "PI", "PA": "PQ", "Z": "C", "DT": "DATE_AND_TIME"}
+_ALIASES = {
+    "E": "I",
+    "A": "Q",
+    "PE": "PI",
+    "PA": "PQ",
+    "Z": "C",
+    "DT": "DATE_AND_TIME",
+    "TOD": "TIME_OF_DAY",
+}
 # A CPU cannot read PQ (STEP 7 only transfers to it); a PQ write also updates the process
 # image, so PQ is read there.
 _AREAS = {"I": AREA_I, "Q": AREA_Q, "M": AREA_M, "V": AREA_DB, "PI": AREA_P, "PQ": AREA_Q}
@@ -104,7 +141,7 @@ _PATTERN = re.compile(
     rf"|(?P<area>PI|PE|PQ|PA|I|E|Q|A|M|V)(?P<width>[BWD]?)(?P<offset>{_N})(?:\.(?P<bit>{_N}))?"
     rf"|(?P<counter>T|C|Z)(?P<number>{_N}))"
 )
-_STRING = re.compile(rf"STRING\[({_N})\]")
+_STRING = re.compile(rf"(W?)STRING\[({_N})\]")
 EXAMPLES = "DB1.DBX0.0, DB1.DBW4, M10.1, MW20, IW64, Q0.1, PIW256, VW100, T5 or C3"
 MAX_OFFSET = 0xFFFF
 
@@ -127,18 +164,28 @@ class Variable:
         return self.area in COUNTED
 
     @property
+    def wide(self) -> bool:
+        """True for a WSTRING: two-byte lengths and UTF-16 characters."""
+        return self.data_type.startswith("WSTRING")
+
+    @property
     def string_length(self) -> int:
-        """The declared maximum length of a STRING (0 for other types)."""
-        if self.data_type == "STRING":
+        """The declared maximum length of a STRING or WSTRING in characters (0 for others)."""
+        if self.data_type in ("STRING", "WSTRING"):
             return STRING_MAX
         match = _STRING.fullmatch(self.data_type)
-        return int(match[1]) if match else 0
+        return int(match[2]) if match else 0
+
+    @property
+    def header_size(self) -> int:
+        """Bytes of a string's header: maximum and current length (one byte each, WSTRING two)."""
+        return 4 if self.wide else 2
 
     @property
     def size(self) -> int:
         """How many bytes the value takes in the PLC (T/C: one element)."""
         if self.string_length:
-            return 2 + self.string_length
+            return self.header_size + self.string_length * (2 if self.wide else 1)
         return SIZES[self.data_type]
 
 
@@ -156,13 +203,15 @@ def normalize_type(data_type: str) -> str:
     name = re.sub(r"\s+", "", data_type).upper()
     name = _ALIASES.get(name, name)
     if match := _STRING.fullmatch(name):
-        length = int(match[1])
-        if not 1 <= length <= STRING_MAX:
-            raise PlcAddressError(f"a STRING holds 1..{STRING_MAX} characters, not {length}")
-        return "STRING" if length == STRING_MAX else f"STRING[{length}]"
-    if name not in SIZES and name != "STRING":
+        base, length = f"{match[1]}STRING", int(match[2])
+        limit = WSTRING_MAX if match[1] else STRING_MAX
+        if not 1 <= length <= limit:
+            raise PlcAddressError(f"a {base} holds 1..{limit} characters, not {length}")
+        return base if length == STRING_MAX else f"{base}[{length}]"
+    if name not in SIZES and name not in ("STRING", "WSTRING"):
         raise PlcAddressError(
-            f"{data_type!r} is not an S7 data type; use {', '.join(DATA_TYPES)} or STRING[n]"
+            f"{data_type!r} is not an S7 data type; use {', '.join(DATA_TYPES)}, STRING[n] "
+            "or WSTRING[n]"
         )
     return name
 
@@ -173,7 +222,12 @@ def value_kind(data_type: str) -> ValueKind | None:
         name = normalize_type(data_type)
     except PlcAddressError:
         return None
-    return KINDS["STRING" if name.startswith("STRING") else name]
+    return KINDS[_base(name)]
+
+
+def _base(data_type: str) -> str:
+    """Return a type without its length (WSTRING[20] -> WSTRING)."""
+    return data_type.partition("[")[0]
 
 
 @lru_cache(maxsize=8192)
@@ -233,7 +287,7 @@ def _place(address: str, prefix: str, width: str, offset: int, bit: str | None) 
 
 def _check_fit(place: str, width: str, data_type: str) -> None:
     """Refuse a data type that does not fit the address width (DBW + REAL and the like)."""
-    base = "STRING" if data_type.startswith("STRING") else data_type
+    base = _base(data_type)
     if base in _FITS[width]:
         return
     if base in _FROM_BYTE:
@@ -257,13 +311,16 @@ def _with_width(place: str, width: str) -> str:
 
 
 def _counted(letter: str, number: int, data_type: str) -> Variable:
-    """Return a timer or counter variable (raw 16-bit word: S5TIME or BCD count)."""
+    """Return a timer (WORD or S5TIME) or counter (WORD or COUNTER) variable."""
     name = _ALIASES.get(letter, letter)
     if number > MAX_OFFSET:
         raise PlcAddressError(f"{name}{number}: numbers run from 0 to {MAX_OFFSET}")
-    if data_type != "WORD":
+    typed = "S5TIME" if name == "T" else "COUNTER"
+    if data_type not in ("WORD", typed):
         raise PlcAddressError(
-            f"{name}{number} is a {'timer' if name == 'T' else 'counter'}: read it as WORD "
-            "(the raw S5TIME or BCD word the CPU keeps)"
+            f"{name}{number} is a {'timer' if name == 'T' else 'counter'}: read it as {typed} "
+            "or as WORD (the raw word the CPU keeps)"
         )
-    return Variable(AREA_T if name == "T" else AREA_C, 0, number, "WORD", None, f"{name}{number}")
+    return Variable(
+        AREA_T if name == "T" else AREA_C, 0, number, data_type, None, f"{name}{number}"
+    )

@@ -19,8 +19,9 @@ from ...errors import PlcProtocolError, PlcValueError
 from ...types import Value
 from .address import AREA_P, Variable
 from .planner import Span, WriteItem, write_pieces
+from .times import TIMES, check_time, decode_time, encode_time
 
-SIGNED = ("INT", "DINT")
+SIGNED = ("SINT", "INT", "DINT", "LINT")
 YEARS = {"DATE_AND_TIME": (1990, 2089), "DTL": (1970, 2554)}
 
 
@@ -41,19 +42,25 @@ def check_value(variable: Variable, value: Value) -> Value:
         return check_iec(kind, value, what)
     if kind in YEARS:
         return _datetime(value, what)
+    if kind in TIMES:
+        return check_time(kind, value, what)
     if not isinstance(value, str):
         raise PlcValueError(f"{what} takes text, not {value!r}")
-    limit = 1 if kind == "CHAR" else variable.string_length
-    if (kind == "CHAR" and len(value) != 1) or len(value) > limit:
+    wide = kind == "WCHAR" or variable.wide
+    try:
+        length = len(value.encode("utf-16-be" if wide else "latin-1")) // (2 if wide else 1)
+    except UnicodeEncodeError:
+        raise PlcValueError(
+            f"{what}: S7 {'wide text holds Unicode' if wide else 'text holds Latin-1'} "
+            "characters only"
+        ) from None
+    single = kind in ("CHAR", "WCHAR")
+    if (single and length != 1) or length > (1 if single else variable.string_length):
         raise PlcValueError(
             f"{what} takes exactly one character"
-            if kind == "CHAR"
-            else f"{what} holds at most {limit} characters"
+            if single
+            else f"{what} holds at most {variable.string_length} characters"
         )
-    try:
-        value.encode("latin-1")
-    except UnicodeEncodeError:
-        raise PlcValueError(f"{what}: S7 text holds Latin-1 characters only") from None
     return value
 
 
@@ -95,13 +102,31 @@ def _decode(variable: Variable, data: bytes, zone: tzinfo) -> Value:
         return data.decode("latin-1")
     if kind in YEARS:
         return _decode_datetime(variable, data, zone)
-    length = data[1]
-    if length > min(data[0], variable.string_length):
+    if kind in TIMES:
+        return decode_time(kind, data, zone, variable.text)
+    if kind == "WCHAR":
+        return _wide(variable, data[:2])
+    wide = variable.wide
+    header = variable.header_size // 2
+    maximum = int.from_bytes(data[:header], "big")
+    length = int.from_bytes(data[header : 2 * header], "big")
+    if length > min(maximum, variable.string_length):
         raise PlcProtocolError(
-            f"{variable.text} holds a STRING of {length} characters (maximum {data[0]}), "
-            f"which does not fit {variable.data_type}: give the length it is declared with"
+            f"{variable.text} holds a {'W' if wide else ''}STRING of {length} characters "
+            f"(maximum {maximum}), which does not fit {kind}: give the length it is declared with"
         )
-    return data[2 : 2 + length].decode("latin-1")
+    text = data[2 * header : 2 * header + length * (2 if wide else 1)]
+    return _wide(variable, text) if wide else text.decode("latin-1")
+
+
+def _wide(variable: Variable, data: bytes) -> str:
+    """Return UTF-16BE text; raise PlcProtocolError for a cut or unpaired code unit."""
+    try:
+        return data.decode("utf-16-be")
+    except UnicodeDecodeError:
+        raise PlcProtocolError(
+            f"{variable.text} holds no UTF-16 text ({data[:8].hex(' ')})"
+        ) from None
 
 
 def real(data: bytes) -> float:
@@ -151,7 +176,12 @@ def encode(variable: Variable, value: Value, zone: tzinfo) -> bytes:
         buffer = bytearray(variable.size)
         (set_dt if kind == "DATE_AND_TIME" else set_dtl)(buffer, 0, local)
         return bytes(buffer)
+    if kind in TIMES:
+        return encode_time(kind, value, zone, variable.text)
     assert isinstance(value, str)
+    if kind == "WCHAR" or variable.wide:
+        text = value.encode("utf-16-be")
+        return text if kind == "WCHAR" else (len(text) // 2).to_bytes(2, "big") + text
     text = value.encode("latin-1")
     return text if kind == "CHAR" else bytes([len(text)]) + text
 
@@ -165,7 +195,8 @@ def write_items(variable: Variable, value: Value, zone: tzinfo, pdu_size: int) -
     if variable.bit is not None:
         return [WriteItem(span, data, variable.bit)]
     if variable.string_length:
-        # Skip the maximum-length byte: the PLC's declaration owns it, a wrong [n] must not
+        # Skip the maximum length: the PLC's declaration owns it, a wrong [n] must not
         # overwrite it; write the current length and the characters only.
-        span = Span(span.area, span.db, span.start + 1, len(data))
+        skip = variable.header_size // 2
+        span = Span(span.area, span.db, span.start + skip, len(data))
     return write_pieces(span, data, pdu_size)

@@ -1,10 +1,10 @@
 """S7 writes: STRING lengths checked against the PLC's own headers, then multi-variable requests.
 
 An S7 STRING starts with two bytes: the maximum length the PLC declared, then the current
-length. Neither the point's STRING (254) nor its STRING[n] is trusted for a write, since text
-longer than the PLC's maximum would run into the next variable: the headers of every STRING of
-a write are read first (one request for all, one round trip more), longer text is refused, and
-only the current length and the characters are written.
+length (a WSTRING: two words). Neither the point's STRING (254) nor its STRING[n] is trusted for
+a write, since text longer than the PLC's maximum would run into the next variable: the headers
+of every STRING of a write are read first (one request for all, one round trip more), longer
+text is refused, and only the current length and the characters are written.
 """
 
 from __future__ import annotations
@@ -14,7 +14,7 @@ from datetime import tzinfo
 
 from ...errors import PlcAddressError, PlcError, PlcValueError, PlcWriteRefusedError
 from ...types import Point, PointResult, Value
-from .address import STRING_MAX, Variable
+from .address import STRING_MAX, WSTRING_MAX, Variable
 from .codec import write_items
 from .items import ItemLimit, read_plan, send_all
 from .link import S7Link, S7RequestError
@@ -67,7 +67,9 @@ async def _string_limits(
     link: S7Link, strings: list[Variable], items: ItemLimit
 ) -> dict[Variable, int | PlcError]:
     """Return the maximum length each STRING's header declares, or why it could not be read."""
-    headers = {found: Span(found.area, found.db, found.start, 2) for found in strings}
+    headers = {
+        found: Span(found.area, found.db, found.start, found.header_size) for found in strings
+    }
     needs = set(headers.values())
     plan = plan_reads(needs, link.pdu_size, alone=needs, max_items=items.count)
     got = extract(needs, await read_plan(link, plan, items))
@@ -76,13 +78,18 @@ async def _string_limits(
         header = got[span]
         if isinstance(header, int):
             limits[found] = item_error(header, found.text)
-        elif not 0 < header[0] <= STRING_MAX or header[1] > header[0]:
+            continue
+        half = found.header_size // 2
+        maximum = int.from_bytes(header[:half], "big")
+        if not 0 < maximum <= (WSTRING_MAX if found.wide else STRING_MAX) or (
+            int.from_bytes(header[half:], "big") > maximum
+        ):
             limits[found] = PlcAddressError(
-                f"{found.text} holds no S7 STRING: its header reads {header.hex(' ')} "
-                "(maximum length, then current length)"
+                f"{found.text} holds no S7 {'W' if found.wide else ''}STRING: its header reads "
+                f"{header.hex(' ')} (maximum length, then current length)"
             )
         else:
-            limits[found] = header[0]
+            limits[found] = maximum
     return limits
 
 
@@ -90,7 +97,11 @@ def _check_length(found: Variable, value: Value, limit: int | PlcError) -> None:
     """Raise the header's error, or PlcValueError for text longer than the PLC's maximum."""
     if isinstance(limit, PlcError):
         raise limit
-    if isinstance(value, str) and len(value) > limit:
+    if not isinstance(value, str):
+        return
+    length = len(value.encode("utf-16-be")) // 2 if found.wide else len(value)
+    if length > limit:
         raise PlcValueError(
-            f"{found.text} is a STRING[{limit}] in the PLC: {len(value)} characters do not fit"
+            f"{found.text} is a {'W' if found.wide else ''}STRING[{limit}] in the PLC: "
+            f"{length} characters do not fit"
         )
