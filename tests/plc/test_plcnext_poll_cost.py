@@ -9,6 +9,7 @@ from hypothesis import HealthCheck, given, settings, strategies as st
 import pytest
 
 from custom_components.plc_bridge.plc import Point
+from custom_components.plc_bridge.plc.unchanged import changed
 from custom_components.plc_bridge.plc.vendors.plcnext import PlcnextClient, placing, results
 from custom_components.plc_bridge.plc.vendors.plcnext.paths import parse_path
 from custom_components.plc_bridge.plc.vendors.plcnext.placing import Reading, place
@@ -44,8 +45,8 @@ def test_changed_is_every_value_not_the_same(pairs: list[tuple[Any, Any]]) -> No
     """`changed` finds exactly the positions whose value is not the same JSON value as before."""
     last, raws = [old for old, _new in pairs], [new for _old, new in pairs]
     expected = {index for index, (old, new) in enumerate(pairs) if not same_json(old, new)}
-    assert results.changed(raws, last) == expected
-    assert results.changed(raws, None) == set(range(len(raws)))
+    assert changed(raws, last) == expected
+    assert changed(raws, None) == set(range(len(raws)))
 
 
 NAMES = ["Main.a", "Main.b", "Main.c"]

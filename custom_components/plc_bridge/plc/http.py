@@ -151,8 +151,12 @@ MAX_BODY = 16 * 1024 * 1024
 
 async def _read_capped(response: aiohttp.ClientResponse, limit: int) -> bytes:
     """Return the body, refusing it as soon as it grows past `limit` bytes (never buffered)."""
-    if response.content_length is not None and response.content_length > limit:
-        raise PlcProtocolError(f"the PLC's reply of {response.content_length} bytes is too large")
+    if response.content_length is not None:
+        if response.content_length > limit:
+            raise PlcProtocolError(
+                f"the PLC's reply of {response.content_length} bytes is too large"
+            )
+        return await response.content.read()  # the parser stops at the length given
     chunks: list[bytes] = []
     size = 0
     async for chunk in response.content.iter_chunked(64 * 1024):
@@ -194,6 +198,7 @@ class HttpTransport:
         extra = tuple(secrets)
         self._secret = secret_fields((*SECRET_FIELDS, *extra)) if extra else SECRET
         self._url = base_url(config)
+        self._timeout = aiohttp.ClientTimeout(total=config.timeout)
         self._lock = asyncio.Lock()
         self._interval = request_interval
         self._last = 0.0
@@ -265,7 +270,7 @@ class HttpTransport:
             method,
             url,
             ssl=self._ssl if self._ssl is not None else True,
-            timeout=aiohttp.ClientTimeout(total=self._config.timeout),
+            timeout=self._timeout,
             **arguments,
         ) as response:
             body = await _read_capped(response, self._max_body)
