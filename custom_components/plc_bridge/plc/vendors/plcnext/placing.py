@@ -58,7 +58,8 @@ def as_registered(
 ) -> bool:
     """Place the entries by position and return True, if each is named as registered, valued.
 
-    A group's usual answer, checked a list at a time (no Python code runs per entry).
+    A group's usual answer (entries of `path`, `type`, `value`: Groups page, Read Group),
+    checked a list at a time rather than entry by entry.
     """
     try:
         if list(map(itemgetter("path"), entries)) != names:
@@ -66,7 +67,7 @@ def as_registered(
         values = list(map(itemgetter("value"), entries))
     except (KeyError, TypeError):  # an entry with no path or value, or no object at all
         return False
-    if set(map(len, entries)) != {2} and any(entry.get("error") is not None for entry in entries):
+    if [entry.get("error") for entry in entries].count(None) != len(entries):
         return False
     reading.found.update(zip([path.key for path in paths], values, strict=True))
     return True
