@@ -151,12 +151,8 @@ MAX_BODY = 16 * 1024 * 1024
 
 async def _read_capped(response: aiohttp.ClientResponse, limit: int) -> bytes:
     """Return the body, refusing it as soon as it grows past `limit` bytes (never buffered)."""
-    if response.content_length is not None:
-        if response.content_length > limit:
-            raise PlcProtocolError(
-                f"the PLC's reply of {response.content_length} bytes is too large"
-            )
-        return await response.content.read()  # the parser stops at the length given
+    if response.content_length is not None and response.content_length > limit:
+        raise PlcProtocolError(f"the PLC's reply of {response.content_length} bytes is too large")
     chunks: list[bytes] = []
     size = 0
     async for chunk in response.content.iter_chunked(64 * 1024):
