@@ -194,6 +194,7 @@ class HttpTransport:
         extra = tuple(secrets)
         self._secret = secret_fields((*SECRET_FIELDS, *extra)) if extra else SECRET
         self._url = base_url(config)
+        self._timeout = aiohttp.ClientTimeout(total=config.timeout)
         self._lock = asyncio.Lock()
         self._interval = request_interval
         self._last = 0.0
@@ -265,7 +266,7 @@ class HttpTransport:
             method,
             url,
             ssl=self._ssl if self._ssl is not None else True,
-            timeout=aiohttp.ClientTimeout(total=self._config.timeout),
+            timeout=self._timeout,
             **arguments,
         ) as response:
             body = await _read_capped(response, self._max_body)

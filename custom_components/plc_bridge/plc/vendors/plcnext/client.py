@@ -4,7 +4,6 @@ from __future__ import annotations
 
 import asyncio
 from collections.abc import Mapping, Sequence
-from dataclasses import dataclass, field
 from datetime import datetime
 import logging
 from typing import Any, ClassVar
@@ -44,28 +43,17 @@ from .browse import (
     members,
     types,
 )
-from .codec import KINDS, TYPES, check_value, data_type, decode, encode, same_json
+from .codec import KINDS, TYPES, check_value, data_type, encode
 from .errors import ApiError, request_error
 from .info import device_info, plc_status
 from .paths import VariablePath, parse_path
 from .placing import Reading
 from .reading import Reader
+from .results import Plan, outcome, results
 from .writing import put
 
 _LOGGER = logging.getLogger(__name__)
 CLOSE_TIMEOUT = 2.0
-
-
-@dataclass(slots=True)
-class Plan:
-    """Points parsed for a read: each path and type, the paths to ask, the points refused."""
-
-    points: tuple[Point, ...]
-    wanted: list[tuple[Point, VariablePath, str]] = field(default_factory=list)
-    paths: dict[str, VariablePath] = field(default_factory=dict)
-    errors: dict[Point, PointResult] = field(default_factory=dict)
-    clock: VariablePath | None = None  # a poll's: read in its group, at no request
-    last: list[tuple[Any, PointResult] | None] = field(default_factory=list)  # by `wanted`
 
 
 class PlcnextClient(PlcClient):
@@ -167,9 +155,7 @@ class PlcnextClient(PlcClient):
             except PlcError as err:
                 plan.errors[point] = PointResult(error=err.with_traceback(None))
                 continue
-            plan.wanted.append((point, path, kind))
-            plan.paths.setdefault(path.key, path)
-        plan.last = [None] * len(plan.wanted)
+            plan.want(point, path, kind)
         if poll:
             plan.clock = self._clock_path()
             if plan.clock is not None:
@@ -184,50 +170,12 @@ class PlcnextClient(PlcClient):
         reader = self._poller()
         if not poll:
             reading = await reader.variables(list(paths.values()), {})
-            return ReadResult(values=self._place(reading, plan))
+            return ReadResult(values=results(reading, plan, self._zone))
         clock_path = plan.clock
         reading = await reader.poll(paths) if paths else Reading()
-        when = self._outcome(reading, clock_path, "DT").value if clock_path else None
+        when = outcome(reading, clock_path, "DT", self._zone).value if clock_path else None
         status = plc_status(reader.crc, reader.regroups, when)
-        return ReadResult(values=self._place(reading, plan), status=status)
-
-    def _place(self, reading: Reading, plan: Plan) -> dict[Point, PointResult]:
-        """Return the results of the plan's points from a reading, with those failed before.
-
-        A value the PLC sent exactly as at the last poll keeps its last result: decoding the
-        same JSON value in the same zone gives the same value, and makes nothing new.
-        """
-        found, failed, zone = reading.found, reading.failed, self._zone
-        values = dict(plan.errors)
-        last = plan.last
-        for index, (point, path, kind) in enumerate(plan.wanted):
-            raw = found.get(path.key, found)  # `found` itself: absent
-            if raw is found or (failed and path.key in failed):
-                values[point] = self._outcome(reading, path, kind)
-                last[index] = None
-                continue
-            kept = last[index]
-            if kept is not None and kept[0] == raw and same_json(kept[0], raw):
-                values[point] = kept[1]
-                continue
-            try:
-                result = PointResult(value=decode(kind, raw, zone, path.text))
-            except PlcProtocolError as err:
-                result = PointResult(error=err)
-            values[point] = result
-            last[index] = (raw, result) if result.ok else None
-        return values
-
-    def _outcome(self, reading: Reading, path: VariablePath, kind: str) -> PointResult:
-        """Return one point's result from a reading."""
-        if path.key in reading.failed:
-            return PointResult(error=reading.failed[path.key])
-        if path.key not in reading.found:
-            return PointResult(error=PlcProtocolError(f"{path.text} is missing from the answer"))
-        try:
-            return PointResult(value=decode(kind, reading.found[path.key], self._zone, path.text))
-        except PlcProtocolError as err:
-            return PointResult(error=err)
+        return ReadResult(values=results(reading, plan, self._zone), status=status)
 
     async def _write(self, values: Mapping[Point, Value]) -> dict[Point, PointResult]:
         """Write every value with one PUT /variables; a refused variable fails alone."""

@@ -102,11 +102,6 @@ def decode(kind: str, raw: Any, zone: tzinfo, what: str) -> Value:
     raise decode_error(kind, raw, what)
 
 
-def same_json(old: Any, new: Any) -> bool:
-    """True when two JSON values are the same value of the same type (0.0 is not -0.0)."""
-    return old == new and type(old) is type(new) and (bool(new) or type(new) is not float)
-
-
 def _bool(raw: Any, what: str) -> bool:
     """Return a BOOL sent as true/false, 0/1 or their text."""
     if isinstance(raw, bool):

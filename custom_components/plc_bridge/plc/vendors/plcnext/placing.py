@@ -8,6 +8,7 @@ from __future__ import annotations
 from collections import Counter
 from collections.abc import Awaitable, Callable, Sequence
 from dataclasses import dataclass, field
+from operator import itemgetter
 from typing import Any
 
 from ...errors import PlcAddressError, PlcError, PlcProtocolError
@@ -24,22 +25,52 @@ class Reading:
     crc: Any = None
 
 
-def place(answer: Any, paths: Sequence[VariablePath], reading: Reading) -> None:
+def place(
+    answer: Any,
+    paths: Sequence[VariablePath],
+    reading: Reading,
+    names: list[str] | None = None,
+) -> None:
     """Put an answer's variables under their paths: by position where every path agrees.
 
     The PLC answers in request order; an entry whose `path` names another variable, or a list
     of another length, is matched by path instead, so that no value shows under a wrong point.
+    `names`: the paths as a group was registered (what its answers name them).
     """
     entries = answer.get("variables") if isinstance(answer, dict) else None
     if not isinstance(entries, list):
         raise PlcProtocolError("the PLC's answer holds no variables")
     reading.crc = answer.get("projectCRC")
-    if len(entries) != len(paths) or not in_order(entries, paths, reading):
-        for path, entry in zip(paths, by_path(entries, paths), strict=True):
-            if entry is not None and "value" in entry and entry.get("error") is None:
-                reading.found[path.key] = entry["value"]
-            else:
-                reading.failed[path.key] = failure(entry, path)
+    if len(entries) == len(paths):
+        if names is not None and as_registered(entries, paths, names, reading):
+            return
+        if in_order(entries, paths, reading):
+            return
+    for path, entry in zip(paths, by_path(entries, paths), strict=True):
+        if entry is not None and "value" in entry and entry.get("error") is None:
+            reading.found[path.key] = entry["value"]
+        else:
+            reading.failed[path.key] = failure(entry, path)
+
+
+def as_registered(
+    entries: list[Any], paths: Sequence[VariablePath], names: list[str], reading: Reading
+) -> bool:
+    """Place the entries by position and return True, if each is named as registered, valued.
+
+    A group's usual answer (entries of `path`, `type`, `value`: Groups page, Read Group),
+    checked a list at a time rather than entry by entry.
+    """
+    try:
+        if list(map(itemgetter("path"), entries)) != names:
+            return False
+        values = list(map(itemgetter("value"), entries))
+    except (KeyError, TypeError):  # an entry with no path or value, or no object at all
+        return False
+    if [entry.get("error") for entry in entries].count(None) != len(entries):
+        return False
+    reading.found.update(zip([path.key for path in paths], values, strict=True))
+    return True
 
 
 def in_order(entries: list[Any], paths: Sequence[VariablePath], reading: Reading) -> bool:

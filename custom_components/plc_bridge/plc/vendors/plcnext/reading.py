@@ -9,7 +9,7 @@ groups report (one request that carries `projectCRC`) watches the program instea
 from __future__ import annotations
 
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 import json
 from typing import Any
 from urllib.parse import quote, urlencode
@@ -38,6 +38,7 @@ class Group:
     paths: tuple[VariablePath, ...]
     crc: Any
     created: bool = False
+    names: list[str] = field(default_factory=list)  # as registered: what its answers name
 
 
 GROUP_IDLE = 120.0
@@ -46,6 +47,17 @@ period (e.g. 120 seconds) where it will automatically unregister the group")."""
 GROUP_POLLS_UP_TO = 90.0
 """The longest poll interval read through a group: a late poll still finds it. Beyond, every
 poll would find it gone and register it again (three requests): variable reads take one."""
+
+
+def registered(paths: Sequence[VariablePath]) -> tuple[str, list[str]]:
+    """Return the `pathPrefix` and the paths a group is registered with.
+
+    Paths of one component go relative to it (the Groups page's example): the PLC then
+    answers every read with the short paths.
+    """
+    components = {path.component for path in paths}
+    prefix = f"{components.pop()}/" if len(components) == 1 else ""
+    return prefix, [path.name if prefix else path.text for path in paths]
 
 
 class Reader:
@@ -69,7 +81,10 @@ class Reader:
         the unknown names, and reads once more with a group registered for the new program.
         """
         self.unknown = {key: err for key, err in self.unknown.items() if key in paths}
-        wanted = [path for key, path in paths.items() if key not in self.unknown]
+        unknown = self.unknown
+        wanted = (
+            [p for key, p in paths.items() if key not in unknown] if unknown else [*paths.values()]
+        )
         if self.groups_ok and self.use_groups:
             reading = await self._group_read(wanted)
         else:
@@ -90,7 +105,7 @@ class Reader:
     async def _group_read(self, wanted: list[VariablePath]) -> Reading:
         """Read the group of these paths, registering it where the PLC has none."""
         reading = Reading()
-        if self.group is None or list(self.group.paths) != wanted:
+        if self.group is None or self.group.paths != tuple(wanted):
             await self.unregister_group()
             await self._register(wanted)
             if not self.groups_ok:
@@ -117,7 +132,7 @@ class Reader:
                 raise request_error(again) from None
         if isinstance(answer, dict) and answer.get("id") not in (None, group.id):
             raise PlcProtocolError(f"the PLC answered group {answer.get('id')!r}, not {group.id}")
-        place(answer, group.paths, reading)
+        place(answer, group.paths, reading, group.names)
         return reading
 
     async def _project_crc(self) -> Any:
@@ -168,7 +183,8 @@ class Reader:
             raise PlcProtocolError("the PLC registered the group but sent no id")
         assert isinstance(answer, dict)
         created = self._api.last_status == 201
-        self.group = Group(group_id, tuple(known), answer.get("projectCRC"), created)
+        names = registered(known)[1]
+        self.group = Group(group_id, tuple(known), answer.get("projectCRC"), created, names)
 
     async def _known(self, wanted: list[VariablePath]) -> list[VariablePath]:
         """Return the paths the PLC knows, learning the others by variable reads.
@@ -244,15 +260,9 @@ class Reader:
     def _register_request(
         self, paths: Sequence[VariablePath], *, form: bool
     ) -> Callable[[str | None], Request]:
-        """Return the request maker of a group registration.
-
-        Paths of one component go relative to a `pathPrefix` (the Groups page's example): the
-        PLC then answers every read with the short paths.
-        """
+        """Return the request maker of a group registration (see `registered`)."""
         base = self._api.base
-        components = {path.component for path in paths}
-        prefix = f"{components.pop()}/" if len(components) == 1 else ""
-        names = [path.name if prefix else path.text for path in paths]
+        prefix, names = registered(paths)
 
         def make(session: str | None) -> Request:
             if form:

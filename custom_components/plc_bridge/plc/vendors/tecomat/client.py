@@ -47,10 +47,8 @@ from .paths import (
     parse_path,
     plan,
 )
-from .reading import Reading
+from .reading import Plan, Reading, results
 from .unknown import UnknownVariables
-
-_ABSENT = object()
 
 
 @dataclass(frozen=True, slots=True)
@@ -96,6 +94,7 @@ class TecomatClient(PlcClient):
         self._too_big: set[str] = set()  # arrays the PLC cannot answer whole (413.004), by key
         self._stamp: str | None = None  # the program's stamp (GetInfo, 3.2)
         self._parsed: dict[Point, tuple[VariablePath, str] | PlcError] = {}  # the last poll's
+        self._poll: Plan | None = None
 
     @classmethod
     def validate_options(cls, options: Mapping[str, object]) -> dict[str, str | int | bool]:
@@ -184,29 +183,30 @@ class TecomatClient(PlcClient):
             self._parsed = parsed
         return parsed
 
-    async def _read(self, points: Sequence[Point], *, poll: bool) -> ReadResult:
-        """Read every distinct path once, packed into the fewest GetObject requests."""
-        status = await self._poll_status() if poll else PlcStatus()
-        parsed = self._parse(points, poll)
-        paths: dict[str, VariablePath] = {}  # names are case-insensitive: the first spelling
-        for found in parsed.values():
-            if not isinstance(found, PlcError):
-                paths.setdefault(found[0].key, found[0])
-        reading = await self._read_paths(paths, poll)
-        values: dict[Point, PointResult] = {}
-        for point, found in parsed.items():
+    def _prepare(self, points: Sequence[Point], poll: bool) -> Plan:
+        """Return the points parsed, their distinct paths; a poll's kept while its points stay."""
+        listed = tuple(points)
+        if poll and self._poll is not None and self._poll.points == listed:
+            return self._poll
+        plan = Plan(listed)
+        for point, found in self._parse(listed, poll).items():
             if isinstance(found, PlcError):
-                values[point] = PointResult(error=found)
-                continue
-            path, kind = found
-            raw = reading.found.get(path.key, _ABSENT)
-            if raw is _ABSENT:
-                values[point] = PointResult(error=reading.failed[path.key])
-                continue
-            try:
-                values[point] = PointResult(value=decode(kind, raw, self._zone, path.text))
-            except PlcProtocolError as err:
-                values[point] = PointResult(error=err)
+                plan.errors[point] = PointResult(error=found)
+            else:
+                plan.want(point, *found)
+        if poll:
+            self._poll = plan
+        return plan
+
+    async def _read(self, points: Sequence[Point], *, poll: bool) -> ReadResult:
+        """Read every distinct path once, packed into the fewest GetObject requests.
+
+        A value the PLC sent exactly as at the last poll keeps its last result (`LastResults`).
+        """
+        status = await self._poll_status() if poll else PlcStatus()
+        plan = self._prepare(points, poll)
+        reading = await self._read_paths(plan.paths, poll)
+        values = results(reading, plan, self._zone)
         return ReadResult(values=values, status=status)
 
     async def _read_paths(self, paths: dict[str, VariablePath], poll: bool) -> Reading:
