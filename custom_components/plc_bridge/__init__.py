@@ -21,6 +21,8 @@ from .services import async_setup_services
 PLATFORMS = [
     Platform.BINARY_SENSOR,
     Platform.BUTTON,
+    Platform.CLIMATE,
+    Platform.COVER,
     Platform.DATETIME,
     Platform.EVENT,
     Platform.NUMBER,

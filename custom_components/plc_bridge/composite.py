@@ -1,0 +1,165 @@
+"""Entities from several points: a cover or a climate built from the addresses of one machine.
+
+A point of such an entity stores its `role` besides its platform (`cover`, `climate`); the
+points of one device subentry that share a platform and a name are one entity, each filling
+the role it names (`position`, `open`, `target_temperature`, ...). That is the table form
+too: one row per address, the rows of one entity sharing its name and platform. Points
+stored before roles existed have none and load as they always did. Every part is an ordinary
+point: it joins the coordinator's poll and is written through its one write path.
+
+A role is checked and stored like the single-address kind it resembles (`AS_PLATFORM`): a
+limit switch like a binary sensor (invert, on/off codes), a command like a button (codes,
+pulse), a position like a number (linear range), a status or mode like a select (value map).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Collection, Iterable, Mapping
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any
+
+from homeassistant.components.climate.const import HVACAction, HVACMode
+from homeassistant.const import CONF_NAME
+
+from .const import CONF_PLATFORM, CONF_ROLE, CONF_VALUE_MAP
+from .conversion import stored_pairs
+
+if TYPE_CHECKING:
+    from .points import PointConfig
+
+COVER_STATES = frozenset({"open", "closed", "opening", "closing"})
+"""The labels a cover's status map may use."""
+ROLES: dict[str, dict[str, str]] = {
+    "cover": {
+        "position": "number",
+        "set_position": "number",
+        "open": "button",
+        "close": "button",
+        "stop": "button",
+        "open_limit": "binary_sensor",
+        "closed_limit": "binary_sensor",
+        "status": "select",
+    },
+    "climate": {
+        "current_temperature": "sensor",
+        "target_temperature": "number",
+        "hvac_mode": "select",
+        "hvac_action": "select",
+        "on_off": "switch",
+    },
+}
+"""Each composite platform's roles, and the single-address kind each role is checked as."""
+NEEDS_ONE_OF: dict[str, tuple[str, ...]] = {
+    "cover": ("position", "set_position", "open", "close", "open_limit", "closed_limit", "status"),
+    "climate": ("current_temperature", "target_temperature", "hvac_mode", "on_off"),
+}
+"""An entity needs at least one of these roles to show anything."""
+LABELS: dict[str, frozenset[str]] = {
+    "status": COVER_STATES,
+    "hvac_mode": frozenset(map(str, HVACMode)),
+    "hvac_action": frozenset(map(str, HVACAction)),
+}
+"""The labels a role's value map may use: Home Assistant's own states."""
+
+
+def is_composite(platform: str) -> bool:
+    """True for a platform whose entities are built from several points."""
+    return platform in ROLES
+
+
+def as_platform(platform: str, role: str | None) -> str:
+    """Return the single-address kind a part is checked and stored as (itself if none)."""
+    return ROLES.get(platform, {}).get(role or "", platform)
+
+
+@dataclass(frozen=True, slots=True)
+class Composite:
+    """One entity built from points: its key (its first point's id) and its parts by role."""
+
+    key: str
+    subentry_id: str
+    platform: str
+    name: str
+    parts: Mapping[str, PointConfig]
+
+
+def group_key(config: PointConfig) -> tuple[str, str, str] | None:
+    """Return what the points of one composite entity share, None for a point of its own."""
+    if not is_composite(config.platform):
+        return None
+    return config.subentry_id, config.platform, config.name
+
+
+def composites(configs: Mapping[str, PointConfig]) -> dict[str, Composite]:
+    """Return the composite entities of these points, by the id of each one's first point.
+
+    A role given twice keeps its first point (the import and the forms refuse that case).
+    """
+    groups: dict[tuple[str, str, str], dict[str, PointConfig]] = {}
+    for point_id in sorted(configs):
+        config = configs[point_id]
+        if (key := group_key(config)) is not None:
+            groups.setdefault(key, {})[point_id] = config
+    found: dict[str, Composite] = {}
+    for (subentry_id, platform, name), members in groups.items():
+        parts: dict[str, PointConfig] = {}
+        for config in members.values():
+            parts.setdefault(str(config.data.get(CONF_ROLE, "")), config)
+        lead = next(iter(members))
+        found[lead] = Composite(lead, subentry_id, platform, name, parts)
+    return found
+
+
+def touched(
+    changed: Collection[str], old: Mapping[str, PointConfig], new: Mapping[str, PointConfig]
+) -> set[str]:
+    """Return the changed point ids and every point of the entities they belong to, then or now.
+
+    An edited part rebuilds its whole entity, and the entity of a removed part too.
+    """
+    keys = {
+        key
+        for configs in (old, new)
+        for point_id in changed
+        if point_id in configs and (key := group_key(configs[point_id])) is not None
+    }
+    return set(changed) | {
+        point_id
+        for configs in (old, new)
+        for point_id, config in configs.items()
+        if group_key(config) in keys
+    }
+
+
+def part_errors(platform: str, values: Mapping[str, Any]) -> dict[str, str]:
+    """Check a part's role and its value map's labels; return the errors by field."""
+    role = str(values.get(CONF_ROLE) or "")
+    if role not in ROLES[platform]:
+        return {CONF_ROLE: "role_invalid"}
+    if role in LABELS and values.get(CONF_VALUE_MAP):
+        labels = {label for _, label in stored_pairs(values, CONF_VALUE_MAP)}
+        if not labels <= LABELS[role]:
+            return {CONF_VALUE_MAP: "role_labels"}
+    return {}
+
+
+def group_errors(rows: Iterable[Mapping[str, Any]]) -> list[tuple[str, str, dict[str, str]]]:
+    """Check the parts of new composite entities together: each role once, one that shows.
+
+    Returns (entity name, error key, placeholders) for each entity at fault.
+    """
+    groups: dict[tuple[str, str], list[str]] = {}
+    for data in rows:
+        platform = str(data.get(CONF_PLATFORM, ""))
+        if is_composite(platform):
+            key = (platform, str(data[CONF_NAME]))
+            groups.setdefault(key, []).append(str(data.get(CONF_ROLE, "")))
+    errors: list[tuple[str, str, dict[str, str]]] = []
+    for (platform, name), roles in groups.items():
+        repeated = sorted({role for role in roles if roles.count(role) > 1})
+        if repeated:
+            errors.append((name, "role_repeated", {"name": name, "role": repeated[0]}))
+        elif not set(roles) & set(NEEDS_ONE_OF[platform]):
+            needs = ", ".join(NEEDS_ONE_OF[platform])
+            errors.append((name, "role_missing", {"name": name, "roles": needs}))
+    return errors

@@ -1,0 +1,164 @@
+"""The base of entities built from several points: each part read, shown and written alone.
+
+A part whose read fails shows as unknown while the others keep showing; the entity is
+unavailable only when the PLC does not answer or none of its parts reads. Commands write
+their point's "on" value once, or pulse it (on, then off after the point's pulse time).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass
+from datetime import datetime
+from typing import Any
+
+from homeassistant.core import CALLBACK_TYPE, HassJob
+from homeassistant.helpers.device_registry import DeviceInfo
+from homeassistant.helpers.entity_platform import AddConfigEntryEntitiesCallback
+from homeassistant.helpers.event import async_call_later
+
+from .composite import Composite, composites
+from .const import CONF_PULSE, DOMAIN, PULSE_MAX, PULSE_MIN
+from .conversion import Conversion
+from .coordinator import PlcBridgeConfigEntry
+from .entity import PlcEntity, point_fields
+from .plc import Point, PointResult, Value, ValueKind
+from .points import PointConfig, entry_points
+
+
+@dataclass(frozen=True, slots=True)
+class Part:
+    """One point of a composite entity: its address, what it holds and how it converts."""
+
+    config: PointConfig
+    point: Point
+    kind: ValueKind | None
+    conversion: Conversion
+    pulse: float
+
+    @property
+    def read_only(self) -> bool:
+        """True when Home Assistant must never write the part."""
+        return self.config.read_only
+
+    def level(self, *, on: bool) -> bool | int | float:
+        """Return the raw value that means on or off for this part (codes and invert applied)."""
+        return self.conversion.state_value(on, boolean=self.kind is ValueKind.BOOL)
+
+
+def part_of(entry: PlcBridgeConfigEntry, config: PointConfig) -> Part:
+    """Return a configured point as a part."""
+    fields = point_fields(entry, config)
+    pulse = float(config.data.get(CONF_PULSE) or 0.0)
+    pulse = min(max(pulse, PULSE_MIN), PULSE_MAX) if pulse else 0.0
+    return Part(config, fields["point"], fields["kind"], fields["conversion"], pulse)
+
+
+type CompositeFactory = Callable[[PlcBridgeConfigEntry, Composite, dict[str, Part]], Any]
+
+
+def async_setup_composites(
+    entry: PlcBridgeConfigEntry,
+    platform: str,
+    factory: CompositeFactory,
+    add: AddConfigEntryEntitiesCallback,
+) -> None:
+    """Register a composite platform: one entity per group, made for the group's first point."""
+
+    def make(entry: PlcBridgeConfigEntry, config: PointConfig) -> list[Any]:
+        """Return the entity of the group this point leads; none for its other points."""
+        group = composites(entry_points(entry)).get(config.point_id)
+        if group is None:
+            return []
+        parts = {role: part_of(entry, member) for role, member in group.parts.items()}
+        return [factory(entry, group, parts)]
+
+    entry.runtime_data.points.async_setup_platform(platform, make, add)
+
+
+class PlcCompositeEntity(PlcEntity):
+    """An entity of several points of one device, named by the rows it was built from."""
+
+    _attr_name = None
+
+    def __init__(
+        self, entry: PlcBridgeConfigEntry, group: Composite, parts: dict[str, Part]
+    ) -> None:
+        """Bind the entity to its parts and to its device subentry's device."""
+        super().__init__(entry, group.key)
+        self._attr_name = group.name
+        self._attr_device_info = DeviceInfo(identifiers={(DOMAIN, group.subentry_id)})
+        self.parts = parts
+        self._pulses: dict[Point, CALLBACK_TYPE] = {}
+
+    def result(self, role: str) -> PointResult | None:
+        """The outcome of a part's point in the last poll, None without that part."""
+        part = self.parts.get(role)
+        return None if part is None else self.coordinator.data.values.get(part.point)
+
+    def raw(self, role: str) -> Value | None:
+        """A part's raw value; None without the part or while its read fails."""
+        result = self.result(role)
+        return result.value if result is not None and result.ok else None
+
+    def number(self, role: str) -> float | None:
+        """A part's value converted to what is shown; None where it has none."""
+        raw = self.raw(role)
+        if isinstance(raw, bool) or not isinstance(raw, int | float):
+            return None
+        return self.parts[role].conversion.shown(raw)
+
+    def label(self, role: str) -> str | None:
+        """The label of a part's value in its value map; None where it has none."""
+        part = self.parts.get(role)
+        return None if part is None else part.conversion.label(self.raw(role))
+
+    def on(self, role: str) -> bool | None:
+        """Whether a part reads as on (its codes and invert applied); None where unknown."""
+        part = self.parts.get(role)
+        return None if part is None else part.conversion.is_on(self.raw(role))
+
+    @property
+    def available(self) -> bool:
+        """Available while the PLC answers and at least one part reads."""
+        return super().available and any(
+            (result := self.result(role)) is not None and result.ok for role in self.parts
+        )
+
+    def observed(self) -> Any:
+        """Every part's outcome in the last poll."""
+        return tuple(self.result(role) for role in sorted(self.parts))
+
+    async def async_write_parts(self, values: dict[str, Value]) -> None:
+        """Write parts by role in one request (the coordinator's write guard checks each)."""
+        await self.coordinator.async_write(
+            {self.parts[role].point: values[role] for role in values}
+        )
+
+    async def async_command(self, role: str) -> None:
+        """Send a command part: its "on" value, and "off" after its pulse if it has one."""
+        part = self.parts[role]
+        self._end_pulse(part.point)
+        await self.async_write_parts({role: part.level(on=True)})
+        if part.pulse > 0:
+
+            async def ended(_now: datetime) -> None:
+                """Write "off" when the pulse's time is up."""
+                self._pulses.pop(part.point, None)
+                await self.async_write_parts({role: part.level(on=False)})
+
+            self._pulses[part.point] = async_call_later(self.hass, part.pulse, HassJob(ended))
+
+    def _end_pulse(self, point: Point) -> bool:
+        """Forget a pending pulse end of a point; True when one was pending."""
+        cancel = self._pulses.pop(point, None)
+        if cancel is not None:
+            cancel()
+        return cancel is not None
+
+    async def async_will_remove_from_hass(self) -> None:
+        """Removed mid-pulse: end the pulses now."""
+        for role, part in self.parts.items():
+            if self._end_pulse(part.point):
+                await self.async_write_parts({role: part.level(on=False)})
+        await super().async_will_remove_from_hass()
