@@ -4,6 +4,8 @@ from __future__ import annotations
 
 from typing import Any
 
+import pytest
+
 from custom_components.plc_bridge.composite import (
     as_platform,
     composites,
@@ -11,7 +13,25 @@ from custom_components.plc_bridge.composite import (
     part_errors,
     touched,
 )
+from custom_components.plc_bridge.plc.vendors import client_class
+from custom_components.plc_bridge.point_table import export_points, parse_points, point_order
 from custom_components.plc_bridge.points import PointConfig
+
+SMART = client_class("s7_smart")
+TABLE = (
+    "name,address,data_type,platform,role,value_map,raw_min,raw_max,shown_min,shown_max,"
+    "min,max,step,scale,invert,pulse\n"
+    "Shutter,VW40,signed,cover,position,,0,27648,0,100,,,,,,\n"
+    "Shutter,VW42,signed,cover,set_position,,0,27648,0,100,,,,,yes,\n"
+    "Shutter,Q0.4,signed,cover,open,,,,,,,,,,,\n"
+    "Shutter,Q0.6,signed,cover,stop,,,,,,,,,,,1\n"
+    "Shutter,I0.2,signed,cover,closed_limit,,,,,,,,,,,\n"
+    "Shutter,VW44,signed,cover,status,0=closed;1=opening;2=open,,,,,,,,,,\n"
+    "Boiler,VW50,signed,climate,current_temperature,,,,,,,,,0.1,,\n"
+    "Boiler,VW52,signed,climate,target_temperature,,,,,,5,30,0.5,0.1,,\n"
+    'Boiler,VW54,signed,climate,hvac_mode,"0=off;1=heat;2=cool",,,,,,,,,,\n'
+    "Boiler,VW56,signed,climate,hvac_action,0=idle;1=heating,,,,,,,,,,\n"
+)
 
 
 def config(point_id: str, name: str, platform: str, role: str = "", sub: str = "a") -> PointConfig:
@@ -73,3 +93,41 @@ def test_group_checks() -> None:
         ("Shutter", "role_repeated"),
         ("Boiler", "role_missing"),
     ]
+
+
+def test_table_rows_make_parts_and_round_trip() -> None:
+    """One row per address, each naming its role; reads are read only, commands written."""
+    points, errors = parse_points(SMART, TABLE)
+    assert errors == []
+    by_role = {data["role"]: data for data in points}
+    assert by_role["position"]["read_only"] is True
+    assert by_role["set_position"]["read_only"] is False
+    assert by_role["set_position"]["invert"] is True
+    assert by_role["open"]["read_only"] is False
+    assert by_role["stop"]["pulse"] == 1.0
+    assert by_role["closed_limit"]["read_only"] is True
+    assert by_role["status"]["read_only"] is True
+    assert (by_role["target_temperature"]["min"], by_role["target_temperature"]["step"]) == (5, 0.5)
+    assert by_role["hvac_mode"]["read_only"] is False
+    assert {data["platform"] for data in points} == {"cover", "climate"}
+    again, errors = parse_points(SMART, export_points(points))
+    assert errors == []
+    assert again == sorted(points, key=point_order)
+
+
+@pytest.mark.parametrize(
+    ("row", "problem"),
+    [
+        ("Shutter,VW46,signed,cover,spin,,,,,,,,,,,", "role_invalid"),
+        ("Shutter,Q0.5,signed,cover,open,,,,,,,,,,,", "role_repeated"),
+        ("Boiler,VW58,signed,climate,hvac_mode,0=off;1=warm,,,,,,,,,,", "role_labels"),
+        ("Boiler,VW58,signed,climate,hvac_mode,,,,,,,,,,,", "map_empty"),
+        ("Fan,VW58,signed,cover,stop,,,,,,,,,,,", "role_missing"),
+        ("Shutter,IW0,signed,cover,set_position,,,,,,,,,,,", "address_not_writable"),
+    ],
+)
+def test_table_refuses_bad_parts(row: str, problem: str) -> None:
+    """A part with a wrong role, map or address, or an entity with a role twice, is refused."""
+    points, errors = parse_points(SMART, TABLE + row + "\n")
+    assert points == []
+    assert [text.split(" ")[0] for _, text in errors] == [problem]

@@ -9,7 +9,9 @@ point: it joins the coordinator's poll and is written through its one write path
 
 A role is checked and stored like the single-address kind it resembles (`AS_PLATFORM`): a
 limit switch like a binary sensor (invert, on/off codes), a command like a button (codes,
-pulse), a position like a number (linear range), a status or mode like a select (value map).
+pulse), a position read like a sensor and set like a number (linear range), a status like
+an enum sensor and a mode like a select (value map). So a part that is only read is read
+only unless the user says otherwise, and one that is written must be at a writable address.
 """
 
 from __future__ import annotations
@@ -21,8 +23,10 @@ from typing import TYPE_CHECKING, Any
 from homeassistant.components.climate.const import HVACAction, HVACMode
 from homeassistant.const import CONF_NAME
 
-from .const import CONF_PLATFORM, CONF_ROLE, CONF_VALUE_MAP
+from .const import CONF_INVERT, CONF_PLATFORM, CONF_ROLE, CONF_VALUE_MAP
 from .conversion import stored_pairs
+from .plc import PlcClient
+from .point_form import point_data
 
 if TYPE_CHECKING:
     from .points import PointConfig
@@ -31,20 +35,20 @@ COVER_STATES = frozenset({"open", "closed", "opening", "closing"})
 """The labels a cover's status map may use."""
 ROLES: dict[str, dict[str, str]] = {
     "cover": {
-        "position": "number",
+        "position": "sensor",
         "set_position": "number",
         "open": "button",
         "close": "button",
         "stop": "button",
         "open_limit": "binary_sensor",
         "closed_limit": "binary_sensor",
-        "status": "select",
+        "status": "sensor",
     },
     "climate": {
         "current_temperature": "sensor",
         "target_temperature": "number",
         "hvac_mode": "select",
-        "hvac_action": "select",
+        "hvac_action": "sensor",
         "on_off": "switch",
     },
 }
@@ -67,9 +71,13 @@ def is_composite(platform: str) -> bool:
     return platform in ROLES
 
 
-def as_platform(platform: str, role: str | None) -> str:
+def as_platform(platform: str, role: Any) -> str:
     """Return the single-address kind a part is checked and stored as (itself if none)."""
-    return ROLES.get(platform, {}).get(role or "", platform)
+    return ROLES.get(platform, {}).get(str(role or ""), platform)
+
+
+INVERTIBLE = frozenset({"position", "set_position"})
+"""Roles whose point may count the other way (0 % open), besides those on or off."""
 
 
 @dataclass(frozen=True, slots=True)
@@ -136,11 +144,30 @@ def part_errors(platform: str, values: Mapping[str, Any]) -> dict[str, str]:
     role = str(values.get(CONF_ROLE) or "")
     if role not in ROLES[platform]:
         return {CONF_ROLE: "role_invalid"}
-    if role in LABELS and values.get(CONF_VALUE_MAP):
+    if role in LABELS and not values.get(CONF_VALUE_MAP):
+        return {CONF_VALUE_MAP: "map_empty"}
+    if role in LABELS:
         labels = {label for _, label in stored_pairs(values, CONF_VALUE_MAP)}
         if not labels <= LABELS[role]:
             return {CONF_VALUE_MAP: "role_labels"}
     return {}
+
+
+def part_data(
+    client: type[PlcClient], values: Mapping[str, Any]
+) -> tuple[dict[str, Any], dict[str, str], dict[str, str]]:
+    """Check one part as the kind its role resembles; return its data, errors, placeholders."""
+    platform = str(values.get(CONF_PLATFORM, ""))
+    role = str(values.get(CONF_ROLE) or "")
+    errors = part_errors(platform, values)
+    if CONF_ROLE in errors:
+        return {}, errors, {"role": role, "platform": platform}
+    data, found, placeholders = point_data(
+        client, {**values, CONF_PLATFORM: as_platform(platform, role)}
+    )
+    if role in INVERTIBLE and values.get(CONF_INVERT):
+        data[CONF_INVERT] = True
+    return data | {CONF_PLATFORM: platform, CONF_ROLE: role}, errors | found, placeholders
 
 
 def group_errors(rows: Iterable[Mapping[str, Any]]) -> list[tuple[str, str, dict[str, str]]]:
