@@ -25,6 +25,7 @@ PLATFORMS = [
     Platform.COVER,
     Platform.DATETIME,
     Platform.EVENT,
+    Platform.LIGHT,
     Platform.NUMBER,
     Platform.SELECT,
     Platform.SENSOR,

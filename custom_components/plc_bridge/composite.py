@@ -1,14 +1,16 @@
-"""Entities from several points: a cover or a climate built from the addresses of one machine.
+"""Entities from several points: a cover, climate, light or switch of one machine's addresses.
 
-A point of such an entity stores its `role` besides its platform (`cover`, `climate`); the
-points of one device subentry that share a platform and a name are one entity, each filling
-the role it names (`position`, `open`, `target_temperature`, ...). That is the table form
-too: one row per address, the rows of one entity sharing its name and platform. Points
-stored before roles existed have none and load as they always did. Every part is an ordinary
-point: it joins the coordinator's poll and is written through its one write path.
+A point of such an entity stores its `role` besides its platform; the points of one device
+subentry that share a platform and a name are one entity, each filling the role it names
+(`position`, `open`, `target_temperature`, `state`, `command`, ...). That is the table form
+too: one row per address, the rows of one entity sharing its name and platform. Every
+cover, climate and light point is a part; a switch point is one only when it names a role
+(a switch of one address stays as it was). Points stored before roles existed have none and
+load as they always did. Every part is an ordinary point: it joins the coordinator's poll
+and is written through its one write path.
 
-A role is checked and stored like the single-address kind it resembles (`AS_PLATFORM`): a
-limit switch like a binary sensor (invert, on/off codes), a command like a button (codes,
+A role is checked and stored like the single-address kind it resembles (`ROLES`): a limit
+switch or state like a binary sensor (invert, on/off codes), a command like a button (codes,
 pulse), a position read like a sensor and set like a number (linear range), a status like
 an enum sensor and a mode like a select (value map). So a part that is only read is read
 only unless the user says otherwise, and one that is written must be at a writable address.
@@ -51,11 +53,15 @@ ROLES: dict[str, dict[str, str]] = {
         "hvac_action": "sensor",
         "on_off": "switch",
     },
+    "switch": {"state": "binary_sensor", "command": "button"},
+    "light": {"state": "binary_sensor", "command": "button", "brightness": "number"},
 }
 """Each composite platform's roles, and the single-address kind each role is checked as."""
 NEEDS_ONE_OF: dict[str, tuple[str, ...]] = {
     "cover": ("position", "set_position", "open", "close", "open_limit", "closed_limit", "status"),
     "climate": ("current_temperature", "target_temperature", "hvac_mode", "on_off"),
+    "switch": ("command",),
+    "light": ("command", "brightness"),
 }
 """An entity needs at least one of these roles to show anything."""
 LABELS: dict[str, frozenset[str]] = {
@@ -66,9 +72,18 @@ LABELS: dict[str, frozenset[str]] = {
 """The labels a role's value map may use: Home Assistant's own states."""
 
 
-def is_composite(platform: str) -> bool:
-    """True for a platform whose entities are built from several points."""
+ALWAYS = frozenset({"cover", "climate", "light"})
+"""Platforms whose every point is a part; a switch point is one only when it names a role."""
+
+
+def takes_roles(platform: str) -> bool:
+    """True for a platform whose entities can be built from several points."""
     return platform in ROLES
+
+
+def is_part(platform: str, role: Any) -> bool:
+    """True for a point that is a part of an entity of several points."""
+    return platform in ALWAYS or (platform in ROLES and bool(role))
 
 
 def as_platform(platform: str, role: Any) -> str:
@@ -93,7 +108,7 @@ class Composite:
 
 def group_key(config: PointConfig) -> tuple[str, str, str] | None:
     """Return what the points of one composite entity share, None for a point of its own."""
-    if not is_composite(config.platform):
+    if not is_part(config.platform, config.data.get(CONF_ROLE)):
         return None
     return config.subentry_id, config.platform, config.name
 
@@ -178,7 +193,7 @@ def group_errors(rows: Iterable[Mapping[str, Any]]) -> list[tuple[str, str, dict
     groups: dict[tuple[str, str], list[str]] = {}
     for data in rows:
         platform = str(data.get(CONF_PLATFORM, ""))
-        if is_composite(platform):
+        if is_part(platform, data.get(CONF_ROLE)):
             key = (platform, str(data[CONF_NAME]))
             groups.setdefault(key, []).append(str(data.get(CONF_ROLE, "")))
     errors: list[tuple[str, str, dict[str, str]]] = []

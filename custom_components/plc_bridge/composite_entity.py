@@ -13,17 +13,19 @@ from datetime import datetime
 from typing import Any
 
 from homeassistant.core import CALLBACK_TYPE, HassJob
+from homeassistant.exceptions import HomeAssistantError
 from homeassistant.helpers.device_registry import DeviceInfo
+from homeassistant.helpers.entity import Entity
 from homeassistant.helpers.entity_platform import AddConfigEntryEntitiesCallback
 from homeassistant.helpers.event import async_call_later
 
-from .composite import Composite, composites
+from .composite import Composite, composites, group_key
 from .const import CONF_PULSE, DOMAIN, PULSE_MAX, PULSE_MIN
 from .conversion import Conversion
 from .coordinator import PlcBridgeConfigEntry
 from .entity import PlcEntity, point_fields
 from .plc import Point, PointResult, Value, ValueKind
-from .points import PointConfig, entry_points
+from .points import PointConfig, PointFactory, entry_points
 
 
 @dataclass(frozen=True, slots=True)
@@ -54,7 +56,7 @@ def part_of(entry: PlcBridgeConfigEntry, config: PointConfig) -> Part:
     return Part(config, fields["point"], fields["kind"], fields["conversion"], pulse)
 
 
-type CompositeFactory = Callable[[PlcBridgeConfigEntry, Composite, dict[str, Part]], Any]
+type CompositeFactory = Callable[[PlcBridgeConfigEntry, Composite, dict[str, Part]], Entity]
 
 
 def async_setup_composites(
@@ -62,11 +64,17 @@ def async_setup_composites(
     platform: str,
     factory: CompositeFactory,
     add: AddConfigEntryEntitiesCallback,
+    single: PointFactory | None = None,
 ) -> None:
-    """Register a composite platform: one entity per group, made for the group's first point."""
+    """Register a composite platform: one entity per group, made for the group's first point.
 
-    def make(entry: PlcBridgeConfigEntry, config: PointConfig) -> list[Any]:
+    `single` makes the entity of a point of the platform that is no part (a plain switch).
+    """
+
+    def make(entry: PlcBridgeConfigEntry, config: PointConfig) -> Entity | list[Entity]:
         """Return the entity of the group this point leads; none for its other points."""
+        if group_key(config) is None:
+            return [] if single is None else single(entry, config)
         group = composites(entry_points(entry)).get(config.point_id)
         if group is None:
             return []
@@ -148,6 +156,39 @@ class PlcCompositeEntity(PlcEntity):
                 await self.async_write_parts({role: part.level(on=False)})
 
             self._pulses[part.point] = async_call_later(self.hass, part.pulse, HassJob(ended))
+
+    def switched(self) -> bool | None:
+        """On or off: the `state` part, else what a level `command` part reads back."""
+        if "state" in self.parts:
+            return self.on("state")
+        command = self.parts.get("command")
+        return None if command is None or command.pulse else self.on("command")
+
+    async def async_switch(self, on: bool, also: dict[str, Value] | None = None) -> None:
+        """Switch on or off (with `also` written first): a level, or a pulse when the state differs.
+
+        An impulse relay toggles with each pulse, so a pulse is sent only when the state read
+        is the other one; with the state unknown nothing is sent.
+        """
+        values = dict(also or {})
+        command = self.parts.get("command")
+        if command is None or not command.pulse:
+            if command is not None:
+                values["command"] = command.level(on=on)
+            if values:
+                await self.async_write_parts(values)
+            return
+        state = self.on("state")
+        if state is None:
+            raise HomeAssistantError(
+                translation_domain=DOMAIN,
+                translation_key="state_unknown",
+                translation_placeholders={"name": str(self.name)},
+            )
+        if values:
+            await self.async_write_parts(values)
+        if state != on:
+            await self.async_command("command")
 
     def _end_pulse(self, point: Point) -> bool:
         """Forget a pending pulse end of a point; True when one was pending."""

@@ -19,7 +19,7 @@ from homeassistant.const import CONF_DEVICE_CLASS, CONF_NAME, CONF_UNIT_OF_MEASU
 from homeassistant.core import HomeAssistant
 from homeassistant.helpers.translation import async_get_translations
 
-from .composite import as_platform, group_errors, is_composite, part_data
+from .composite import as_platform, group_errors, is_part, part_data, takes_roles
 from .const import (
     CONF_ADDRESS,
     CONF_DATA_TYPE,
@@ -203,7 +203,7 @@ def _values(
             if flags[column] is None:
                 return {}, "import_not_yes_or_no", {"column": column, "text": text}
     platform = cells.get(CONF_PLATFORM, "").strip().lower().replace(" ", "_")
-    if is_composite(platform):
+    if takes_roles(platform):
         values[CONF_ROLE] = cells.get(CONF_ROLE, "").strip().lower().replace(" ", "_")
     read_only = flags.get(CONF_READ_ONLY)
     if read_only is None:
@@ -261,8 +261,8 @@ def parse_points(
         if problem:
             errors.append((line, describe(problem, placeholders)))
             continue
-        check = part_data if is_composite(str(values[CONF_PLATFORM])) else point_data
-        data, found, placeholders = check(client, values)
+        part = is_part(values[CONF_PLATFORM], values.get(CONF_ROLE))
+        data, found, placeholders = (part_data if part else point_data)(client, values)
         if found:
             texts = dict.fromkeys(describe(key, placeholders) for key in found.values())
             errors.append((line, " ".join(texts)))
