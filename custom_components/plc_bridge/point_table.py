@@ -174,6 +174,11 @@ def _data_type(client: type[PlcClient], address: str, cells: Mapping[str, str]) 
     return fitting[0], len(fitting) > 1 and not kinds <= {ValueKind.BOOL, ValueKind.DATETIME}
 
 
+def first_type(client: type[PlcClient], address: str) -> str:
+    """Return the data type a table without a type column gives an address."""
+    return _data_type(client, address, {})[0]
+
+
 def _values(
     client: type[PlcClient], cells: Mapping[str, str]
 ) -> tuple[dict[str, Any], str, dict[str, str]]:

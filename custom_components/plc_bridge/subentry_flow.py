@@ -11,11 +11,12 @@ from collections.abc import Mapping
 import secrets
 from typing import Any
 
-from homeassistant.config_entries import ConfigEntryState, ConfigSubentryFlow, SubentryFlowResult
+from homeassistant.config_entries import ConfigEntryState, SubentryFlowResult
 from homeassistant.const import CONF_DEVICE_CLASS, CONF_NAME
 from homeassistant.helpers.selector import AreaSelector, TextSelector, TextSelectorConfig
 import voluptuous as vol
 
+from .composite_flow import CompositeSteps
 from .const import (
     CONF_ADDRESS,
     CONF_AREA,
@@ -53,7 +54,7 @@ CONF_POINT = "point"
 CONF_TABLE = "table"
 
 
-class DeviceSubentryFlowHandler(ConfigSubentryFlow):
+class DeviceSubentryFlowHandler(CompositeSteps):
     """Add or edit a device of the PLC and its points."""
 
     def __init__(self) -> None:
@@ -67,6 +68,7 @@ class DeviceSubentryFlowHandler(ConfigSubentryFlow):
         self._items: list[BrowseItem] = []
         self._ticked: list[str] = []
         self._confirmed = ""  # a pasted table whose assumed data types were shown
+        self._composite, self._parts, self._made = {}, [], []  # an entity of several points
 
     @property
     def _client(self) -> type[PlcClient]:
@@ -129,7 +131,7 @@ class DeviceSubentryFlowHandler(ConfigSubentryFlow):
 
     async def async_step_menu(self, user_input: dict[str, Any] | None = None) -> SubentryFlowResult:
         """Show what can be done next, and the points so far."""
-        options = ["point"]
+        options = ["point", "composite"]
         if self._client.can_browse and self._get_entry().state is ConfigEntryState.LOADED:
             options.append("browse")
         options.append("import_points")
