@@ -8,6 +8,7 @@ import pytest
 
 from custom_components.plc_bridge.composite import (
     as_platform,
+    assign_entities,
     composites,
     group_errors,
     part_errors,
@@ -131,3 +132,21 @@ def test_table_refuses_bad_parts(row: str, problem: str) -> None:
     points, errors = parse_points(SMART, TABLE + row + "\n")
     assert points == []
     assert [text.split(" ")[0] for _, text in errors] == [problem]
+
+
+def test_entity_keys_are_kept() -> None:
+    """Parts get their entity's key once; a part added later joins it; a split gets its own."""
+    points: dict[str, dict[str, Any]] = {
+        "b": {"name": "Shutter", "platform": "cover", "role": "open"},
+        "c": {"name": "Shutter", "platform": "cover", "role": "close"},
+        "d": {"name": "Pump", "platform": "switch"},
+    }
+    assign_entities(points)
+    assert {points["b"]["entity"], points["c"]["entity"]} == {"b"}
+    assert "entity" not in points["d"]
+    points["a"] = {"name": "Shutter", "platform": "cover", "role": "stop"}
+    points["c"] = {**points["c"], "name": "Gate"}
+    assign_entities(points)
+    assert [points[key]["entity"] for key in "abc"] == ["b", "b", "c"]
+    configs = {key: PointConfig(key, "x", data) for key, data in points.items()}
+    assert {group.key for group in composites(configs).values()} == {"b", "c"}

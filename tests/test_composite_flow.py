@@ -86,3 +86,32 @@ async def test_climate_needs_a_part_that_shows(hass: HomeAssistant, entry: MockC
     assert result["errors"] == {"value_map": "role_labels"}
     result = await step(hass, result, {"value_map": "0=off;1=heat", "read_only": False})
     assert result["type"] is FlowResultType.MENU
+
+
+async def test_edit_a_part(hass: HomeAssistant, entry: MockConfigEntry) -> None:
+    """Editing a part asks its settings again and keeps its role; saving keys the entity."""
+    result = await start(hass, entry, "switch", "Hall")
+    result = await step(hass, result, {"state": "Q0.3", "command": "M1.1"})
+    result = await step(hass, result, {"invert": False, "read_only": True})
+    menu = await step(hass, result, {"pulse": 0.5, "read_only": False})
+    points = await saved(hass, entry, menu)
+    (command,) = (pid for pid, data in points.items() if data["role"] == "command")
+    menu = await hass.config_entries.subentries.async_init(
+        (entry.entry_id, SUBENTRY_DEVICE),
+        context={"source": "reconfigure", "subentry_id": next(iter(entry.subentries))},
+    )
+    result = await step(hass, menu, {"next_step_id": "edit"})
+    result = await step(hass, result, {"point": command})
+    assert result["step_id"] == "composite_part"
+    menu = await step(hass, result, {"read_only": False})
+    points = await saved(hass, entry, menu)
+    assert "pulse" not in points[command]
+    assert points[command]["role"] == "command"
+    assert len({data["entity"] for data in points.values()}) == 1
+
+
+async def saved(hass: HomeAssistant, entry: MockConfigEntry, menu: Any) -> dict[str, Any]:
+    """Save the machine from its menu; return its stored points."""
+    await step(hass, menu, {"next_step_id": "save"})
+    (device,) = entry.subentries.values()
+    return dict(device.data[CONF_POINTS])

@@ -25,7 +25,7 @@ from pytest_homeassistant_custom_component.common import MockConfigEntry, async_
 
 from simulators.s7_smart import S7SmartSimulator
 
-from .ha_fixtures import edit_point, make_entry, point, poll
+from .ha_fixtures import edit_point, make_entry, point, poll, set_points
 
 RANGE = {"raw_min": 0, "raw_max": 27648, "shown_min": 0, "shown_max": 100}
 SHUTTER = [
@@ -171,3 +171,20 @@ async def test_edited_part_keeps_the_entity(
     await cover(hass, SERVICE_SET_COVER_POSITION, SHUTTER_ID, **{ATTR_POSITION: 100})
     assert s7_smart_sim.get("VW48") == 27648
     assert entity_registry.async_get(SHUTTER_ID).id == before.id
+
+
+async def test_added_part_keeps_the_entity(
+    hass: HomeAssistant,
+    s7_smart_sim: S7SmartSimulator,
+    entity_registry: er.EntityRegistry,
+) -> None:
+    """A part added later (its id sorting first) joins the cover under the same entity."""
+    parts = [(pid, {**data, "entity": "s1"}) for pid, data in SHUTTER[:3]]
+    entry = await set_up(hass, s7_smart_sim, parts)
+    before = entity_registry.async_get(SHUTTER_ID)
+    stop = point("a0", "Shutter", "cover", "Q0.6", "signed", role="stop", entity="s1")
+    set_points(hass, entry, dict([*parts, stop]))
+    await hass.async_block_till_done()
+    assert entity_registry.async_get(SHUTTER_ID).id == before.id
+    await cover(hass, SERVICE_STOP_COVER, SHUTTER_ID)
+    assert s7_smart_sim.get("Q0.6") is True

@@ -25,7 +25,7 @@ from typing import TYPE_CHECKING, Any
 from homeassistant.components.climate.const import HVACAction, HVACMode
 from homeassistant.const import CONF_NAME
 
-from .const import CONF_INVERT, CONF_PLATFORM, CONF_ROLE, CONF_VALUE_MAP
+from .const import CONF_ENTITY, CONF_INVERT, CONF_PLATFORM, CONF_ROLE, CONF_VALUE_MAP
 from .conversion import stored_pairs
 from .plc import PlcClient
 from .point_form import point_data
@@ -97,7 +97,7 @@ INVERTIBLE = frozenset({"position", "set_position"})
 
 @dataclass(frozen=True, slots=True)
 class Composite:
-    """One entity built from points: its key (its first point's id) and its parts by role."""
+    """One entity built from points: its key (see `composites`) and its parts by role."""
 
     key: str
     subentry_id: str
@@ -116,6 +116,8 @@ def group_key(config: PointConfig) -> tuple[str, str, str] | None:
 def composites(configs: Mapping[str, PointConfig]) -> dict[str, Composite]:
     """Return the composite entities of these points, by the id of each one's first point.
 
+    An entity's key is the `entity` its parts store (given when the machine is saved), so a
+    part added or removed later keeps the entity and its history; else its first point's id.
     A role given twice keeps its first point (the import and the forms refuse that case).
     """
     groups: dict[tuple[str, str, str], dict[str, PointConfig]] = {}
@@ -124,13 +126,37 @@ def composites(configs: Mapping[str, PointConfig]) -> dict[str, Composite]:
         if (key := group_key(config)) is not None:
             groups.setdefault(key, {})[point_id] = config
     found: dict[str, Composite] = {}
+    keys: set[str] = set()
     for (subentry_id, platform, name), members in groups.items():
         parts: dict[str, PointConfig] = {}
         for config in members.values():
             parts.setdefault(str(config.data.get(CONF_ROLE, "")), config)
         lead = next(iter(members))
-        found[lead] = Composite(lead, subentry_id, platform, name, parts)
+        stored = [str(c.data[CONF_ENTITY]) for c in members.values() if c.data.get(CONF_ENTITY)]
+        entity = stored[0] if stored and stored[0] not in keys else lead
+        keys.add(entity)
+        found[lead] = Composite(entity, subentry_id, platform, name, parts)
     return found
+
+
+def assign_entities(points: dict[str, dict[str, Any]]) -> None:
+    """Give every part of a machine's points its entity's key, kept from then on.
+
+    A part joins the key its entity's other parts have; a new entity takes its first
+    point's id; rows of one entity renamed apart each get a key of their own.
+    """
+    groups: dict[tuple[str, str], list[str]] = {}
+    for point_id in sorted(points):
+        data = points[point_id]
+        if is_part(str(data.get(CONF_PLATFORM, "")), data.get(CONF_ROLE)):
+            groups.setdefault((data[CONF_PLATFORM], data[CONF_NAME]), []).append(point_id)
+    used: set[str] = set()
+    for ids in groups.values():
+        stored = [str(points[pid][CONF_ENTITY]) for pid in ids if points[pid].get(CONF_ENTITY)]
+        key = stored[0] if stored and stored[0] not in used else ids[0]
+        used.add(key)
+        for point_id in ids:
+            points[point_id] = {**points[point_id], CONF_ENTITY: key}
 
 
 def touched(

@@ -25,7 +25,7 @@ import voluptuous as vol
 from .composite import INVERTIBLE, ROLES, as_platform, group_errors, part_data
 from .const import CONF_ADDRESS, CONF_DATA_TYPE, CONF_INVERT, CONF_PLATFORM, CONF_ROLE
 from .plc import PlcAddressError, PlcClient, Point
-from .point_form import check_point, details_schema, point_key
+from .point_form import BASE_FIELDS, check_point, details_schema, point_key
 from .point_table import first_type
 
 TYPE_SUFFIX = "_data_type"
@@ -39,6 +39,7 @@ class CompositeSteps(ConfigSubentryFlow):
     _composite: dict[str, Any]
     _parts: list[dict[str, Any]]
     _made: list[dict[str, Any]]
+    _part_ids: list[str]
 
     @property
     def _client(self) -> type[PlcClient]:
@@ -168,14 +169,16 @@ class CompositeSteps(ConfigSubentryFlow):
         placeholders = {"role": role, "units": "", "pair": "", "error": "", "platform": platform}
         placeholders |= {key: values[key] for key in (CONF_ADDRESS, CONF_DATA_TYPE, CONF_NAME)}
         if user_input is not None:
-            data, errors, found = part_data(self._client, {**values, **user_input})
+            base = {key: values[key] for key in (*BASE_FIELDS, CONF_ROLE)}
+            data, errors, found = part_data(self._client, base | user_input)
             placeholders |= found
             if not errors:
                 self._made.append(data)
                 if len(self._made) < len(self._parts):
                     return await self.async_step_composite_part()
-                self._points |= {secrets.token_hex(6): data for data in self._made}
-                self._parts, self._made = [], []
+                ids = self._part_ids or [secrets.token_hex(6) for _ in self._made]
+                self._points |= dict(zip(ids, self._made, strict=True))
+                self._parts, self._made, self._part_ids = [], [], []
                 return await self.async_step_menu()
         shown = as_platform(platform, role)
         try:
@@ -187,7 +190,14 @@ class CompositeSteps(ConfigSubentryFlow):
             schema = schema.extend({vol.Required(CONF_INVERT, default=False): BooleanSelector()})
         return self.async_show_form(
             step_id="composite_part",
-            data_schema=self.add_suggested_values_to_schema(schema, user_input or {}),
+            data_schema=self.add_suggested_values_to_schema(schema, user_input or values),
             errors=errors,
             description_placeholders=placeholders,
         )
+
+    async def async_edit_part(self, point_id: str) -> SubentryFlowResult:
+        """Edit the settings of one part (its address: remove it and add it again)."""
+        data = self._points[point_id]
+        self._composite = {CONF_NAME: data[CONF_NAME], CONF_PLATFORM: data[CONF_PLATFORM]}
+        self._parts, self._made, self._part_ids = [dict(data)], [], [point_id]
+        return await self.async_step_composite_part()

@@ -16,6 +16,7 @@ from homeassistant.const import CONF_DEVICE_CLASS, CONF_NAME
 from homeassistant.helpers.selector import AreaSelector, TextSelector, TextSelectorConfig
 import voluptuous as vol
 
+from .composite import assign_entities
 from .composite_flow import CompositeSteps
 from .const import (
     CONF_ADDRESS,
@@ -23,6 +24,7 @@ from .const import (
     CONF_DATA_TYPE,
     CONF_PLATFORM,
     CONF_POINTS,
+    CONF_ROLE,
     CONF_VENDOR,
 )
 from .flow_lists import (
@@ -68,7 +70,7 @@ class DeviceSubentryFlowHandler(CompositeSteps):
         self._items: list[BrowseItem] = []
         self._ticked: list[str] = []
         self._confirmed = ""  # a pasted table whose assumed data types were shown
-        self._composite, self._parts, self._made = {}, [], []  # an entity of several points
+        self._composite, self._parts, self._made, self._part_ids = {}, [], [], []
 
     @property
     def _client(self) -> type[PlcClient]:
@@ -212,6 +214,8 @@ class DeviceSubentryFlowHandler(CompositeSteps):
     async def async_step_edit(self, user_input: dict[str, Any] | None = None) -> SubentryFlowResult:
         """Choose the point to edit."""
         if user_input is not None:
+            if self._points[user_input[CONF_POINT]].get(CONF_ROLE):
+                return await self.async_edit_part(user_input[CONF_POINT])
             self._editing = user_input[CONF_POINT]
             return await self.async_step_point()
         return self.async_show_form(
@@ -324,6 +328,7 @@ class DeviceSubentryFlowHandler(CompositeSteps):
 
     async def async_step_save(self, user_input: dict[str, Any] | None = None) -> SubentryFlowResult:
         """Store the device and its points."""
+        assign_entities(self._points)
         data: dict[str, Any] = {CONF_POINTS: self._points}
         if self._area:
             data[CONF_AREA] = self._area
