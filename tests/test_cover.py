@@ -19,13 +19,14 @@ from homeassistant.components.cover import (
 from homeassistant.const import ATTR_ENTITY_ID, ATTR_SUPPORTED_FEATURES, STATE_UNAVAILABLE
 from homeassistant.core import HomeAssistant
 from homeassistant.exceptions import ServiceValidationError
-from homeassistant.helpers import entity_registry as er
+from homeassistant.helpers import entity_registry as er, issue_registry as ir
 import pytest
 from pytest_homeassistant_custom_component.common import MockConfigEntry, async_fire_time_changed
 
+from custom_components.plc_bridge.const import DOMAIN
 from simulators.s7_smart import S7SmartSimulator
 
-from .ha_fixtures import edit_point, make_entry, point, poll, set_points
+from .ha_fixtures import ENTRY_ID, edit_point, make_entry, point, poll, set_points
 
 RANGE = {"raw_min": 0, "raw_max": 27648, "shown_min": 0, "shown_max": 100}
 SHUTTER = [
@@ -188,3 +189,26 @@ async def test_added_part_keeps_the_entity(
     assert entity_registry.async_get(SHUTTER_ID).id == before.id
     await cover(hass, SERVICE_STOP_COVER, SHUTTER_ID)
     assert s7_smart_sim.get("Q0.6") is True
+
+
+async def test_pulse_ends_at_unload_and_failures_are_reported(
+    hass: HomeAssistant,
+    freezer: FrozenDateTimeFactory,
+    s7_smart_sim: S7SmartSimulator,
+    issue_registry: ir.IssueRegistry,
+) -> None:
+    """A command's pulse is ended as a button's is: retried, reported, ended at unload."""
+    entry = await set_up(hass, s7_smart_sim, SHUTTER)
+    await cover(hass, SERVICE_STOP_COVER, SHUTTER_ID)
+    s7_smart_sim.mode = "STOP"
+    freezer.tick(timedelta(seconds=1.1))
+    async_fire_time_changed(hass)
+    await hass.async_block_till_done(wait_background_tasks=True)
+    assert s7_smart_sim.get("Q0.6") is True
+    assert s7_smart_sim.calls["write"] == 3
+    assert issue_registry.async_get_issue(DOMAIN, f"pulse_failed_{ENTRY_ID}_s1_stop")
+    s7_smart_sim.mode = "RUN"
+    await cover(hass, SERVICE_STOP_COVER, SHUTTER_ID)
+    assert await hass.config_entries.async_unload(entry.entry_id)
+    assert s7_smart_sim.get("Q0.6") is False
+    assert issue_registry.async_get_issue(DOMAIN, f"pulse_failed_{ENTRY_ID}_s1_stop") is None

@@ -2,22 +2,20 @@
 
 A part whose read fails shows as unknown while the others keep showing; the entity is
 unavailable only when the PLC does not answer or none of its parts reads. Commands write
-their point's "on" value once, or pulse it (on, then off after the point's pulse time).
+their point's "on" value once, or pulse it (pulse.py: on, then off after the point's pulse
+time, a failed off-write retried and reported).
 """
 
 from __future__ import annotations
 
 from collections.abc import Callable
 from dataclasses import dataclass
-from datetime import datetime
 from typing import Any
 
-from homeassistant.core import CALLBACK_TYPE, HassJob
 from homeassistant.exceptions import HomeAssistantError
 from homeassistant.helpers.device_registry import DeviceInfo
 from homeassistant.helpers.entity import Entity
 from homeassistant.helpers.entity_platform import AddConfigEntryEntitiesCallback
-from homeassistant.helpers.event import async_call_later
 
 from .composite import Composite, composites, group_key
 from .const import CONF_PULSE, DOMAIN, PULSE_MAX, PULSE_MIN
@@ -26,6 +24,7 @@ from .coordinator import PlcBridgeConfigEntry
 from .entity import PlcEntity, point_fields
 from .plc import Point, PointResult, Value, ValueKind
 from .points import PointConfig, PointFactory, entry_points
+from .pulse import Pulse
 
 
 @dataclass(frozen=True, slots=True)
@@ -97,7 +96,8 @@ class PlcCompositeEntity(PlcEntity):
         self._attr_name = group.name
         self._attr_device_info = DeviceInfo(identifiers={(DOMAIN, group.subentry_id)})
         self.parts = parts
-        self._pulses: dict[Point, CALLBACK_TYPE] = {}
+        self._key = group.key
+        self._pulses: dict[str, Pulse] = {}
 
     def result(self, role: str) -> PointResult | None:
         """The outcome of a part's point in the last poll, None without that part."""
@@ -146,16 +146,19 @@ class PlcCompositeEntity(PlcEntity):
     async def async_command(self, role: str) -> None:
         """Send a command part: its "on" value, and "off" after its pulse if it has one."""
         part = self.parts[role]
-        self._end_pulse(part.point)
+        pulse = self._pulses.get(role)
+        if pulse is None:
+            pulse = self._pulses[role] = Pulse(
+                self.coordinator.config_entry,
+                f"{self._key}_{role}",
+                name=f"{self.name} ({role})",
+                address=part.point.address,
+                write_off=lambda: self.async_write_parts({role: part.level(on=False)}),
+            )
+        pulse.cancel()
         await self.async_write_parts({role: part.level(on=True)})
         if part.pulse > 0:
-
-            async def ended(_now: datetime) -> None:
-                """Write "off" when the pulse's time is up."""
-                self._pulses.pop(part.point, None)
-                await self.async_write_parts({role: part.level(on=False)})
-
-            self._pulses[part.point] = async_call_later(self.hass, part.pulse, HassJob(ended))
+            pulse.start(self.hass, part.pulse)
 
     def switched(self) -> bool | None:
         """On or off: the `state` part, else what a level `command` part reads back."""
@@ -190,16 +193,8 @@ class PlcCompositeEntity(PlcEntity):
         if state != on:
             await self.async_command("command")
 
-    def _end_pulse(self, point: Point) -> bool:
-        """Forget a pending pulse end of a point; True when one was pending."""
-        cancel = self._pulses.pop(point, None)
-        if cancel is not None:
-            cancel()
-        return cancel is not None
-
     async def async_will_remove_from_hass(self) -> None:
-        """Removed mid-pulse: end the pulses now."""
-        for role, part in self.parts.items():
-            if self._end_pulse(part.point):
-                await self.async_write_parts({role: part.level(on=False)})
+        """Removed (unload, reload, edit) mid-pulse: end the pulses now."""
+        for pulse in self._pulses.values():
+            await pulse.async_end_now()
         await super().async_will_remove_from_hass()
