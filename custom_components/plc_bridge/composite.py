@@ -1,13 +1,13 @@
-"""Entities from several points: a cover, climate, light or switch of one machine's addresses.
+"""Entities from several points: a cover, valve, climate, light, fan or switch of a machine.
 
 A point of such an entity stores its `role` besides its platform; the points of one device
 subentry that share a platform and a name are one entity, each filling the role it names
 (`position`, `open`, `target_temperature`, `state`, `command`, ...). That is the table form
 too: one row per address, the rows of one entity sharing its name and platform. Every
-cover, climate and light point is a part; a switch point is one only when it names a role
-(a switch of one address stays as it was). Points stored before roles existed have none and
-load as they always did. Every part is an ordinary point: it joins the coordinator's poll
-and is written through its one write path.
+cover, valve, climate, light and fan point is a part; a switch point is one only when it
+names a role (a switch of one address stays as it was). Points stored before roles
+existed have none and load as they always did. Every part is an ordinary point: it joins
+the coordinator's poll and is written through its one write path.
 
 A role is checked and stored like the single-address kind it resembles (`ROLES`): a limit
 switch or state like a binary sensor (invert, on/off codes), a command like a button (codes,
@@ -46,6 +46,16 @@ ROLES: dict[str, dict[str, str]] = {
         "closed_limit": "binary_sensor",
         "status": "sensor",
     },
+    "valve": {
+        "position": "sensor",
+        "set_position": "number",
+        "open": "button",
+        "close": "button",
+        "stop": "button",
+        "open_limit": "binary_sensor",
+        "closed_limit": "binary_sensor",
+        "status": "sensor",
+    },
     "climate": {
         "current_temperature": "sensor",
         "target_temperature": "number",
@@ -54,13 +64,21 @@ ROLES: dict[str, dict[str, str]] = {
         "on_off": "switch",
     },
     "switch": {"state": "binary_sensor", "command": "button"},
+    "fan": {
+        "state": "binary_sensor",
+        "command": "button",
+        "percentage": "number",
+        "preset": "select",
+    },
     "light": {"state": "binary_sensor", "command": "button", "brightness": "number"},
 }
 """Each composite platform's roles, and the single-address kind each role is checked as."""
 NEEDS_ONE_OF: dict[str, tuple[str, ...]] = {
     "cover": ("position", "set_position", "open", "close", "open_limit", "closed_limit", "status"),
     "climate": ("current_temperature", "target_temperature", "hvac_mode", "on_off"),
+    "valve": ("position", "set_position", "open", "close", "open_limit", "closed_limit", "status"),
     "switch": ("command",),
+    "fan": ("command", "percentage"),
     "light": ("command", "brightness"),
 }
 """An entity needs at least one of these roles to show anything."""
@@ -72,7 +90,7 @@ LABELS: dict[str, frozenset[str]] = {
 """The labels a role's value map may use: Home Assistant's own states."""
 
 
-ALWAYS = frozenset({"cover", "climate", "light"})
+ALWAYS = frozenset({"cover", "valve", "climate", "light", "fan"})
 """Platforms whose every point is a part; a switch point is one only when it names a role."""
 
 

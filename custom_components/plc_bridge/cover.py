@@ -40,32 +40,14 @@ async def async_setup_entry(
     async_setup_composites(entry, "cover", PlcCover, async_add_entities)
 
 
-class PlcCover(PlcCompositeEntity, CoverEntity):
-    """A cover whose parts are points of one machine."""
+class Travel(PlcCompositeEntity):
+    """What covers and valves share: commands, a position, limit switches, a status map."""
 
-    def __init__(
-        self, entry: PlcBridgeConfigEntry, group: Composite, parts: dict[str, Part]
-    ) -> None:
-        """Work out what the cover can do from the parts it has."""
-        super().__init__(entry, group, parts)
-        features = CoverEntityFeature(0)
-        if self._setter() is not None:
-            features |= (
-                CoverEntityFeature.SET_POSITION | CoverEntityFeature.OPEN | CoverEntityFeature.CLOSE
-            )
-        if "open" in parts:
-            features |= CoverEntityFeature.OPEN
-        if "close" in parts:
-            features |= CoverEntityFeature.CLOSE
-        if "stop" in parts:
-            features |= CoverEntityFeature.STOP
-        self._attr_supported_features = features
-        for part in parts.values():
-            try:
-                self._attr_device_class = CoverDeviceClass(part.config.data[CONF_DEVICE_CLASS])
-                break
-            except (KeyError, ValueError):
-                continue
+    def _travel_features(self) -> tuple[bool, bool, bool, bool]:
+        """Whether it can open, close, stop, and be set to a position."""
+        settable = self._setter() is not None
+        parts = self.parts
+        return settable or "open" in parts, settable or "close" in parts, "stop" in parts, settable
 
     def _setter(self) -> str | None:
         """The role that takes a position: `set_position`, else a writable `position`."""
@@ -78,8 +60,7 @@ class PlcCover(PlcCompositeEntity, CoverEntity):
         """True when the part counts 0 as open."""
         return self.parts[role].conversion.invert
 
-    @property
-    def current_cover_position(self) -> int | None:
+    def _position(self) -> int | None:
         """The position read, 0 closed to 100 open."""
         value = self.number("position")
         if value is None:
@@ -87,8 +68,7 @@ class PlcCover(PlcCompositeEntity, CoverEntity):
         position = round(min(max(value, 0), FULL))
         return FULL - position if self._inverted("position") else position
 
-    @property
-    def is_closed(self) -> bool | None:
+    def _closed(self) -> bool | None:
         """Closed by the closed limit, the status map, or a position of 0; None if unknown."""
         if self.on("closed_limit"):
             return True
@@ -98,8 +78,63 @@ class PlcCover(PlcCompositeEntity, CoverEntity):
             return False
         if (status := self.label("status")) is not None:
             return status == "closed"
-        position = self.current_cover_position
+        position = self._position()
         return None if position is None else position == 0
+
+    async def _async_move(self, role: str, position: int) -> None:
+        """Send the open or close command, or move to the position where there is none."""
+        if role in self.parts:
+            await self.async_command(role)
+        else:
+            await self._async_set_position(position)
+
+    async def _async_set_position(self, position: float) -> None:
+        """Write the position through the part's range (refused outside it, nothing sent)."""
+        role = self._setter()
+        if role is None:
+            return
+        part = self.parts[role]
+        if self._inverted(role):
+            position = FULL - position
+        raw = part.conversion.raw(position, integer=part.kind is ValueKind.INTEGER)
+        await self.async_write_parts({role: raw})
+
+
+class PlcCover(Travel, CoverEntity):
+    """A cover whose parts are points of one machine."""
+
+    def __init__(
+        self, entry: PlcBridgeConfigEntry, group: Composite, parts: dict[str, Part]
+    ) -> None:
+        """Work out what the cover can do from the parts it has."""
+        super().__init__(entry, group, parts)
+        features = CoverEntityFeature(0)
+        flags = (
+            CoverEntityFeature.OPEN,
+            CoverEntityFeature.CLOSE,
+            CoverEntityFeature.STOP,
+            CoverEntityFeature.SET_POSITION,
+        )
+        for flag, present in zip(flags, self._travel_features(), strict=True):
+            if present:
+                features |= flag
+        self._attr_supported_features = features
+        for part in parts.values():
+            try:
+                self._attr_device_class = CoverDeviceClass(part.config.data[CONF_DEVICE_CLASS])
+                break
+            except (KeyError, ValueError):
+                continue
+
+    @property
+    def current_cover_position(self) -> int | None:
+        """The position read, 0 closed to 100 open."""
+        return self._position()
+
+    @property
+    def is_closed(self) -> bool | None:
+        """Closed by the closed limit, the status map, or a position of 0; None if unknown."""
+        return self._closed()
 
     @property
     def is_opening(self) -> bool:
@@ -113,30 +148,16 @@ class PlcCover(PlcCompositeEntity, CoverEntity):
 
     async def async_open_cover(self, **kwargs: Any) -> None:
         """Send the open command, or move to 100 %."""
-        if "open" in self.parts:
-            await self.async_command("open")
-        else:
-            await self.async_set_cover_position(**{ATTR_POSITION: FULL})
+        await self._async_move("open", FULL)
 
     async def async_close_cover(self, **kwargs: Any) -> None:
         """Send the close command, or move to 0 %."""
-        if "close" in self.parts:
-            await self.async_command("close")
-        else:
-            await self.async_set_cover_position(**{ATTR_POSITION: 0})
+        await self._async_move("close", 0)
 
     async def async_stop_cover(self, **kwargs: Any) -> None:
         """Send the stop command."""
         await self.async_command("stop")
 
     async def async_set_cover_position(self, **kwargs: Any) -> None:
-        """Write the position through the part's range (refused outside it, nothing sent)."""
-        role = self._setter()
-        if role is None:
-            return
-        part = self.parts[role]
-        position = float(kwargs[ATTR_POSITION])
-        if self._inverted(role):
-            position = FULL - position
-        raw = part.conversion.raw(position, integer=part.kind is ValueKind.INTEGER)
-        await self.async_write_parts({role: raw})
+        """Write the position through the part's range."""
+        await self._async_set_position(float(kwargs[ATTR_POSITION]))
