@@ -165,3 +165,20 @@ async def test_refused_write(hass: HomeAssistant, boiler_sim: S7SmartSimulator) 
         await climate(hass, SERVICE_SET_HVAC_MODE, **{ATTR_HVAC_MODE: "auto"})
     assert err.value.translation_key == "read_only"
     assert boiler_sim.calls["write"] == 0
+
+
+async def test_no_request_of_its_own(
+    hass: HomeAssistant, freezer: FrozenDateTimeFactory, boiler_sim: S7SmartSimulator
+) -> None:
+    """A climate, a cover, a select and an alarm word: still one read request per poll."""
+    points = [
+        *BOILER,
+        point("s1", "Shutter", "cover", "VW40", "signed", role="position", read_only=True),
+        point("s2", "Shutter", "cover", "Q0.4", "signed", role="open"),
+        point("mode", "Mode", "select", "VW30", "signed", value_map="0=Off;1=Auto"),
+        point("alarms", "Alarms", "event", "VW70", "signed", bits="0=Overheat"),
+    ]
+    await set_up(hass, boiler_sim, points)
+    reads = boiler_sim.calls["read"]
+    await poll(hass, freezer, 3)
+    assert boiler_sim.calls["read"] == reads + 3

@@ -150,3 +150,16 @@ def test_entity_keys_are_kept() -> None:
     assert [points[key]["entity"] for key in "abc"] == ["b", "b", "c"]
     configs = {key: PointConfig(key, "x", data) for key, data in points.items()}
     assert {group.key for group in composites(configs).values()} == {"b", "c"}
+
+
+def test_table_adds_parts_to_an_entity_of_the_machine() -> None:
+    """A pasted part joins the machine's entity of that name; its roles stay checked once."""
+    points, _ = parse_points(SMART, TABLE)
+    stop = "name,address,platform,role\nShutter,Q0.7,cover,close\n"
+    added, errors = parse_points(SMART, stop, known=points)
+    assert errors == []
+    assert added[0]["role"] == "close"
+    again = "name,address,platform,role\nShutter,Q0.7,cover,open\n"
+    added, errors = parse_points(SMART, again, known=points)
+    assert added == []
+    assert errors == [(2, "role_repeated (Shutter, open)")]

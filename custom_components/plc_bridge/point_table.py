@@ -239,12 +239,14 @@ def parse_points(
     describe: Describe = plain,
     *,
     assumed: list[tuple[int, str]] | None = None,
+    known: Iterable[Mapping[str, Any]] = (),
 ) -> tuple[list[dict[str, Any]], list[tuple[int, str]]]:
     """Return the points of a pasted table and the errors by line; no points unless no errors.
 
     `taken` holds the points already configured: a line naming one again is an error, as is a
     line repeating an earlier line's address and data type. `describe` words each problem.
-    `assumed` receives, by line, the data types taken where the table names none.
+    `assumed` receives, by line, the data types taken where the table names none. `known`:
+    the machine's points already, which new parts of an entity of several points join.
     """
     header, rows = _rows(text)
     columns = [_column(cell) for cell in header]
@@ -283,8 +285,9 @@ def parse_points(
         points.append(data)
         if assumed is not None and _data_type(client, values[CONF_ADDRESS], cells)[1]:
             assumed.append((line, describe("import_type_assumed", placeholders)))
-    for name, key, details in group_errors(points):
-        errors.append((firsts[name], describe(key, details)))
+    for name, key, details in group_errors([*known, *points]):
+        if name in firsts:
+            errors.append((firsts[name], describe(key, details)))
     errors.sort(key=lambda error: error[0])
     return ([] if errors else points), errors
 

@@ -305,8 +305,9 @@ class DeviceSubentryFlowHandler(CompositeSteps):
         problems: list[tuple[int, str]] = []
         if user_input is not None:
             table, assumed = str(user_input.get(CONF_TABLE, "")), list[tuple[int, str]]()
+            describe, known = await async_describe(self.hass), self._points.values()
             points, problems = parse_points(
-                self._client, table, self._taken(), await async_describe(self.hass), assumed=assumed
+                self._client, table, self._taken(), describe, assumed=assumed, known=known
             )
             if not problems and (not assumed or table == self._confirmed):
                 self._points |= {secrets.token_hex(6): data for data in points}
