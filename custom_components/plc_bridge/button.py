@@ -14,12 +14,11 @@ from homeassistant.components.button import ButtonEntity, ButtonEntityDescriptio
 from homeassistant.core import HomeAssistant
 from homeassistant.helpers.entity_platform import AddConfigEntryEntitiesCallback
 
-from .const import CONF_PULSE, PULSE_MAX, PULSE_MIN
 from .coordinator import PlcBridgeConfigEntry
 from .entity import PlcPointDescription, PlcPointEntity, point_fields
 from .plc import ValueKind
 from .points import PointConfig
-from .pulse import Pulse
+from .pulse import Pulse, pulse_seconds
 
 PARALLEL_UPDATES = 1
 
@@ -33,8 +32,7 @@ class PlcButtonDescription(ButtonEntityDescription, PlcPointDescription):
 
 def point_button(entry: PlcBridgeConfigEntry, config: PointConfig) -> PlcButton:
     """Return the button of a point."""
-    pulse = float(config.data.get(CONF_PULSE) or 0.0)
-    pulse = min(max(pulse, PULSE_MIN), PULSE_MAX) if pulse else 0.0
+    pulse = pulse_seconds(config.data)
     description = PlcButtonDescription(**point_fields(entry, config), pulse=pulse)
     return PlcButton(entry, config, description)
 

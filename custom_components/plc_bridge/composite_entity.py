@@ -18,13 +18,13 @@ from homeassistant.helpers.entity import Entity
 from homeassistant.helpers.entity_platform import AddConfigEntryEntitiesCallback
 
 from .composite import Composite, composites, group_key
-from .const import CONF_PULSE, DOMAIN, PULSE_MAX, PULSE_MIN
+from .const import DOMAIN
 from .conversion import Conversion
 from .coordinator import PlcBridgeConfigEntry
 from .entity import PlcEntity, point_fields
 from .plc import Point, PointResult, Value, ValueKind
 from .points import PointConfig, PointFactory, entry_points
-from .pulse import Pulse
+from .pulse import Pulse, pulse_seconds
 
 
 @dataclass(frozen=True, slots=True)
@@ -50,8 +50,7 @@ class Part:
 def part_of(entry: PlcBridgeConfigEntry, config: PointConfig) -> Part:
     """Return a configured point as a part."""
     fields = point_fields(entry, config)
-    pulse = float(config.data.get(CONF_PULSE) or 0.0)
-    pulse = min(max(pulse, PULSE_MIN), PULSE_MAX) if pulse else 0.0
+    pulse = pulse_seconds(config.data)
     return Part(config, fields["point"], fields["kind"], fields["conversion"], pulse)
 
 
@@ -85,8 +84,6 @@ def async_setup_composites(
 
 class PlcCompositeEntity(PlcEntity):
     """An entity of several points of one device, named by the rows it was built from."""
-
-    _attr_name = None
 
     def __init__(
         self, entry: PlcBridgeConfigEntry, group: Composite, parts: dict[str, Part]

@@ -8,8 +8,9 @@ once (while the PLC can still be reached); a Home Assistant that dies leaves "on
 
 from __future__ import annotations
 
-from collections.abc import Awaitable, Callable
+from collections.abc import Awaitable, Callable, Mapping
 from datetime import datetime
+from typing import Any
 
 from homeassistant.const import EVENT_HOMEASSISTANT_STOP
 from homeassistant.core import CALLBACK_TYPE, Event, HassJob, HomeAssistant
@@ -17,10 +18,16 @@ from homeassistant.exceptions import HomeAssistantError
 from homeassistant.helpers import issue_registry as ir
 from homeassistant.helpers.event import async_call_later
 
-from .const import DOMAIN, LOGGER
+from .const import CONF_PULSE, DOMAIN, LOGGER, PULSE_MAX, PULSE_MIN
 from .models import PlcBridgeConfigEntry
 
 PULSE_FAILED = "pulse_failed"
+
+
+def pulse_seconds(data: Mapping[str, Any]) -> float:
+    """Return a point's pulse in seconds, kept within 0.1-60; 0 for a single write."""
+    pulse = float(data.get(CONF_PULSE) or 0.0)
+    return min(max(pulse, PULSE_MIN), PULSE_MAX) if pulse else 0.0
 
 
 class Pulse:
