@@ -12,9 +12,12 @@ from homeassistant.components.climate import (
     ATTR_HVAC_MODES,
     ATTR_MAX_TEMP,
     ATTR_MIN_TEMP,
+    ATTR_PRESET_MODE,
+    ATTR_PRESET_MODES,
     ATTR_TARGET_TEMP_STEP,
     DOMAIN as CLIMATE_DOMAIN,
     SERVICE_SET_HVAC_MODE,
+    SERVICE_SET_PRESET_MODE,
     SERVICE_SET_TEMPERATURE,
     SERVICE_TURN_ON,
 )
@@ -182,3 +185,19 @@ async def test_no_request_of_its_own(
     reads = boiler_sim.calls["read"]
     await poll(hass, freezer, 3)
     assert boiler_sim.calls["read"] == reads + 3
+
+
+async def test_preset_map(hass: HomeAssistant, boiler_sim: S7SmartSimulator) -> None:
+    """Presets are the labels of the preset part's map, written by their codes."""
+    boiler_sim.set("VW58", 1)
+    preset = point(
+        "c6", "Boiler", "climate", "VW58", "signed", role="preset", value_map="0=Comfort;1=Eco"
+    )
+    await set_up(hass, boiler_sim, [*BOILER, preset])
+    state = hass.states.get(BOILER_ID)
+    assert (state.attributes[ATTR_PRESET_MODE], state.attributes[ATTR_PRESET_MODES]) == (
+        "Eco",
+        ["Comfort", "Eco"],
+    )
+    await climate(hass, SERVICE_SET_PRESET_MODE, **{ATTR_PRESET_MODE: "Comfort"})
+    assert boiler_sim.get("VW58") == 0

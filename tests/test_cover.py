@@ -8,11 +8,14 @@ from typing import Any
 from freezegun.api import FrozenDateTimeFactory
 from homeassistant.components.cover import (
     ATTR_CURRENT_POSITION,
+    ATTR_CURRENT_TILT_POSITION,
     ATTR_POSITION,
+    ATTR_TILT_POSITION,
     DOMAIN as COVER_DOMAIN,
     SERVICE_CLOSE_COVER,
     SERVICE_OPEN_COVER,
     SERVICE_SET_COVER_POSITION,
+    SERVICE_SET_COVER_TILT_POSITION,
     SERVICE_STOP_COVER,
     CoverEntityFeature,
 )
@@ -212,3 +215,27 @@ async def test_pulse_ends_at_unload_and_failures_are_reported(
     assert await hass.config_entries.async_unload(entry.entry_id)
     assert s7_smart_sim.get("Q0.6") is False
     assert issue_registry.async_get_issue(DOMAIN, f"pulse_failed_{ENTRY_ID}_s1_stop") is None
+
+
+async def test_step_relay_and_tilt(
+    hass: HomeAssistant, freezer: FrozenDateTimeFactory, s7_smart_sim: S7SmartSimulator
+) -> None:
+    """A step-relay button pulsed by open, stop and close; the tilt set through its range."""
+    s7_smart_sim.set("VW90", 50)
+    points = [
+        point("k1", "Awning", "cover", "Q1.2", "signed", role="step", pulse=0.5),
+        point("k2", "Awning", "cover", "VW90", "signed", role="tilt_position"),
+        point("k3", "Awning", "cover", "VW92", "signed", role="set_tilt_position", invert=True),
+    ]
+    await set_up(hass, s7_smart_sim, points)
+    awning = "cover.s7_200_smart_awning"
+    assert hass.states.get(awning).attributes[ATTR_CURRENT_TILT_POSITION] == 50
+    for service in (SERVICE_OPEN_COVER, SERVICE_STOP_COVER, SERVICE_CLOSE_COVER):
+        await cover(hass, service, awning)
+        assert s7_smart_sim.get("Q1.2") is True
+        freezer.tick(timedelta(seconds=0.6))
+        async_fire_time_changed(hass)
+        await hass.async_block_till_done(wait_background_tasks=True)
+        assert s7_smart_sim.get("Q1.2") is False
+    await cover(hass, SERVICE_SET_COVER_TILT_POSITION, awning, **{ATTR_TILT_POSITION: 30})
+    assert s7_smart_sim.get("VW92") == 70

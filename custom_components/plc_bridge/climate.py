@@ -3,7 +3,8 @@
 Roles: `current_temperature` (read), `target_temperature` (read and written; its point's
 min, max and step bound what may be set, else its linear range), `hvac_mode` (a value map
 onto Home Assistant's modes, `0=off;1=heat;2=cool;3=auto`), `hvac_action` (a value map onto
-its actions, `0=idle;1=heating`) and `on_off` (a switch point; off shows as mode off).
+its actions, `0=idle;1=heating`), `on_off` (a switch point; off shows as mode off) and
+`preset` (a value map whose labels are the presets, `0=Comfort;1=Eco`).
 """
 
 from __future__ import annotations
@@ -73,6 +74,9 @@ class PlcClimate(PlcCompositeEntity, ClimateEntity):
                 self._attr_max_temp = bounds[1]
             if data.get(CONF_STEP):
                 self._attr_target_temperature_step = float(data[CONF_STEP])
+        if (preset := parts.get("preset")) is not None:
+            features |= ClimateEntityFeature.PRESET_MODE
+            self._attr_preset_modes = [label for _, label in preset.conversion.value_map]
         self._attr_supported_features = features
         for part in parts.values():
             if part.config.data.get(CONF_UNIT_OF_MEASUREMENT) == UnitOfTemperature.FAHRENHEIT:
@@ -104,6 +108,15 @@ class PlcClimate(PlcCompositeEntity, ClimateEntity):
         """The action the status map names."""
         label = self.label("hvac_action")
         return None if label is None else HVACAction(label)
+
+    @property
+    def preset_mode(self) -> str | None:
+        """The preset the map names."""
+        return self.label("preset")
+
+    async def async_set_preset_mode(self, preset_mode: str) -> None:
+        """Write the preset's code."""
+        await self.async_write_parts({"preset": self.parts["preset"].conversion.code(preset_mode)})
 
     async def async_set_temperature(self, **kwargs: Any) -> None:
         """Write the target temperature (refused outside min..max before sending)."""

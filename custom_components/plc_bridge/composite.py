@@ -45,6 +45,9 @@ ROLES: dict[str, dict[str, str]] = {
         "open_limit": "binary_sensor",
         "closed_limit": "binary_sensor",
         "status": "sensor",
+        "tilt_position": "sensor",
+        "set_tilt_position": "number",
+        "step": "button",
     },
     "valve": {
         "position": "sensor",
@@ -62,6 +65,7 @@ ROLES: dict[str, dict[str, str]] = {
         "hvac_mode": "select",
         "hvac_action": "sensor",
         "on_off": "switch",
+        "preset": "select",
     },
     "switch": {"state": "binary_sensor", "command": "button"},
     "fan": {
@@ -74,7 +78,16 @@ ROLES: dict[str, dict[str, str]] = {
 }
 """Each composite platform's roles, and the single-address kind each role is checked as."""
 NEEDS_ONE_OF: dict[str, tuple[str, ...]] = {
-    "cover": ("position", "set_position", "open", "close", "open_limit", "closed_limit", "status"),
+    "cover": (
+        "position",
+        "set_position",
+        "open",
+        "close",
+        "open_limit",
+        "closed_limit",
+        "status",
+        "step",
+    ),
     "climate": ("current_temperature", "target_temperature", "hvac_mode", "on_off"),
     "valve": ("position", "set_position", "open", "close", "open_limit", "closed_limit", "status"),
     "switch": ("command",),
@@ -109,7 +122,7 @@ def as_platform(platform: str, role: Any) -> str:
     return ROLES.get(platform, {}).get(str(role or ""), platform)
 
 
-INVERTIBLE = frozenset({"position", "set_position"})
+INVERTIBLE = frozenset({"position", "set_position", "tilt_position", "set_tilt_position"})
 """Roles whose point may count the other way (0 % open), besides those on or off."""
 
 

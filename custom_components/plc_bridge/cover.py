@@ -4,8 +4,9 @@ Roles (one point each, every one optional, one at least): `open`, `close`, `stop
 written as a level or a pulse), `position` (read, 0-100 % through the point's linear range;
 written too unless read only and no `set_position` is given), `set_position`, `open_limit`
 and `closed_limit` (limit switches), `status` (a value map onto open, closed, opening,
-closing). `invert` on a position point makes 0 % open. Without open or close commands, a
-settable position opens to 100 % and closes to 0 %.
+closing), `tilt_position` and `set_tilt_position` (as the position), `step` (one step-relay
+button: open, close and stop each send its pulse). `invert` on a position point makes 0 %
+open. Without open or close commands, a settable position opens to 100 % and closes to 0 %.
 """
 
 from __future__ import annotations
@@ -14,6 +15,7 @@ from typing import Any
 
 from homeassistant.components.cover import (
     ATTR_POSITION,
+    ATTR_TILT_POSITION,
     CoverDeviceClass,
     CoverEntity,
     CoverEntityFeature,
@@ -47,26 +49,32 @@ class Travel(PlcCompositeEntity):
         """Whether it can open, close, stop, and be set to a position."""
         settable = self._setter() is not None
         parts = self.parts
-        return settable or "open" in parts, settable or "close" in parts, "stop" in parts, settable
+        step = "step" in parts
+        return (
+            settable or step or "open" in parts,
+            settable or step or "close" in parts,
+            step or "stop" in parts,
+            settable,
+        )
 
-    def _setter(self) -> str | None:
+    def _setter(self, role: str = "position") -> str | None:
         """The role that takes a position: `set_position`, else a writable `position`."""
-        if "set_position" in self.parts:
-            return "set_position"
-        position = self.parts.get("position")
-        return "position" if position is not None and not position.read_only else None
+        if f"set_{role}" in self.parts:
+            return f"set_{role}"
+        position = self.parts.get(role)
+        return role if position is not None and not position.read_only else None
 
     def _inverted(self, role: str) -> bool:
         """True when the part counts 0 as open."""
         return self.parts[role].conversion.invert
 
-    def _position(self) -> int | None:
+    def _position(self, role: str = "position") -> int | None:
         """The position read, 0 closed to 100 open."""
-        value = self.number("position")
+        value = self.number(role)
         if value is None:
             return None
         position = round(min(max(value, 0), FULL))
-        return FULL - position if self._inverted("position") else position
+        return FULL - position if self._inverted(role) else position
 
     def _closed(self) -> bool | None:
         """Closed by the closed limit, the status map, or a position of 0; None if unknown."""
@@ -81,16 +89,18 @@ class Travel(PlcCompositeEntity):
         position = self._position()
         return None if position is None else position == 0
 
-    async def _async_move(self, role: str, position: int) -> None:
-        """Send the open or close command, or move to the position where there is none."""
+    async def _async_move(self, role: str, position: int | None) -> None:
+        """Send the command, else a step relay's pulse, else move to the position."""
         if role in self.parts:
             await self.async_command(role)
-        else:
+        elif "step" in self.parts:
+            await self.async_command("step")
+        elif position is not None:
             await self._async_set_position(position)
 
-    async def _async_set_position(self, position: float) -> None:
+    async def _async_set_position(self, position: float, which: str = "position") -> None:
         """Write the position through the part's range (refused outside it, nothing sent)."""
-        role = self._setter()
+        role = self._setter(which)
         if role is None:
             return
         part = self.parts[role]
@@ -118,6 +128,8 @@ class PlcCover(Travel, CoverEntity):
         for flag, present in zip(flags, self._travel_features(), strict=True):
             if present:
                 features |= flag
+        if self._setter("tilt_position") is not None:
+            features |= CoverEntityFeature.SET_TILT_POSITION
         self._attr_supported_features = features
         for part in parts.values():
             try:
@@ -155,8 +167,17 @@ class PlcCover(Travel, CoverEntity):
         await self._async_move("close", 0)
 
     async def async_stop_cover(self, **kwargs: Any) -> None:
-        """Send the stop command."""
-        await self.async_command("stop")
+        """Send the stop command (a step relay: its pulse)."""
+        await self._async_move("stop", None)
+
+    @property
+    def current_cover_tilt_position(self) -> int | None:
+        """The tilt read, 0 closed to 100 open."""
+        return self._position("tilt_position")
+
+    async def async_set_cover_tilt_position(self, **kwargs: Any) -> None:
+        """Write the tilt through its part's range."""
+        await self._async_set_position(float(kwargs[ATTR_TILT_POSITION]), "tilt_position")
 
     async def async_set_cover_position(self, **kwargs: Any) -> None:
         """Write the position through the part's range."""

@@ -82,7 +82,7 @@ class PlcValve(Travel, ValveEntity):
 
     async def async_stop_valve(self) -> None:
         """Send the stop command."""
-        await self.async_command("stop")
+        await self._async_move("stop", None)
 
     async def async_set_valve_position(self, position: int) -> None:
         """Write the position through the part's range."""
