@@ -3,8 +3,10 @@
 from __future__ import annotations
 
 from freezegun.api import FrozenDateTimeFactory
-from homeassistant.components.light import DOMAIN as LIGHT_DOMAIN
-from homeassistant.components.light.const import ATTR_BRIGHTNESS
+from homeassistant.components.light import (  # type: ignore[attr-defined]
+    ATTR_BRIGHTNESS,
+    DOMAIN as LIGHT_DOMAIN,
+)
 from homeassistant.const import ATTR_ENTITY_ID, SERVICE_TURN_ON, STATE_ON
 from homeassistant.core import HomeAssistant
 

@@ -6,8 +6,10 @@ from datetime import timedelta
 from typing import Any
 
 from freezegun.api import FrozenDateTimeFactory
-from homeassistant.components.light import DOMAIN as LIGHT_DOMAIN
-from homeassistant.components.light.const import ATTR_BRIGHTNESS
+from homeassistant.components.light import (  # type: ignore[attr-defined]
+    ATTR_BRIGHTNESS,
+    DOMAIN as LIGHT_DOMAIN,
+)
 from homeassistant.components.switch import DOMAIN as SWITCH_DOMAIN
 from homeassistant.const import (
     ATTR_ENTITY_ID,
