@@ -42,6 +42,10 @@ CONF_ON_VALUE: Final = "on_value"
 CONF_OFF_VALUE: Final = "off_value"
 CONF_PULSE: Final = "pulse"
 CONF_BITS: Final = "bits"
+CONF_ROLE: Final = "role"
+"""The part a point plays in an entity of several points (see composite.py)."""
+CONF_ENTITY: Final = "entity"
+"""The key of the entity of several points a part belongs to (its unique id's end)."""
 PULSE_MIN: Final = 0.1
 PULSE_MAX: Final = 60.0
 """The shortest and longest pulse of a button, in seconds."""

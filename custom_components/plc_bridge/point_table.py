@@ -19,6 +19,7 @@ from homeassistant.const import CONF_DEVICE_CLASS, CONF_NAME, CONF_UNIT_OF_MEASU
 from homeassistant.core import HomeAssistant
 from homeassistant.helpers.translation import async_get_translations
 
+from .composite import as_platform, group_errors, is_part, part_data, takes_roles
 from .const import (
     CONF_ADDRESS,
     CONF_DATA_TYPE,
@@ -28,6 +29,7 @@ from .const import (
     CONF_OFFSET,
     CONF_PLATFORM,
     CONF_READ_ONLY,
+    CONF_ROLE,
     CONF_SCALE,
     CONF_STEP,
     DOMAIN,
@@ -52,8 +54,10 @@ COLUMNS = (
     CONF_STEP,
     CONF_READ_ONLY,
     *KIND_COLUMNS,
+    CONF_ROLE,
 )
-"""The columns of the format, in the order export writes them."""
+"""The columns of the format, in the order export writes them (rows of one entity of several
+addresses share its name and platform, and each names its role)."""
 COMMENT = "comment"
 HEADERS: dict[str, str] = {
     **{column: column for column in COLUMNS},
@@ -170,6 +174,11 @@ def _data_type(client: type[PlcClient], address: str, cells: Mapping[str, str]) 
     return fitting[0], len(fitting) > 1 and not kinds <= {ValueKind.BOOL, ValueKind.DATETIME}
 
 
+def first_type(client: type[PlcClient], address: str) -> str:
+    """Return the data type a table without a type column gives an address."""
+    return _data_type(client, address, {})[0]
+
+
 def _values(
     client: type[PlcClient], cells: Mapping[str, str]
 ) -> tuple[dict[str, Any], str, dict[str, str]]:
@@ -199,9 +208,11 @@ def _values(
             if flags[column] is None:
                 return {}, "import_not_yes_or_no", {"column": column, "text": text}
     platform = cells.get(CONF_PLATFORM, "").strip().lower().replace(" ", "_")
+    if takes_roles(platform):
+        values[CONF_ROLE] = cells.get(CONF_ROLE, "").strip().lower().replace(" ", "_")
     read_only = flags.get(CONF_READ_ONLY)
     if read_only is None:
-        read_only = platform not in CONTROLS
+        read_only = as_platform(platform, values.get(CONF_ROLE)) not in CONTROLS
     read_only = read_only or flags.get(WRITABLE) is False
     values[CONF_READ_ONLY] = read_only
     values[CONF_INVERT] = bool(flags.get(CONF_INVERT))
@@ -228,12 +239,14 @@ def parse_points(
     describe: Describe = plain,
     *,
     assumed: list[tuple[int, str]] | None = None,
+    known: Iterable[Mapping[str, Any]] = (),
 ) -> tuple[list[dict[str, Any]], list[tuple[int, str]]]:
     """Return the points of a pasted table and the errors by line; no points unless no errors.
 
     `taken` holds the points already configured: a line naming one again is an error, as is a
     line repeating an earlier line's address and data type. `describe` words each problem.
-    `assumed` receives, by line, the data types taken where the table names none.
+    `assumed` receives, by line, the data types taken where the table names none. `known`:
+    the machine's points already, which new parts of an entity of several points join.
     """
     header, rows = _rows(text)
     columns = [_column(cell) for cell in header]
@@ -244,6 +257,7 @@ def parse_points(
     points: list[dict[str, Any]] = []
     errors: list[tuple[int, str]] = []
     seen: dict[Point, int] = dict.fromkeys(taken, 0)
+    firsts: dict[str, int] = {}  # the line of each entity of several addresses, by its name
     for line, row in rows:
         cells = {
             column: _unescaped(cell)
@@ -254,7 +268,8 @@ def parse_points(
         if problem:
             errors.append((line, describe(problem, placeholders)))
             continue
-        data, found, placeholders = point_data(client, values)
+        part = is_part(values[CONF_PLATFORM], values.get(CONF_ROLE))
+        data, found, placeholders = (part_data if part else point_data)(client, values)
         if found:
             texts = dict.fromkeys(describe(key, placeholders) for key in found.values())
             errors.append((line, " ".join(texts)))
@@ -266,9 +281,14 @@ def parse_points(
             errors.append((line, describe(key, earlier)))
             continue
         seen[point] = line
+        firsts.setdefault(data[CONF_NAME], line)
         points.append(data)
         if assumed is not None and _data_type(client, values[CONF_ADDRESS], cells)[1]:
             assumed.append((line, describe("import_type_assumed", placeholders)))
+    for name, key, details in group_errors([*known, *points]):
+        if name in firsts:
+            errors.append((firsts[name], describe(key, details)))
+    errors.sort(key=lambda error: error[0])
     return ([] if errors else points), errors
 
 

@@ -18,6 +18,7 @@ from homeassistant.helpers import device_registry as dr, entity_registry as er
 from homeassistant.helpers.entity import Entity
 from homeassistant.helpers.entity_platform import AddConfigEntryEntitiesCallback
 
+from .composite import touched
 from .const import (
     CONF_ADDRESS,
     CONF_AREA,
@@ -185,8 +186,11 @@ class PointEntities:
             entry = self._entry
             new = entry_points(entry)
             old = self.configs
-            gone = [pid for pid, config in old.items() if new.get(pid) != config]
-            made = self._make([config for pid, config in new.items() if old.get(pid) != config])
+            changed = touched(
+                [pid for pid in old.keys() | new.keys() if old.get(pid) != new.get(pid)], old, new
+            )
+            gone = [pid for pid in old if pid in changed]
+            made = self._make([config for pid, config in new.items() if pid in changed])
             kept = {(platform, entity.unique_id) for _, platform, entity in made}
             registry = er.async_get(hass)
             for point_id in gone:

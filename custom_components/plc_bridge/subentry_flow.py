@@ -11,17 +11,20 @@ from collections.abc import Mapping
 import secrets
 from typing import Any
 
-from homeassistant.config_entries import ConfigEntryState, ConfigSubentryFlow, SubentryFlowResult
+from homeassistant.config_entries import ConfigEntryState, SubentryFlowResult
 from homeassistant.const import CONF_DEVICE_CLASS, CONF_NAME
 from homeassistant.helpers.selector import AreaSelector, TextSelector, TextSelectorConfig
 import voluptuous as vol
 
+from .composite import assign_entities
+from .composite_flow import CompositeSteps
 from .const import (
     CONF_ADDRESS,
     CONF_AREA,
     CONF_DATA_TYPE,
     CONF_PLATFORM,
     CONF_POINTS,
+    CONF_ROLE,
     CONF_VENDOR,
 )
 from .flow_lists import (
@@ -53,7 +56,7 @@ CONF_POINT = "point"
 CONF_TABLE = "table"
 
 
-class DeviceSubentryFlowHandler(ConfigSubentryFlow):
+class DeviceSubentryFlowHandler(CompositeSteps):
     """Add or edit a device of the PLC and its points."""
 
     def __init__(self) -> None:
@@ -67,6 +70,7 @@ class DeviceSubentryFlowHandler(ConfigSubentryFlow):
         self._items: list[BrowseItem] = []
         self._ticked: list[str] = []
         self._confirmed = ""  # a pasted table whose assumed data types were shown
+        self._composite, self._parts, self._made, self._part_ids = {}, [], [], []
 
     @property
     def _client(self) -> type[PlcClient]:
@@ -129,7 +133,7 @@ class DeviceSubentryFlowHandler(ConfigSubentryFlow):
 
     async def async_step_menu(self, user_input: dict[str, Any] | None = None) -> SubentryFlowResult:
         """Show what can be done next, and the points so far."""
-        options = ["point"]
+        options = ["point", "composite"]
         if self._client.can_browse and self._get_entry().state is ConfigEntryState.LOADED:
             options.append("browse")
         options.append("import_points")
@@ -210,6 +214,8 @@ class DeviceSubentryFlowHandler(ConfigSubentryFlow):
     async def async_step_edit(self, user_input: dict[str, Any] | None = None) -> SubentryFlowResult:
         """Choose the point to edit."""
         if user_input is not None:
+            if self._points[user_input[CONF_POINT]].get(CONF_ROLE):
+                return await self.async_edit_part(user_input[CONF_POINT])
             self._editing = user_input[CONF_POINT]
             return await self.async_step_point()
         return self.async_show_form(
@@ -299,8 +305,9 @@ class DeviceSubentryFlowHandler(ConfigSubentryFlow):
         problems: list[tuple[int, str]] = []
         if user_input is not None:
             table, assumed = str(user_input.get(CONF_TABLE, "")), list[tuple[int, str]]()
+            describe, known = await async_describe(self.hass), self._points.values()
             points, problems = parse_points(
-                self._client, table, self._taken(), await async_describe(self.hass), assumed=assumed
+                self._client, table, self._taken(), describe, assumed=assumed, known=known
             )
             if not problems and (not assumed or table == self._confirmed):
                 self._points |= {secrets.token_hex(6): data for data in points}
@@ -322,6 +329,7 @@ class DeviceSubentryFlowHandler(ConfigSubentryFlow):
 
     async def async_step_save(self, user_input: dict[str, Any] | None = None) -> SubentryFlowResult:
         """Store the device and its points."""
+        assign_entities(self._points)
         data: dict[str, Any] = {CONF_POINTS: self._points}
         if self._area:
             data[CONF_AREA] = self._area

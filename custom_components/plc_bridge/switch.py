@@ -1,4 +1,8 @@
-"""Switches: writable BOOL points."""
+"""Switches: writable BOOL points, or a state and a command at separate addresses.
+
+A switch whose points name roles reads `state` (a contact, `Q21.7`) and writes `command`
+(`M21.6`) as a level, or as a pulse for an impulse relay: sent only when the state differs.
+"""
 
 from __future__ import annotations
 
@@ -13,6 +17,7 @@ from homeassistant.components.switch import (  # type: ignore[attr-defined]
 from homeassistant.core import HomeAssistant
 from homeassistant.helpers.entity_platform import AddConfigEntryEntitiesCallback
 
+from .composite_entity import PlcCompositeEntity, async_setup_composites
 from .coordinator import PlcBridgeConfigEntry
 from .entity import (
     PlcPointDescription,
@@ -44,8 +49,8 @@ async def async_setup_entry(
     entry: PlcBridgeConfigEntry,
     async_add_entities: AddConfigEntryEntitiesCallback,
 ) -> None:
-    """Add a switch for each switch point."""
-    entry.runtime_data.points.async_setup_platform("switch", point_switch, async_add_entities)
+    """Add a switch for each switch point, and one for each state and command pair."""
+    async_setup_composites(entry, "switch", PlcPartsSwitch, async_add_entities, point_switch)
 
 
 class PlcSwitch(PlcPointEntity, SwitchEntity):
@@ -70,3 +75,20 @@ class PlcSwitch(PlcPointEntity, SwitchEntity):
         """Return the value that means on or off for the point's type, codes and invert."""
         description = self.entity_description
         return description.convert.state_value(on, boolean=description.kind is ValueKind.BOOL)
+
+
+class PlcPartsSwitch(PlcCompositeEntity, SwitchEntity):
+    """A switch with its state and its command at separate addresses."""
+
+    @property
+    def is_on(self) -> bool | None:
+        """The state read (its codes and invert applied)."""
+        return self.switched()
+
+    async def async_turn_on(self, **kwargs: Any) -> None:
+        """Switch on: the command's level, or a pulse if the state is off."""
+        await self.async_switch(True)
+
+    async def async_turn_off(self, **kwargs: Any) -> None:
+        """Switch off: the command's level, or a pulse if the state is on."""
+        await self.async_switch(False)

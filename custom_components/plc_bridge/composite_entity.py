@@ -1,0 +1,197 @@
+"""The base of entities built from several points: each part read, shown and written alone.
+
+A part whose read fails shows as unknown while the others keep showing; the entity is
+unavailable only when the PLC does not answer or none of its parts reads. Commands write
+their point's "on" value once, or pulse it (pulse.py: on, then off after the point's pulse
+time, a failed off-write retried and reported).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass
+from typing import Any
+
+from homeassistant.exceptions import HomeAssistantError
+from homeassistant.helpers.device_registry import DeviceInfo
+from homeassistant.helpers.entity import Entity
+from homeassistant.helpers.entity_platform import AddConfigEntryEntitiesCallback
+
+from .composite import Composite, composites, group_key
+from .const import DOMAIN
+from .conversion import Conversion
+from .coordinator import PlcBridgeConfigEntry
+from .entity import PlcEntity, point_fields
+from .plc import Point, PointResult, Value, ValueKind
+from .points import PointConfig, PointFactory, entry_points
+from .pulse import Pulse, pulse_seconds
+
+
+@dataclass(frozen=True, slots=True)
+class Part:
+    """One point of a composite entity: its address, what it holds and how it converts."""
+
+    config: PointConfig
+    point: Point
+    kind: ValueKind | None
+    conversion: Conversion
+    pulse: float
+
+    @property
+    def read_only(self) -> bool:
+        """True when Home Assistant must never write the part."""
+        return self.config.read_only
+
+    def level(self, *, on: bool) -> bool | int | float:
+        """Return the raw value that means on or off for this part (codes and invert applied)."""
+        return self.conversion.state_value(on, boolean=self.kind is ValueKind.BOOL)
+
+
+def part_of(entry: PlcBridgeConfigEntry, config: PointConfig) -> Part:
+    """Return a configured point as a part."""
+    fields = point_fields(entry, config)
+    pulse = pulse_seconds(config.data)
+    return Part(config, fields["point"], fields["kind"], fields["conversion"], pulse)
+
+
+type CompositeFactory = Callable[[PlcBridgeConfigEntry, Composite, dict[str, Part]], Entity]
+
+
+def async_setup_composites(
+    entry: PlcBridgeConfigEntry,
+    platform: str,
+    factory: CompositeFactory,
+    add: AddConfigEntryEntitiesCallback,
+    single: PointFactory | None = None,
+) -> None:
+    """Register a composite platform: one entity per group, made for the group's first point.
+
+    `single` makes the entity of a point of the platform that is no part (a plain switch).
+    """
+
+    def make(entry: PlcBridgeConfigEntry, config: PointConfig) -> Entity | list[Entity]:
+        """Return the entity of the group this point leads; none for its other points."""
+        if group_key(config) is None:
+            return [] if single is None else single(entry, config)
+        group = composites(entry_points(entry)).get(config.point_id)
+        if group is None:
+            return []
+        parts = {role: part_of(entry, member) for role, member in group.parts.items()}
+        return [factory(entry, group, parts)]
+
+    entry.runtime_data.points.async_setup_platform(platform, make, add)
+
+
+class PlcCompositeEntity(PlcEntity):
+    """An entity of several points of one device, named by the rows it was built from."""
+
+    def __init__(
+        self, entry: PlcBridgeConfigEntry, group: Composite, parts: dict[str, Part]
+    ) -> None:
+        """Bind the entity to its parts and to its device subentry's device."""
+        super().__init__(entry, group.key)
+        self._attr_name = group.name
+        self._attr_device_info = DeviceInfo(identifiers={(DOMAIN, group.subentry_id)})
+        self.parts = parts
+        self._key = group.key
+        self._pulses: dict[str, Pulse] = {}
+
+    def result(self, role: str) -> PointResult | None:
+        """The outcome of a part's point in the last poll, None without that part."""
+        part = self.parts.get(role)
+        return None if part is None else self.coordinator.data.values.get(part.point)
+
+    def raw(self, role: str) -> Value | None:
+        """A part's raw value; None without the part or while its read fails."""
+        result = self.result(role)
+        return result.value if result is not None and result.ok else None
+
+    def number(self, role: str) -> float | None:
+        """A part's value converted to what is shown; None where it has none."""
+        raw = self.raw(role)
+        if isinstance(raw, bool) or not isinstance(raw, int | float):
+            return None
+        return self.parts[role].conversion.shown(raw)
+
+    def label(self, role: str) -> str | None:
+        """The label of a part's value in its value map; None where it has none."""
+        part = self.parts.get(role)
+        return None if part is None else part.conversion.label(self.raw(role))
+
+    def on(self, role: str) -> bool | None:
+        """Whether a part reads as on (its codes and invert applied); None where unknown."""
+        part = self.parts.get(role)
+        return None if part is None else part.conversion.is_on(self.raw(role))
+
+    @property
+    def available(self) -> bool:
+        """Available while the PLC answers and at least one part reads."""
+        return super().available and any(
+            (result := self.result(role)) is not None and result.ok for role in self.parts
+        )
+
+    def observed(self) -> Any:
+        """Every part's outcome in the last poll."""
+        return tuple(self.result(role) for role in sorted(self.parts))
+
+    async def async_write_parts(self, values: dict[str, Value]) -> None:
+        """Write parts by role in one request (the coordinator's write guard checks each)."""
+        await self.coordinator.async_write(
+            {self.parts[role].point: values[role] for role in values}
+        )
+
+    async def async_command(self, role: str) -> None:
+        """Send a command part: its "on" value, and "off" after its pulse if it has one."""
+        part = self.parts[role]
+        pulse = self._pulses.get(role)
+        if pulse is None:
+            pulse = self._pulses[role] = Pulse(
+                self.coordinator.config_entry,
+                f"{self._key}_{role}",
+                name=f"{self.name} ({role})",
+                address=part.point.address,
+                write_off=lambda: self.async_write_parts({role: part.level(on=False)}),
+            )
+        pulse.cancel()
+        await self.async_write_parts({role: part.level(on=True)})
+        if part.pulse > 0:
+            pulse.start(self.hass, part.pulse)
+
+    def switched(self) -> bool | None:
+        """On or off: the `state` part, else what a level `command` part reads back."""
+        if "state" in self.parts:
+            return self.on("state")
+        command = self.parts.get("command")
+        return None if command is None or command.pulse else self.on("command")
+
+    async def async_switch(self, on: bool, also: dict[str, Value] | None = None) -> None:
+        """Switch on or off (with `also` written first): a level, or a pulse when the state differs.
+
+        An impulse relay toggles with each pulse, so a pulse is sent only when the state read
+        is the other one; with the state unknown nothing is sent.
+        """
+        values = dict(also or {})
+        command = self.parts.get("command")
+        if command is None or not command.pulse:
+            if command is not None:
+                values["command"] = command.level(on=on)
+            if values:
+                await self.async_write_parts(values)
+            return
+        state = self.on("state")
+        if state is None:
+            raise HomeAssistantError(
+                translation_domain=DOMAIN,
+                translation_key="state_unknown",
+                translation_placeholders={"name": str(self.name)},
+            )
+        if values:
+            await self.async_write_parts(values)
+        if state != on:
+            await self.async_command("command")
+
+    async def async_will_remove_from_hass(self) -> None:
+        """Removed (unload, reload, edit) mid-pulse: end the pulses now."""
+        for pulse in self._pulses.values():
+            await pulse.async_end_now()
+        await super().async_will_remove_from_hass()

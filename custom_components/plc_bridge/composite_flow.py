@@ -1,0 +1,203 @@
+"""The device flow's steps that add an entity from several addresses (composite.py).
+
+The kind and the name first; then an address (and a data type) for each part the kind
+has, every one optional; then, part by part, the settings of the single-address kind the
+part resembles (a command's pulse, a position's range, a mode's map). The parts join the
+machine's points only when every part and the whole entity pass the checks of the import.
+"""
+
+from __future__ import annotations
+
+import secrets
+from typing import Any
+
+from homeassistant.config_entries import ConfigSubentryFlow, SubentryFlowResult
+from homeassistant.const import CONF_NAME
+from homeassistant.helpers.selector import (
+    BooleanSelector,
+    SelectSelector,
+    SelectSelectorConfig,
+    SelectSelectorMode,
+    TextSelector,
+)
+import voluptuous as vol
+
+from .composite import INVERTIBLE, ROLES, as_platform, group_errors, part_data
+from .const import CONF_ADDRESS, CONF_DATA_TYPE, CONF_INVERT, CONF_PLATFORM, CONF_ROLE
+from .plc import PlcAddressError, PlcClient, Point
+from .point_form import BASE_FIELDS, check_point, details_schema, point_key
+from .point_table import first_type
+
+TYPE_SUFFIX = "_data_type"
+"""A part's data type field: its role's name and this."""
+
+
+class CompositeSteps(ConfigSubentryFlow):
+    """Steps of the device flow for an entity of several points (its handler's base)."""
+
+    _points: dict[str, dict[str, Any]]
+    _composite: dict[str, Any]
+    _parts: list[dict[str, Any]]
+    _made: list[dict[str, Any]]
+    _part_ids: list[str]
+
+    @property
+    def _client(self) -> type[PlcClient]:
+        """The client class of the entry's vendor (the handler's)."""
+        raise NotImplementedError
+
+    def _taken(self) -> set[Point]:
+        """Points of the PLC already used (the handler's)."""
+        raise NotImplementedError
+
+    async def async_step_menu(self, user_input: dict[str, Any] | None = None) -> SubentryFlowResult:
+        """The device flow's menu (the handler's)."""
+        raise NotImplementedError
+
+    async def async_step_composite(
+        self, user_input: dict[str, Any] | None = None
+    ) -> SubentryFlowResult:
+        """The kind of entity and its name."""
+        errors: dict[str, str] = {}
+        if user_input is not None:
+            name = str(user_input.get(CONF_NAME, "")).strip()
+            platform = str(user_input[CONF_PLATFORM])
+            taken = any(
+                (data[CONF_NAME], data[CONF_PLATFORM]) == (name, platform)
+                for data in self._points.values()
+            )
+            if not name:
+                errors[CONF_NAME] = "name_required"
+            elif taken:
+                errors[CONF_NAME] = "composite_name_taken"
+            else:
+                self._composite = {CONF_NAME: name, CONF_PLATFORM: platform}
+                return await self.async_step_composite_parts()
+        schema = vol.Schema(
+            {
+                vol.Required(CONF_PLATFORM, default="cover"): SelectSelector(
+                    SelectSelectorConfig(options=list(ROLES), translation_key="composite_platform")
+                ),
+                vol.Required(CONF_NAME): TextSelector(),
+            }
+        )
+        return self.async_show_form(
+            step_id="composite",
+            data_schema=self.add_suggested_values_to_schema(schema, user_input or {}),
+            errors=errors,
+        )
+
+    async def async_step_composite_parts(
+        self, user_input: dict[str, Any] | None = None
+    ) -> SubentryFlowResult:
+        """An address (and its data type) for each part of the kind; leave out those it lacks."""
+        platform = self._composite[CONF_PLATFORM]
+        errors: dict[str, str] = {}
+        placeholders = {"error": "", "name": self._composite[CONF_NAME], "role": ""}
+        placeholders |= {CONF_ADDRESS: "", CONF_DATA_TYPE: ""}
+        placeholders["roles"] = ", ".join(ROLES[platform])
+        if user_input is not None:
+            parts = self._given(platform, user_input, errors, placeholders)
+            problems = group_errors(parts)
+            if not errors and problems:
+                errors["base"] = problems[0][1]
+                placeholders |= problems[0][2]
+            if not errors:
+                self._parts, self._made = parts, []
+                return await self.async_step_composite_part()
+        fields: dict[vol.Marker, Any] = {}
+        types = list(self._client.data_types)
+        for role in ROLES[platform]:
+            fields[vol.Optional(role)] = TextSelector()
+            fields[vol.Optional(f"{role}{TYPE_SUFFIX}")] = SelectSelector(
+                SelectSelectorConfig(
+                    options=types,
+                    translation_key=CONF_DATA_TYPE,
+                    mode=SelectSelectorMode.DROPDOWN,
+                    custom_value=True,
+                )
+            )
+        return self.async_show_form(
+            step_id="composite_parts",
+            data_schema=self.add_suggested_values_to_schema(vol.Schema(fields), user_input or {}),
+            errors=errors,
+            description_placeholders=placeholders,
+        )
+
+    def _given(
+        self,
+        platform: str,
+        user_input: dict[str, Any],
+        errors: dict[str, str],
+        placeholders: dict[str, str],
+    ) -> list[dict[str, Any]]:
+        """Return the parts given an address, each checked as the kind it resembles."""
+        parts: list[dict[str, Any]] = []
+        taken = self._taken()
+        for role in ROLES[platform]:
+            address = str(user_input.get(role) or "").strip()
+            if not address:
+                continue
+            data_type = str(user_input.get(f"{role}{TYPE_SUFFIX}") or "").strip()
+            data_type = data_type or first_type(self._client, address)
+            values = {
+                **self._composite,
+                CONF_ROLE: role,
+                CONF_ADDRESS: address,
+                CONF_DATA_TYPE: data_type,
+            }
+            point, _, found, details = check_point(
+                self._client, {**values, CONF_PLATFORM: as_platform(platform, role)}
+            )
+            if point is not None and point in taken | {point_key(part) for part in parts}:
+                found[CONF_ADDRESS] = "already_configured"
+            if found:
+                errors[role] = next(iter(found.values()))
+                placeholders |= details
+                continue
+            assert point is not None
+            parts.append({**values, CONF_ADDRESS: point.address, CONF_DATA_TYPE: point.data_type})
+        return parts
+
+    async def async_step_composite_part(
+        self, user_input: dict[str, Any] | None = None
+    ) -> SubentryFlowResult:
+        """The settings of one part, as its resembling kind has them; then the next part."""
+        values = self._parts[len(self._made)]
+        role, platform = values[CONF_ROLE], values[CONF_PLATFORM]
+        errors: dict[str, str] = {}
+        placeholders = {"role": role, "units": "", "pair": "", "error": "", "platform": platform}
+        placeholders |= {key: values[key] for key in (CONF_ADDRESS, CONF_DATA_TYPE, CONF_NAME)}
+        if user_input is not None:
+            base = {key: values[key] for key in (*BASE_FIELDS, CONF_ROLE)}
+            data, errors, found = part_data(self._client, base | user_input)
+            placeholders |= found
+            if not errors:
+                self._made.append(data)
+                if len(self._made) < len(self._parts):
+                    return await self.async_step_composite_part()
+                ids = self._part_ids or [secrets.token_hex(6) for _ in self._made]
+                self._points |= dict(zip(ids, self._made, strict=True))
+                self._parts, self._made, self._part_ids = [], [], []
+                return await self.async_step_menu()
+        shown = as_platform(platform, role)
+        try:
+            kind = self._client.value_kind(Point(values[CONF_ADDRESS], values[CONF_DATA_TYPE]))
+        except PlcAddressError:
+            kind = None
+        schema = details_schema(shown, kind)
+        if role in INVERTIBLE:
+            schema = schema.extend({vol.Required(CONF_INVERT, default=False): BooleanSelector()})
+        return self.async_show_form(
+            step_id="composite_part",
+            data_schema=self.add_suggested_values_to_schema(schema, user_input or values),
+            errors=errors,
+            description_placeholders=placeholders,
+        )
+
+    async def async_edit_part(self, point_id: str) -> SubentryFlowResult:
+        """Edit the settings of one part (its address: remove it and add it again)."""
+        data = self._points[point_id]
+        self._composite = {CONF_NAME: data[CONF_NAME], CONF_PLATFORM: data[CONF_PLATFORM]}
+        self._parts, self._made, self._part_ids = [dict(data)], [], [point_id]
+        return await self.async_step_composite_part()

@@ -1,0 +1,184 @@
+"""Covers built from several points: commands, position, limit switches or a status map.
+
+Roles (one point each, every one optional, one at least): `open`, `close`, `stop` (commands
+written as a level or a pulse), `position` (read, 0-100 % through the point's linear range;
+written too unless read only and no `set_position` is given), `set_position`, `open_limit`
+and `closed_limit` (limit switches), `status` (a value map onto open, closed, opening,
+closing), `tilt_position` and `set_tilt_position` (as the position), `step` (one step-relay
+button: open, close and stop each send its pulse). `invert` on a position point makes 0 %
+open. Without open or close commands, a settable position opens to 100 % and closes to 0 %.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+from homeassistant.components.cover import (
+    ATTR_POSITION,
+    ATTR_TILT_POSITION,
+    CoverDeviceClass,
+    CoverEntity,
+    CoverEntityFeature,
+)
+from homeassistant.const import CONF_DEVICE_CLASS
+from homeassistant.core import HomeAssistant
+from homeassistant.helpers.entity_platform import AddConfigEntryEntitiesCallback
+
+from .composite import Composite
+from .composite_entity import Part, PlcCompositeEntity, async_setup_composites
+from .coordinator import PlcBridgeConfigEntry
+from .plc import ValueKind
+
+PARALLEL_UPDATES = 1
+FULL = 100
+
+
+async def async_setup_entry(
+    hass: HomeAssistant,
+    entry: PlcBridgeConfigEntry,
+    async_add_entities: AddConfigEntryEntitiesCallback,
+) -> None:
+    """Add a cover for each group of cover points."""
+    async_setup_composites(entry, "cover", PlcCover, async_add_entities)
+
+
+class Travel(PlcCompositeEntity):
+    """What covers and valves share: commands, a position, limit switches, a status map."""
+
+    def _travel_features(self) -> tuple[bool, bool, bool, bool]:
+        """Whether it can open, close, stop, and be set to a position."""
+        settable = self._setter() is not None
+        parts = self.parts
+        step = "step" in parts
+        return (
+            settable or step or "open" in parts,
+            settable or step or "close" in parts,
+            step or "stop" in parts,
+            settable,
+        )
+
+    def _setter(self, role: str = "position") -> str | None:
+        """The role that takes a position: `set_position`, else a writable `position`."""
+        if f"set_{role}" in self.parts:
+            return f"set_{role}"
+        position = self.parts.get(role)
+        return role if position is not None and not position.read_only else None
+
+    def _inverted(self, role: str) -> bool:
+        """True when the part counts 0 as open."""
+        return self.parts[role].conversion.invert
+
+    def _position(self, role: str = "position") -> int | None:
+        """The position read, 0 closed to 100 open."""
+        value = self.number(role)
+        if value is None:
+            return None
+        position = round(min(max(value, 0), FULL))
+        return FULL - position if self._inverted(role) else position
+
+    def _closed(self) -> bool | None:
+        """Closed by the closed limit, the status map, or a position of 0; None if unknown."""
+        if self.on("closed_limit"):
+            return True
+        if self.on("open_limit"):
+            return False
+        if "closed_limit" in self.parts and self.on("closed_limit") is False:
+            return False
+        if (status := self.label("status")) is not None:
+            return status == "closed"
+        position = self._position()
+        return None if position is None else position == 0
+
+    async def _async_move(self, role: str, position: int | None) -> None:
+        """Send the command, else a step relay's pulse, else move to the position."""
+        if role in self.parts:
+            await self.async_command(role)
+        elif "step" in self.parts:
+            await self.async_command("step")
+        elif position is not None:
+            await self._async_set_position(position)
+
+    async def _async_set_position(self, position: float, which: str = "position") -> None:
+        """Write the position through the part's range (refused outside it, nothing sent)."""
+        role = self._setter(which)
+        if role is None:
+            return
+        part = self.parts[role]
+        if self._inverted(role):
+            position = FULL - position
+        raw = part.conversion.raw(position, integer=part.kind is ValueKind.INTEGER)
+        await self.async_write_parts({role: raw})
+
+
+class PlcCover(Travel, CoverEntity):
+    """A cover whose parts are points of one machine."""
+
+    def __init__(
+        self, entry: PlcBridgeConfigEntry, group: Composite, parts: dict[str, Part]
+    ) -> None:
+        """Work out what the cover can do from the parts it has."""
+        super().__init__(entry, group, parts)
+        features = CoverEntityFeature(0)
+        flags = (
+            CoverEntityFeature.OPEN,
+            CoverEntityFeature.CLOSE,
+            CoverEntityFeature.STOP,
+            CoverEntityFeature.SET_POSITION,
+        )
+        for flag, present in zip(flags, self._travel_features(), strict=True):
+            if present:
+                features |= flag
+        if self._setter("tilt_position") is not None:
+            features |= CoverEntityFeature.SET_TILT_POSITION
+        self._attr_supported_features = features
+        for part in parts.values():
+            try:
+                self._attr_device_class = CoverDeviceClass(part.config.data[CONF_DEVICE_CLASS])
+                break
+            except (KeyError, ValueError):
+                continue
+
+    @property
+    def current_cover_position(self) -> int | None:
+        """The position read, 0 closed to 100 open."""
+        return self._position()
+
+    @property
+    def is_closed(self) -> bool | None:
+        """Closed by the closed limit, the status map, or a position of 0; None if unknown."""
+        return self._closed()
+
+    @property
+    def is_opening(self) -> bool:
+        """True while the status map says opening."""
+        return self.label("status") == "opening"
+
+    @property
+    def is_closing(self) -> bool:
+        """True while the status map says closing."""
+        return self.label("status") == "closing"
+
+    async def async_open_cover(self, **kwargs: Any) -> None:
+        """Send the open command, or move to 100 %."""
+        await self._async_move("open", FULL)
+
+    async def async_close_cover(self, **kwargs: Any) -> None:
+        """Send the close command, or move to 0 %."""
+        await self._async_move("close", 0)
+
+    async def async_stop_cover(self, **kwargs: Any) -> None:
+        """Send the stop command (a step relay: its pulse)."""
+        await self._async_move("stop", None)
+
+    @property
+    def current_cover_tilt_position(self) -> int | None:
+        """The tilt read, 0 closed to 100 open."""
+        return self._position("tilt_position")
+
+    async def async_set_cover_tilt_position(self, **kwargs: Any) -> None:
+        """Write the tilt through its part's range."""
+        await self._async_set_position(float(kwargs[ATTR_TILT_POSITION]), "tilt_position")
+
+    async def async_set_cover_position(self, **kwargs: Any) -> None:
+        """Write the position through the part's range."""
+        await self._async_set_position(float(kwargs[ATTR_POSITION]))
