@@ -20,7 +20,7 @@ from homeassistant.const import (
     STATE_UNKNOWN,
     Platform,
 )
-from homeassistant.core import Event, EventStateChangedData, HomeAssistant
+from homeassistant.core import Event, EventStateChangedData, HomeAssistant, callback
 from homeassistant.exceptions import ServiceValidationError
 from homeassistant.helpers import entity_registry as er
 from homeassistant.helpers.event import async_track_state_change_event
@@ -200,6 +200,7 @@ async def test_alarm_word(
     """Each named bit is a binary sensor; the event entity fires raised and cleared by name."""
     fired: list[tuple[str, str]] = []
 
+    @callback
     def seen(event: Event[EventStateChangedData]) -> None:
         state = event.data["new_state"]
         if state is not None and "event_type" in state.attributes:
@@ -214,6 +215,7 @@ async def test_alarm_word(
     await refresh(machines)
     assert hass.states.get("binary_sensor.s7_200_smart_overheat").state == STATE_OFF
     assert hass.states.get("binary_sensor.s7_200_smart_low_water").state == STATE_ON
+    await hass.async_block_till_done()  # 2026.2 hands state changes to trackers a loop later
     assert fired == [("raised", "Overheat"), ("cleared", "Overheat"), ("raised", "Low water")]
     assert s7_smart_sim.calls["read"] - reads == 2  # one read per poll for every kind
 
