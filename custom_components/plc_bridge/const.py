@@ -5,6 +5,8 @@ from __future__ import annotations
 import logging
 from typing import Final
 
+from homeassistant.const import Platform
+
 DOMAIN: Final = "plc_bridge"
 LOGGER = logging.getLogger(__package__)
 
@@ -31,6 +33,14 @@ CONF_MIN: Final = "min"
 CONF_MAX: Final = "max"
 CONF_STEP: Final = "step"
 
+PLATFORMS: Final = [
+    Platform.BINARY_SENSOR,
+    Platform.DATETIME,
+    Platform.NUMBER,
+    Platform.SENSOR,
+    Platform.SWITCH,
+    Platform.TEXT,
+]
 POINT_PLATFORMS: Final = ("sensor", "binary_sensor", "switch", "number", "datetime", "text")
 
 ATTR_CONFIG_ENTRY_ID: Final = "config_entry_id"

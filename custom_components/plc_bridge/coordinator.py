@@ -4,18 +4,17 @@ from __future__ import annotations
 
 from collections import deque
 from collections.abc import Mapping
-from dataclasses import replace
 from datetime import datetime, timedelta
 from typing import TYPE_CHECKING
 
 from homeassistant.const import CONF_SCAN_INTERVAL
-from homeassistant.core import HomeAssistant
+from homeassistant.core import HomeAssistant, callback
 from homeassistant.exceptions import (
     ConfigEntryAuthFailed,
     ConfigEntryNotReady,
     HomeAssistantError,
 )
-from homeassistant.helpers.update_coordinator import DataUpdateCoordinator, UpdateFailed
+from homeassistant.helpers.update_coordinator import UpdateFailed
 
 from .const import CONF_TLS, DOMAIN, LOGGER
 from .helpers import check_can_write, translated_errors
@@ -33,6 +32,7 @@ from .plc import (
     TlsMode,
     Value,
 )
+from .polling import PollingCoordinator
 from .repairs import (
     CERTIFICATE_CHANGED,
     SESSION_CONFLICT,
@@ -84,10 +84,8 @@ def link_error(
     )
 
 
-class PlcCoordinator(DataUpdateCoordinator[ReadResult]):
+class PlcCoordinator(PollingCoordinator):
     """Poll every point of one PLC in one planned read, and write through the same client."""
-
-    config_entry: PlcBridgeConfigEntry
 
     def __init__(
         self,
@@ -97,8 +95,7 @@ class PlcCoordinator(DataUpdateCoordinator[ReadResult]):
         points: Mapping[str, PointConfig],
     ) -> None:
         """Collect the points and choose the poll interval the vendor's request rate allows."""
-        self.client = client
-        super().__init__(hass, LOGGER, config_entry=entry, name=entry.title)
+        super().__init__(hass, entry, client)
         self._set_points(points)
         self._failing: set[Point] = set()
         # The others stay open until their point reads, even those a previous setup raised.
@@ -124,16 +121,17 @@ class PlcCoordinator(DataUpdateCoordinator[ReadResult]):
         # A removed point's issue goes with it.
         async_clear_point_issues(self.hass, self.config_entry, keep=self.points)
 
-    async def async_set_points(self, points: Mapping[str, PointConfig]) -> None:
-        """Follow edited points: poll the new set at once, so new entities show a value."""
+    @callback
+    def async_set_points(self, points: Mapping[str, PointConfig]) -> None:
+        """Follow edited points; the new ones are read together once the edits pause."""
         self._set_points(points)
         self._unknown &= set(self.points)
-        await self.async_refresh()
+        self._queue_edited()
 
     async def _async_update_data(self) -> ReadResult:
         """Read every point at once; a point's own failure stays in its result."""
         try:
-            result = await self.client.read(self._poll)
+            result = await self._read_poll()
         except PlcError as err:
             raise link_error(self.hass, self.config_entry, err, setup=False) from err
         finally:
@@ -217,8 +215,7 @@ class PlcCoordinator(DataUpdateCoordinator[ReadResult]):
             if result.ok and result.value is not None and point in self.data.values
         }
         if taken:
-            self.data = replace(self.data, values={**self.data.values, **taken})
-            self.async_update_listeners()
+            self._show(taken)
         await self.async_request_refresh()
         failed = [f"{point.address}: {res.error}" for point, res in results.items() if res.error]
         if failed:

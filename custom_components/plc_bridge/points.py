@@ -174,5 +174,5 @@ class PointEntities:
                     await entity.async_remove()  # keeps its registry entry: same id, history
             self.configs = new
             async_register_devices(hass, entry, plc_device, self.areas)
-            await entry.runtime_data.coordinator.async_set_points(new)
+            entry.runtime_data.coordinator.async_set_points(new)
             self._add([config for pid, config in new.items() if old.get(pid) != config])
