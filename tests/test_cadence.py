@@ -244,3 +244,31 @@ async def test_options_form_shows_the_real_cycle(
     result = await hass.config_entries.options.async_init(entry.entry_id)
     assert result["description_placeholders"]["cycle"] == "32"
     assert result["description_placeholders"]["minimum"] == "32"
+
+
+async def test_many_changes_update_in_slices(
+    hass: HomeAssistant,
+    s7_smart_sim: S7SmartSimulator,
+    freezer: FrozenDateTimeFactory,
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    """A poll that changed more points than a slice updates them over several loop turns."""
+    monkeypatch.setattr(polling, "UPDATE_SLICE", 2)
+    entry = make_entry(hass, s7_smart_sim, words(5))
+    assert await hass.config_entries.async_setup(entry.entry_id)
+    coordinator = entry.runtime_data.coordinator
+    slices: list[int] = []
+    original = coordinator._update
+
+    def counting(updates: list[Any]) -> None:
+        slices.append(len(updates))
+        original(updates)
+
+    monkeypatch.setattr(coordinator, "_update", counting)
+    for index in range(5):
+        s7_smart_sim.set(f"VW{2 * index}", 10 + index)
+    await poll(hass, freezer)
+    assert max(slices) == 2
+    assert sum(slices) >= 5
+    for index in range(5):
+        assert hass.states.get(f"sensor.s7_200_smart_word_{index}").state == str(10 + index)

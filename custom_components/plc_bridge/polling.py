@@ -7,6 +7,7 @@ and after a poll only the entities whose point changed (and the PLC's own) are u
 
 from __future__ import annotations
 
+import asyncio
 from collections.abc import Callable, Mapping
 from dataclasses import replace
 
@@ -21,6 +22,8 @@ FIRST_POLL_PACING = 2.0
 """Seconds of vendor pacing a setup waits for: a PLC paced slower shows its first points then."""
 EDIT_DELAY = 1.0
 """Seconds after the last edit before the points edits added are read (in one read)."""
+UPDATE_SLICE = 200
+"""Entities a poll updates in one turn of the event loop (a state write costs ~50 µs)."""
 
 
 def changed(before: Mapping[Point, PointResult], after: Mapping[Point, PointResult]) -> set[Point]:
@@ -198,12 +201,30 @@ class PollingCoordinator(DataUpdateCoordinator[ReadResult]):
         Every entity is updated after a failed poll, a recovery and the first poll.
         """
         changes, self._changed = self._changed, None
-        if changes is None:
-            super().async_update_listeners()
+        updates = [
+            update
+            for update, point in self._listeners.values()
+            if changes is None or point is None or point in changes
+        ]
+        if len(updates) <= UPDATE_SLICE:
+            self._update(updates)
             return
-        for update, point in list(self._listeners.values()):
-            if point is None or point in changes:
-                try:
-                    update()
-                except Exception:
-                    LOGGER.exception("Unexpected error updating an entity of %s", self.name)
+        self.config_entry.async_create_task(
+            self.hass, self._async_update_in_slices(updates), f"{self.name} updates"
+        )
+
+    async def _async_update_in_slices(self, updates: list[CALLBACK_TYPE]) -> None:
+        """Update the entities UPDATE_SLICE at a time, letting the loop run in between."""
+        for start in range(0, len(updates), UPDATE_SLICE):
+            if start:
+                await asyncio.sleep(0)
+            self._update(updates[start : start + UPDATE_SLICE])
+
+    @callback
+    def _update(self, updates: list[CALLBACK_TYPE]) -> None:
+        """Call these entities' updates (each writes its state if what it shows changed)."""
+        for update in updates:
+            try:
+                update()
+            except Exception:
+                LOGGER.exception("Unexpected error updating an entity of %s", self.name)
