@@ -134,9 +134,10 @@ VENDORS: dict[str, Vendor] = {
 class Simulator:
     """A simulator in a subprocess, driven over its --control pipe."""
 
-    def __init__(self, vendor: str) -> None:
-        """Remember the vendor; `start` launches it."""
+    def __init__(self, vendor: str, points: int = 1000) -> None:
+        """Remember the vendor and how many points it must hold; `start` launches it."""
         self.vendor = vendor
+        self.points = points
         self.info: dict[str, Any] = {}
         self._process: asyncio.subprocess.Process | None = None
         self._log: IO[bytes] | None = None  # the simulator's own logging, shown if it fails
@@ -145,7 +146,7 @@ class Simulator:
         """Launch the simulator on a free loopback port; False when it has none."""
         self._log = tempfile.TemporaryFile()  # noqa: SIM115 - closed in stop()
         self._process = await asyncio.create_subprocess_exec(
-            *(sys.executable, "-m", "bench.serve", self.vendor),
+            *(sys.executable, "-m", "bench.serve", self.vendor, str(self.points)),
             cwd=ROOT,
             stdin=asyncio.subprocess.PIPE,
             stdout=asyncio.subprocess.PIPE,
@@ -280,7 +281,7 @@ async def bench_vendor(vendor: str, sizes: list[int], polls: int) -> list[dict[s
     except Exception as err:  # a guessed address syntax: say so and go on
         print(f"{vendor}: skipped, its benchmark points do not validate: {err}", file=sys.stderr)
         return []
-    simulator = Simulator(vendor)
+    simulator = Simulator(vendor, max(sizes))
     if not await simulator.start():
         return []
     client = make_client(vendor, simulator.info)
@@ -290,6 +291,7 @@ async def bench_vendor(vendor: str, sizes: list[int], polls: int) -> list[dict[s
         for size, points in samples.items():
             row = {"vendor": vendor, "points": size, "naive_requests": size}
             row |= await measure(client, simulator, points, polls)
+            row["cpu_ms_per_1000_points"] = round(row["cpu_ms_per_poll"] * 1000 / size, 2)
             row["target_requests"] = spec.target(size) if spec.target else None
             if spec.items is not None:
                 row["data_items"] = spec.items(points)
@@ -303,15 +305,16 @@ async def bench_vendor(vendor: str, sizes: list[int], polls: int) -> list[dict[s
 def table(rows: list[dict[str, Any]], command: str) -> str:
     """Return the rows as a text table, with the command and the targets."""
     head = ("vendor", "points", "requests/poll", "target", "naive", "poll ms", "CPU ms/poll")
-    head += ("protocol CPU ms",)
+    head += ("protocol CPU ms", "CPU ms/1k pts")
     lines = [f"$ {command}", f"# Python {platform.python_version()}, {platform.machine()}", ""]
     lines.append(f"{head[0]:<9}{head[1]:>7}{head[2]:>15}{head[3]:>8}{head[4]:>7}")
-    lines[-1] += f"{head[5]:>9}{head[6]:>13}{head[7]:>17}"
+    lines[-1] += f"{head[5]:>9}{head[6]:>13}{head[7]:>17}{head[8]:>15}"
     for row in rows:
         target = "-" if row["target_requests"] is None else str(row["target_requests"])
         line = f"{row['vendor']:<9}{row['points']:>7}{row['requests_per_poll']:>15}{target:>8}"
         line += f"{row['naive_requests']:>7}{row['poll_ms']:>9.2f}{row['cpu_ms_per_poll']:>13.2f}"
         line += f"{row['protocol_cpu_ms_per_poll']:>17.2f}"
+        line += f"{row['cpu_ms_per_1000_points']:>15.2f}"
         if row.get("data_items") is not None:
             line += f"   ({row['data_items']} <data> items for {row['points']} points)"
         if row["failed_points"]:
@@ -416,7 +419,8 @@ def main() -> int:
     if args.json:
         keys = ("vendor", "points", "requests_per_poll", "naive_requests", "poll_ms")
         for row in rows:
-            extra = ("cpu_ms_per_poll", "protocol_cpu_ms_per_poll", "data_items")
+            extra = ("cpu_ms_per_poll", "cpu_ms_per_1000_points", "protocol_cpu_ms_per_poll")
+            extra += ("data_items",)
             print(json.dumps({key: row[key] for key in (*keys, *extra) if key in row}))
         for result in [*keepalive, *(checks if isinstance(checks, list) else [])]:
             print(json.dumps(result))
