@@ -139,8 +139,13 @@ class PlcCoordinator(PollingCoordinator):
         if self.config_entry.data.get(CONF_TLS) == TlsMode.PIN:
             async_clear_issue(self.hass, self.config_entry, CERTIFICATE_CHANGED)
         self._log_point_changes(result)
-        self._watch_addresses(result)
+        self._watch_addresses(result, self._failing)
         return result
+
+    def _watch_points(self, result: ReadResult) -> None:
+        """Raise or clear the issues of the points edits added, as a poll would."""
+        failing = {point for point, outcome in result.values.items() if not outcome.ok}
+        self._watch_addresses(result, failing)
 
     def _log_point_changes(self, result: ReadResult) -> None:
         """Log a point when it starts failing and when it recovers, not at every poll."""
@@ -157,12 +162,14 @@ class PlcCoordinator(PollingCoordinator):
             LOGGER.info("%s: %s (%s) can be read again", self.name, point.address, point.data_type)
         self._failing = failing
 
-    def _watch_addresses(self, result: ReadResult) -> None:
+    def _watch_addresses(self, result: ReadResult, failing: set[Point]) -> None:
         """Raise one issue per point whose address the PLC does not know; clear it once it reads.
 
         Vendor-neutral: any PlcAddressError counts, whether the point read fine before (a
         renamed PLC variable) or fails at every poll; the other points are read regardless.
         """
+        if not failing and not self._unknown:
+            return  # every point read and no issue is open: nothing to look at
         for point_id, point in self.points.items():
             outcome = result.values.get(point)
             if outcome is None:

@@ -176,7 +176,11 @@ class PollingCoordinator(DataUpdateCoordinator[ReadResult]):
         except PlcError as err:
             LOGGER.debug("%s: edited points wait for the next poll: %s", self.name, err)
             return
+        self._watch_points(result)
         self._show(result.values)
+
+    def _watch_points(self, result: ReadResult) -> None:
+        """Look at the outcome of the points edits added (the coordinator raises issues)."""
 
     @callback
     def _cancel_edit_read(self) -> None:
