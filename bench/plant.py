@@ -66,6 +66,8 @@ def text(result: dict[str, Any], command: str, load: tuple[float, ...]) -> str:
         f" pacing {result['pacing_s']} s, {result['changing_per_plc']} values changing per PLC,"
         f" {faults}),"
         f" {result['minutes']} min of polling after the start-up",
+        f"first start (entities registered anew) returned after"
+        f" {result['first_setup_returned_s']} s; then as after a restart:",
         f"setup returned after {result['setup_returned_s']} s; every entity registered after"
         f" {result['all_registered_s']} s (target <= {TARGETS['registered']:g} s); all available"
         f" after {result['all_available_s']} s",
