@@ -272,3 +272,19 @@ async def test_many_changes_update_in_slices(
     assert sum(slices) >= 5
     for index in range(5):
         assert hass.states.get(f"sensor.s7_200_smart_word_{index}").state == str(10 + index)
+
+
+async def test_quiet_poll_keeps_its_results(
+    hass: HomeAssistant, s7_smart_sim: S7SmartSimulator, freezer: FrozenDateTimeFactory
+) -> None:
+    """Unchanged values keep the result objects of the poll before; a changed one is new."""
+    entry = make_entry(hass, s7_smart_sim, words(3))
+    assert await hass.config_entries.async_setup(entry.entry_id)
+    coordinator = entry.runtime_data.coordinator
+    before = dict(coordinator.data.values)
+    s7_smart_sim.set("VW2", 5)
+    await poll(hass, freezer)
+    after = coordinator.data.values
+    assert after[Point("VW0", "signed")] is before[Point("VW0", "signed")]
+    assert after[Point("VW2", "signed")] is not before[Point("VW2", "signed")]
+    assert after[Point("VW2", "signed")].value == 5

@@ -29,9 +29,24 @@ UPDATE_SLICE = 200
 """Entities a poll updates in one turn of the event loop (a state write costs ~50 µs)."""
 
 
-def changed(before: Mapping[Point, PointResult], after: Mapping[Point, PointResult]) -> set[Point]:
-    """Return the points whose value or error differs between two polls."""
-    return {point for point, result in after.items() if before.get(point) != result}
+def compared(
+    before: Mapping[Point, PointResult], after: Mapping[Point, PointResult]
+) -> tuple[dict[Point, PointResult], set[Point]]:
+    """Return the results of `after`, the unchanged ones as kept from `before`, and what changed.
+
+    A kept result is an object that already survived garbage collections: a quiet poll then
+    leaves nothing new behind for the next full collection to walk.
+    """
+    values: dict[Point, PointResult] = {}
+    changes: set[Point] = set()
+    for point, result in after.items():
+        old = before.get(point)
+        if old is not None and old == result:
+            values[point] = old
+        else:
+            values[point] = result
+            changes.add(point)
+    return values, changes
 
 
 class PollingCoordinator(DataUpdateCoordinator[ReadResult]):
@@ -93,8 +108,10 @@ class PollingCoordinator(DataUpdateCoordinator[ReadResult]):
         if self.data is not None:
             if points is not self._poll:
                 result = self._carry_over(result)
+            values, changes = compared(self.data.values, result.values)
+            result = replace(result, values=values)
             if self.last_update_success:
-                self._changed = changed(self.data.values, result.values)
+                self._changed = changes
         return result
 
     def _carry_over(self, result: ReadResult) -> ReadResult:
