@@ -250,7 +250,7 @@ async def test_plant(hass: HomeAssistant, monkeypatch: pytest.MonkeyPatch) -> No
     await asyncio.gather(*(hass.config_entries.async_setup(e.entry_id) for e in entries))
     setup_s = time.perf_counter() - started
     registered_s = available_s = None
-    while time.perf_counter() - started < 300:
+    while time.perf_counter() - started < 90:  # with faults, some PLC may be away: go on
         states = [s for s in hass.states.async_all("sensor") if "_machine_" in s.entity_id]
         if registered_s is None and len(states) == total:
             registered_s = time.perf_counter() - started
