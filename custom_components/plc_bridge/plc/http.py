@@ -267,15 +267,17 @@ class HttpTransport:
             **arguments,
         ) as response:
             body = await _read_capped(response, self._max_body)
-            # Headers are never logged: they carry the Authorization and the Cookie.
-            _LOGGER.debug(
-                "%s %s %s %s -> %s in %.0f ms: %s",
-                self._config.host,
-                method,
-                path,
-                shown(arguments["data"], self._secret),
-                response.status,
-                (time.monotonic() - started) * 1000,
-                shown(body, self._secret),
-            )
+            # Masking runs over the whole body: only when the debug log is on.
+            if _LOGGER.isEnabledFor(logging.DEBUG):
+                # Headers are never logged: they carry the Authorization and the Cookie.
+                _LOGGER.debug(
+                    "%s %s %s %s -> %s in %.0f ms: %s",
+                    self._config.host,
+                    method,
+                    path,
+                    shown(arguments["data"], self._secret),
+                    response.status,
+                    (time.monotonic() - started) * 1000,
+                    shown(body, self._secret),
+                )
             return response.status, response.headers, body
