@@ -11,9 +11,7 @@ from __future__ import annotations
 import argparse
 import asyncio
 from collections.abc import Callable
-from dataclasses import dataclass
 import json
-import math
 from pathlib import Path
 import platform
 import shlex
@@ -31,112 +29,19 @@ from custom_components.plc_bridge.plc import ConnectionConfig, PlcClient, Point,
 from custom_components.plc_bridge.plc.http import HttpTransport
 from custom_components.plc_bridge.plc.vendors import VENDORS as ALL_VENDORS, client_class
 
+from .points import VENDORS
+
 ROOT = Path(__file__).resolve().parent.parent
 CPU_TARGET_MS = 10.0  # per 1,000-point poll
-
-
-def s7_smart_points(count: int) -> list[Point]:
-    """A realistic mix laid out in V memory: REALs, INTs, bits and bytes."""
-    points: list[Point] = []
-    offset = 0
-    for index in range(count):
-        match index % 4:
-            case 0:
-                points.append(Point(f"VD{offset}", "float"))
-                offset += 4
-            case 1:
-                points.append(Point(f"VW{offset}", "signed"))
-                offset += 2
-            case 2:
-                points.append(Point(f"V{offset}.{index % 8}", "signed"))
-                offset += 1
-            case _:
-                points.append(Point(f"VB{offset}", "unsigned"))
-                offset += 1
-    return points
-
-
-def tecomat_points(count: int) -> list[Point]:
-    """Variables named as the Tecomat simulator is expected to publish them (adjust with it)."""
-    return [Point(f"BENCH.V{index}", "INT") for index in range(count)]
-
-
-def s7_points(count: int) -> list[Point]:
-    """The same mix as for the S7-200 SMART, laid out in data block 1."""
-    points: list[Point] = []
-    offset = 0
-    for index in range(count):
-        match index % 4:
-            case 0:
-                points.append(Point(f"DB1.DBD{offset}", "REAL"))
-                offset += 4
-            case 1:
-                points.append(Point(f"DB1.DBW{offset}", "INT"))
-                offset += 2
-            case 2:
-                points.append(Point(f"DB1.DBX{offset}.{index % 8}", "BOOL"))
-                offset += 1
-            case _:
-                points.append(Point(f"DB1.DBB{offset}", "BYTE"))
-                offset += 1
-    return points
-
-
-def softplc_points(count: int) -> list[Point]:
-    """A mix in the SoftPLC simulator's bench files: words, floats, bits, timer words, gaps.
-
-    Every fifth word of N10 is skipped and F11 is read at every third element, so that the
-    planner's merging of nearby elements shows in the `<data>` items per poll.
-    """
-    points: list[Point] = []
-    for index in range(count):
-        match index % 4:
-            case 0:
-                points.append(Point(f"N10:{index // 4 * 5 // 4}", "INT"))
-            case 1:
-                points.append(Point(f"F11:{index * 3 % 1000}", "REAL"))
-            case 2:
-                points.append(Point(f"B12:{index // 16}/{index % 16}", "BOOL"))
-            case _:
-                points.append(Point(f"T13:{index}.ACC", "INT"))
-    return points
-
-
-def plcnext_points(count: int) -> list[Point]:
-    """The DINT variables the PLCnext simulator's bench option publishes (Bench.Value<i>)."""
-    return [Point(f"Bench.Value{index}", "DINT") for index in range(count)]
-
-
-@dataclass(frozen=True, slots=True)
-class Vendor:
-    """How to benchmark one vendor: its points and the request count its planner promises."""
-
-    points: Callable[[int], list[Point]]
-    target: Callable[[int], int] | None
-    target_text: str
-    items: Callable[[list[Point]], int] | None = None  # items a poll asks for, where counted
-
-
-VENDORS: dict[str, Vendor] = {
-    "s7_smart": Vendor(s7_smart_points, lambda n: math.ceil(n / 32), "ceil(N/32)"),
-    "tecomat": Vendor(tecomat_points, None, "URI <= 256 chars"),
-    "s7": Vendor(s7_points, None, "PDU-packed"),
-    "plcnext": Vendor(plcnext_points, lambda n: 1 if n else 0, "1 group read"),
-    "softplc": Vendor(
-        softplc_points,
-        lambda n: 1 if n else 0,
-        "1 POST",
-        lambda points: client_class("softplc").items_for(points),  # type: ignore[attr-defined]
-    ),
-}
 
 
 class Simulator:
     """A simulator in a subprocess, driven over its --control pipe."""
 
-    def __init__(self, vendor: str) -> None:
-        """Remember the vendor; `start` launches it."""
+    def __init__(self, vendor: str, points: int = 1000) -> None:
+        """Remember the vendor and how many points it must hold; `start` launches it."""
         self.vendor = vendor
+        self.points = points
         self.info: dict[str, Any] = {}
         self._process: asyncio.subprocess.Process | None = None
         self._log: IO[bytes] | None = None  # the simulator's own logging, shown if it fails
@@ -145,7 +50,7 @@ class Simulator:
         """Launch the simulator on a free loopback port; False when it has none."""
         self._log = tempfile.TemporaryFile()  # noqa: SIM115 - closed in stop()
         self._process = await asyncio.create_subprocess_exec(
-            *(sys.executable, "-m", "bench.serve", self.vendor),
+            *(sys.executable, "-m", "bench.serve", self.vendor, str(self.points)),
             cwd=ROOT,
             stdin=asyncio.subprocess.PIPE,
             stdout=asyncio.subprocess.PIPE,
@@ -280,7 +185,7 @@ async def bench_vendor(vendor: str, sizes: list[int], polls: int) -> list[dict[s
     except Exception as err:  # a guessed address syntax: say so and go on
         print(f"{vendor}: skipped, its benchmark points do not validate: {err}", file=sys.stderr)
         return []
-    simulator = Simulator(vendor)
+    simulator = Simulator(vendor, max(sizes))
     if not await simulator.start():
         return []
     client = make_client(vendor, simulator.info)
@@ -290,6 +195,7 @@ async def bench_vendor(vendor: str, sizes: list[int], polls: int) -> list[dict[s
         for size, points in samples.items():
             row = {"vendor": vendor, "points": size, "naive_requests": size}
             row |= await measure(client, simulator, points, polls)
+            row["cpu_ms_per_1000_points"] = round(row["cpu_ms_per_poll"] * 1000 / size, 2)
             row["target_requests"] = spec.target(size) if spec.target else None
             if spec.items is not None:
                 row["data_items"] = spec.items(points)
@@ -303,15 +209,16 @@ async def bench_vendor(vendor: str, sizes: list[int], polls: int) -> list[dict[s
 def table(rows: list[dict[str, Any]], command: str) -> str:
     """Return the rows as a text table, with the command and the targets."""
     head = ("vendor", "points", "requests/poll", "target", "naive", "poll ms", "CPU ms/poll")
-    head += ("protocol CPU ms",)
+    head += ("protocol CPU ms", "CPU ms/1k pts")
     lines = [f"$ {command}", f"# Python {platform.python_version()}, {platform.machine()}", ""]
     lines.append(f"{head[0]:<9}{head[1]:>7}{head[2]:>15}{head[3]:>8}{head[4]:>7}")
-    lines[-1] += f"{head[5]:>9}{head[6]:>13}{head[7]:>17}"
+    lines[-1] += f"{head[5]:>9}{head[6]:>13}{head[7]:>17}{head[8]:>15}"
     for row in rows:
         target = "-" if row["target_requests"] is None else str(row["target_requests"])
         line = f"{row['vendor']:<9}{row['points']:>7}{row['requests_per_poll']:>15}{target:>8}"
         line += f"{row['naive_requests']:>7}{row['poll_ms']:>9.2f}{row['cpu_ms_per_poll']:>13.2f}"
         line += f"{row['protocol_cpu_ms_per_poll']:>17.2f}"
+        line += f"{row['cpu_ms_per_1000_points']:>15.2f}"
         if row.get("data_items") is not None:
             line += f"   ({row['data_items']} <data> items for {row['points']} points)"
         if row["failed_points"]:
@@ -416,7 +323,8 @@ def main() -> int:
     if args.json:
         keys = ("vendor", "points", "requests_per_poll", "naive_requests", "poll_ms")
         for row in rows:
-            extra = ("cpu_ms_per_poll", "protocol_cpu_ms_per_poll", "data_items")
+            extra = ("cpu_ms_per_poll", "cpu_ms_per_1000_points", "protocol_cpu_ms_per_poll")
+            extra += ("data_items",)
             print(json.dumps({key: row[key] for key in (*keys, *extra) if key in row}))
         for result in [*keepalive, *(checks if isinstance(checks, list) else [])]:
             print(json.dumps(result))

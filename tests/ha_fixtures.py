@@ -45,6 +45,7 @@ from custom_components.plc_bridge.const import (
     SUBENTRY_DEVICE,
     SUBENTRY_POINT,
 )
+from custom_components.plc_bridge.polling import EDIT_DELAY
 from simulators.s7_smart import DEFAULT_PASSWORD, DEFAULT_USER, S7SmartSimulator
 from tests.loopback import Server, running
 
@@ -229,6 +230,13 @@ async def poll(hass: HomeAssistant, freezer: FrozenDateTimeFactory, times: int =
         freezer.tick(timedelta(seconds=SCAN_INTERVAL))
         async_fire_time_changed(hass)
         await hass.async_block_till_done(wait_background_tasks=True)
+
+
+async def read_edits(hass: HomeAssistant, freezer: FrozenDateTimeFactory) -> None:
+    """Let the edits pause long enough for the points they added to be read, and wait for it."""
+    freezer.tick(timedelta(seconds=EDIT_DELAY))
+    async_fire_time_changed(hass)
+    await hass.async_block_till_done(wait_background_tasks=True)
 
 
 async def unload_all(hass: HomeAssistant) -> None:

@@ -5,6 +5,7 @@ from __future__ import annotations
 from typing import Any
 from unittest.mock import AsyncMock
 
+from freezegun.api import FrozenDateTimeFactory
 from homeassistant.config_entries import SOURCE_USER
 from homeassistant.const import STATE_UNAVAILABLE
 from homeassistant.core import HomeAssistant
@@ -19,6 +20,7 @@ from simulators.tecomat import TecomatSimulator
 from simulators.tecomat.values import Var
 
 from .flow_fixtures import error_message, translated
+from .ha_fixtures import read_edits
 from .tecomat_ha_fixtures import make_tecomat_entry
 
 DEVICE = ("config_subentries", SUBENTRY_DEVICE)
@@ -50,7 +52,7 @@ def listed(result: Any) -> dict[str, str]:
 
 
 async def test_pick_published_variables(
-    hass: HomeAssistant, tecomat_entry: MockConfigEntry
+    hass: HomeAssistant, tecomat_entry: MockConfigEntry, freezer: FrozenDateTimeFactory
 ) -> None:
     """A filter by name or address; configured variables are not listed; picks become entities."""
     result = await browse(hass, tecomat_entry, "TEMPERATURE")
@@ -74,6 +76,7 @@ async def test_pick_published_variables(
     assert points["Main.myObject1.value"]["unit_of_measurement"] == "°C"
     assert points["plcData.varBool0"]["platform"] == "switch"
     await hass.async_block_till_done()
+    await read_edits(hass, freezer)
     entities = er.async_entries_for_config_entry(er.async_get(hass), tecomat_entry.entry_id)
     added = [e.entity_id for e in entities if e.config_subentry_id == new.subentry_id]
     assert len(added) == 2

@@ -31,6 +31,7 @@ from .ha_fixtures import (
     make_entry,
     plant_entry,
     point,
+    read_edits,
     remove_point,
     set_points,
     sim_data,
@@ -46,9 +47,9 @@ def entry_devices(registry: dr.DeviceRegistry, entry: MockConfigEntry) -> list[d
 
 
 async def test_adding_a_point_touches_no_other_entity(
-    hass: HomeAssistant, setup_integration: MockConfigEntry
+    hass: HomeAssistant, setup_integration: MockConfigEntry, freezer: FrozenDateTimeFactory
 ) -> None:
-    """A new point shows its value at once; the entry is not reloaded, others keep their state."""
+    """A new point shows its value once edits pause; no reload, others keep their state."""
     entry = setup_integration
     coordinator = entry.runtime_data.coordinator
     before = hass.states.get(TEMPERATURE)
@@ -56,6 +57,7 @@ async def test_adding_a_point_touches_no_other_entity(
     points |= dict([point("level", "Level", "sensor", "VW10", "unsigned")])
     set_points(hass, entry, points)
     await hass.async_block_till_done()
+    await read_edits(hass, freezer)
     assert entry.runtime_data.coordinator is coordinator
     assert hass.states.get("sensor.s7_200_smart_level").state == "235"
     after = hass.states.get(TEMPERATURE)
@@ -110,6 +112,7 @@ async def test_second_device_with_an_area(
     setup_integration: MockConfigEntry,
     device_registry: dr.DeviceRegistry,
     area_registry: ar.AreaRegistry,
+    freezer: FrozenDateTimeFactory,
 ) -> None:
     """A new device subentry is its own device in its area, via the PLC; removing it cleans up."""
     entry = setup_integration
@@ -125,6 +128,7 @@ async def test_second_device_with_an_area(
     )
     hass.config_entries.async_add_subentry(entry, vents)
     await hass.async_block_till_done()
+    await read_edits(hass, freezer)
     # Entity ids take the area's name too on the current release: look the entity up.
     vent = er.async_get(hass).async_get_entity_id("switch", DOMAIN, f"{ENTRY_ID}_vent")
     assert vent is not None
@@ -159,6 +163,7 @@ async def test_points_added_one_second_apart(
         freezer.tick(timedelta(seconds=1))
         async_fire_time_changed(hass)
         await hass.async_block_till_done()
+    await read_edits(hass, freezer)
     for index in range(10):
         state = hass.states.get(f"sensor.s7_200_smart_word_{index}")
         assert state is not None

@@ -41,7 +41,12 @@ async def test_minimum_follows_the_points(hass: HomeAssistant, flow_sim: S7Smart
     result = translated(await hass.config_entries.options.async_init(entry.entry_id), *OPTIONS)
     assert result["step_id"] == "init"
     assert suggested(result, CONF_SCAN_INTERVAL) == 10.0
-    assert result["description_placeholders"] == {"minimum": "4", "points": "100", "requests": "4"}
+    assert result["description_placeholders"] == {
+        "minimum": "4",
+        "points": "100",
+        "requests": "4",
+        "cycle": "10",
+    }
     result = translated(
         await hass.config_entries.options.async_configure(
             result["flow_id"], {CONF_SCAN_INTERVAL: 3.5}

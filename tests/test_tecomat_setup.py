@@ -16,7 +16,7 @@ from pytest_homeassistant_custom_component.typing import ClientSessionGenerator
 
 from custom_components.plc_bridge.const import DOMAIN
 from simulators.tecomat import DEFAULT_PASSWORD, DEFAULT_USER, TecomatSimulator
-from tests.ha_fixtures import edit_point, point, poll, remove_point
+from tests.ha_fixtures import edit_point, point, poll, read_edits, remove_point
 from tests.tecomat_ha_fixtures import TECOMAT_SERIAL, make_tecomat_entry
 
 INSIDE = "sensor.fx2_cp2080_inside_temperature"
@@ -136,6 +136,7 @@ async def test_fixing_the_address_clears_the_issue(
     assert issue_registry.async_get_issue(DOMAIN, issue_of(tecomat_entry, "int")) is not None
     edit_point(hass, tecomat_entry, "int", address="plcData.varInteger")
     await hass.async_block_till_done()
+    await read_edits(hass, freezer)
     assert hass.states.get("sensor.fx2_cp2080_int").state == "-2222"
     assert not issue_registry.issues
 

@@ -3,37 +3,20 @@
 from __future__ import annotations
 
 from homeassistant.config_entries import ConfigEntry
-from homeassistant.const import Platform
 from homeassistant.core import HomeAssistant
-from homeassistant.helpers import config_validation as cv, device_registry as dr
+from homeassistant.helpers import config_validation as cv
 from homeassistant.helpers.typing import ConfigType
 
 from .connection import create_polling_client
-from .const import DOMAIN
+from .const import DOMAIN, PLATFORMS
 from .coordinator import PlcBridgeConfigEntry, PlcCoordinator, PlcRuntimeData, link_error
-from .entity import device_info
+from .entity import plc_device
 from .migration import async_migrate_points
 from .plc import PlcError
 from .points import PointEntities, async_register_devices
 from .repairs import CERTIFICATE_CHANGED, async_check_tls, async_clear_all, async_clear_issue
 from .services import async_setup_services
 
-PLATFORMS = [
-    Platform.BINARY_SENSOR,
-    Platform.BUTTON,
-    Platform.CLIMATE,
-    Platform.COVER,
-    Platform.DATETIME,
-    Platform.EVENT,
-    Platform.FAN,
-    Platform.LIGHT,
-    Platform.NUMBER,
-    Platform.SELECT,
-    Platform.SENSOR,
-    Platform.SWITCH,
-    Platform.TEXT,
-    Platform.VALVE,
-]
 CONFIG_SCHEMA = cv.config_entry_only_config_schema(DOMAIN)
 
 
@@ -44,7 +27,7 @@ async def async_setup(hass: HomeAssistant, config: ConfigType) -> bool:
 
 
 async def async_setup_entry(hass: HomeAssistant, entry: PlcBridgeConfigEntry) -> bool:
-    """Connect to the PLC, poll it once, then add its entities."""
+    """Connect to the PLC, poll it once (its first points where it is paced), add its entities."""
     async_check_tls(hass, entry)
     client = create_polling_client(hass, entry.data, entry.options)
     entry.async_on_unload(client.close)  # also when the setup below fails
@@ -55,18 +38,12 @@ async def async_setup_entry(hass: HomeAssistant, entry: PlcBridgeConfigEntry) ->
     async_clear_issue(hass, entry, CERTIFICATE_CHANGED)
     points = PointEntities(entry)
     coordinator = PlcCoordinator(hass, entry, client, points.configs)
-    await coordinator.async_config_entry_first_refresh()
+    await coordinator.async_first_poll()
+    settings = (dict(entry.data), dict(entry.options))
     entry.runtime_data = PlcRuntimeData(
-        client=client,
-        coordinator=coordinator,
-        device=device,
-        points=points,
-        settings=(dict(entry.data), dict(entry.options)),
+        client=client, coordinator=coordinator, device=device, points=points, settings=settings
     )
-    plc = dr.async_get(hass).async_get_or_create(
-        config_entry_id=entry.entry_id, **device_info(entry)
-    )
-    async_register_devices(hass, entry, plc.id, points.areas)
+    async_register_devices(hass, entry, plc_device(hass, entry), points.areas)
     await hass.config_entries.async_forward_entry_setups(entry, PLATFORMS)
     entry.async_on_unload(entry.add_update_listener(async_update_entry))
     return True
@@ -78,10 +55,7 @@ async def async_update_entry(hass: HomeAssistant, entry: PlcBridgeConfigEntry) -
     if (dict(entry.data), dict(entry.options)) != runtime.settings:
         await hass.config_entries.async_reload(entry.entry_id)
         return
-    plc = dr.async_get(hass).async_get_or_create(
-        config_entry_id=entry.entry_id, **device_info(entry)
-    )
-    await runtime.points.async_sync(hass, plc.id)
+    await runtime.points.async_sync(hass, plc_device(hass, entry))
 
 
 async def async_migrate_entry(hass: HomeAssistant, entry: ConfigEntry) -> bool:

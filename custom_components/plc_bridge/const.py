@@ -5,6 +5,8 @@ from __future__ import annotations
 import logging
 from typing import Final
 
+from homeassistant.const import Platform
+
 DOMAIN: Final = "plc_bridge"
 LOGGER = logging.getLogger(__package__)
 
@@ -52,6 +54,22 @@ PULSE_MAX: Final = 60.0
 BIT_LIMIT: Final = 63
 """The highest bit number an alarm word can name (an LWORD's)."""
 
+PLATFORMS: Final = [
+    Platform.BINARY_SENSOR,
+    Platform.BUTTON,
+    Platform.CLIMATE,
+    Platform.COVER,
+    Platform.DATETIME,
+    Platform.EVENT,
+    Platform.FAN,
+    Platform.LIGHT,
+    Platform.NUMBER,
+    Platform.SELECT,
+    Platform.SENSOR,
+    Platform.SWITCH,
+    Platform.TEXT,
+    Platform.VALVE,
+]
 POINT_PLATFORMS: Final = (
     "sensor",
     "binary_sensor",

@@ -4,18 +4,17 @@ from __future__ import annotations
 
 from collections import deque
 from collections.abc import Mapping
-from dataclasses import replace
 from datetime import datetime, timedelta
 from typing import TYPE_CHECKING
 
 from homeassistant.const import CONF_SCAN_INTERVAL
-from homeassistant.core import HomeAssistant
+from homeassistant.core import HomeAssistant, callback
 from homeassistant.exceptions import (
     ConfigEntryAuthFailed,
     ConfigEntryNotReady,
     HomeAssistantError,
 )
-from homeassistant.helpers.update_coordinator import DataUpdateCoordinator, UpdateFailed
+from homeassistant.helpers.update_coordinator import UpdateFailed
 
 from .const import CONF_TLS, DOMAIN, LOGGER
 from .models import PlcBridgeConfigEntry, PlcRuntimeData
@@ -32,6 +31,7 @@ from .plc import (
     TlsMode,
     Value,
 )
+from .polling import PollingCoordinator
 from .repairs import (
     CERTIFICATE_CHANGED,
     SESSION_CONFLICT,
@@ -85,10 +85,8 @@ def link_error(
     )
 
 
-class PlcCoordinator(DataUpdateCoordinator[ReadResult]):
+class PlcCoordinator(PollingCoordinator):
     """Poll every point of one PLC in one planned read, and write through the same client."""
-
-    config_entry: PlcBridgeConfigEntry
 
     def __init__(
         self,
@@ -98,8 +96,7 @@ class PlcCoordinator(DataUpdateCoordinator[ReadResult]):
         points: Mapping[str, PointConfig],
     ) -> None:
         """Collect the points and choose the poll interval the vendor's request rate allows."""
-        self.client = client
-        super().__init__(hass, LOGGER, config_entry=entry, name=entry.title)
+        super().__init__(hass, entry, client)
         self._set_points(points)
         self._failing: set[Point] = set()
         # The others stay open until their point reads, even those a previous setup raised.
@@ -126,16 +123,17 @@ class PlcCoordinator(DataUpdateCoordinator[ReadResult]):
         # A removed point's issue goes with it.
         async_clear_point_issues(self.hass, self.config_entry, keep=self.points)
 
-    async def async_set_points(self, points: Mapping[str, PointConfig]) -> None:
-        """Follow edited points: poll the new set at once, so new entities show a value."""
+    @callback
+    def async_set_points(self, points: Mapping[str, PointConfig]) -> None:
+        """Follow edited points; the new ones are read together once the edits pause."""
         self._set_points(points)
         self._unknown &= set(self.points)
-        await self.async_refresh()
+        self._queue_edited()
 
     async def _async_update_data(self) -> ReadResult:
         """Read every point at once; a point's own failure stays in its result."""
         try:
-            result = await self.client.read(self._poll)
+            result = await self._read_poll()
         except PlcError as err:
             raise link_error(self.hass, self.config_entry, err, setup=False) from err
         finally:
@@ -143,8 +141,13 @@ class PlcCoordinator(DataUpdateCoordinator[ReadResult]):
         if self.config_entry.data.get(CONF_TLS) == TlsMode.PIN:
             async_clear_issue(self.hass, self.config_entry, CERTIFICATE_CHANGED)
         self._log_point_changes(result)
-        self._watch_addresses(result)
+        self._watch_addresses(result, self._failing)
         return result
+
+    def _watch_points(self, result: ReadResult) -> None:
+        """Raise or clear the issues of the points edits added, as a poll would."""
+        failing = {point for point, outcome in result.values.items() if not outcome.ok}
+        self._watch_addresses(result, failing)
 
     def _log_point_changes(self, result: ReadResult) -> None:
         """Log a point when it starts failing and when it recovers, not at every poll."""
@@ -161,12 +164,14 @@ class PlcCoordinator(DataUpdateCoordinator[ReadResult]):
             LOGGER.info("%s: %s (%s) can be read again", self.name, point.address, point.data_type)
         self._failing = failing
 
-    def _watch_addresses(self, result: ReadResult) -> None:
+    def _watch_addresses(self, result: ReadResult, failing: set[Point]) -> None:
         """Raise one issue per point whose address the PLC does not know; clear it once it reads.
 
         Vendor-neutral: any PlcAddressError counts, whether the point read fine before (a
         renamed PLC variable) or fails at every poll; the other points are read regardless.
         """
+        if not failing and not self._unknown:
+            return  # every point read and no issue is open: nothing to look at
         for point_id, point in self.points.items():
             outcome = result.values.get(point)
             if outcome is None:
@@ -221,8 +226,7 @@ class PlcCoordinator(DataUpdateCoordinator[ReadResult]):
             if result.ok and result.value is not None and point in self.data.values
         }
         if taken:
-            self.data = replace(self.data, values={**self.data.values, **taken})
-            self.async_update_listeners()
+            self._show(taken)
         await self.async_request_refresh()
         failed = [named(point, res.error) for point, res in results.items() if res.error]
         if failed:

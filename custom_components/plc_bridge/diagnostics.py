@@ -60,6 +60,8 @@ async def async_get_config_entry_diagnostics(
             "interval_s": coordinator.update_interval.total_seconds()
             if coordinator.update_interval
             else None,
+            # Start to start of the last two polls: longer than the interval where pacing is.
+            "last_cycle_s": round(coordinator.cycle, 3) if coordinator.cycle is not None else None,
             "planned_requests": runtime.client.planned_requests(list(data.values)),
             "last_update_success": coordinator.last_update_success,
         },

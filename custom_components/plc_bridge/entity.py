@@ -8,7 +8,7 @@ from typing import Any
 
 from homeassistant.const import CONF_DEVICE_CLASS, CONF_HOST, CONF_PORT
 from homeassistant.core import HomeAssistant, callback
-from homeassistant.helpers import entity_registry as er
+from homeassistant.helpers import device_registry as dr, entity_registry as er
 from homeassistant.helpers.device_registry import CONNECTION_NETWORK_MAC, DeviceInfo, format_mac
 from homeassistant.helpers.entity import EntityDescription
 from homeassistant.helpers.update_coordinator import CoordinatorEntity
@@ -143,14 +143,20 @@ def device_info(entry: PlcBridgeConfigEntry) -> DeviceInfo:
     )
 
 
+def plc_device(hass: HomeAssistant, entry: PlcBridgeConfigEntry) -> str:
+    """Return the id of the PLC's own device, made or brought up to date."""
+    registry = dr.async_get(hass)
+    return registry.async_get_or_create(config_entry_id=entry.entry_id, **device_info(entry)).id
+
+
 class PlcEntity(CoordinatorEntity[PlcCoordinator]):
     """An entity of one PLC's device: unique id and device set once."""
 
     _attr_has_entity_name = True
 
-    def __init__(self, entry: PlcBridgeConfigEntry, key: str) -> None:
-        """Attach the entity to the entry's coordinator and the PLC's device."""
-        super().__init__(entry.runtime_data.coordinator)
+    def __init__(self, entry: PlcBridgeConfigEntry, key: str, point: Point | None = None) -> None:
+        """Attach the entity to the entry's coordinator (for `point`) and the PLC's device."""
+        super().__init__(entry.runtime_data.coordinator, context=point)
         self._attr_unique_id = f"{device_key(entry)}_{key}"
         self._attr_device_info = DeviceInfo(identifiers={(DOMAIN, device_key(entry))})
         self._shown: tuple[bool, Any] | None = None
@@ -182,7 +188,7 @@ class PlcPointEntity(PlcEntity):
         self, entry: PlcBridgeConfigEntry, config: PointConfig, description: PlcPointDescription
     ) -> None:
         """Bind the entity to its point and device (the key: the point id, or it and a bit)."""
-        super().__init__(entry, description.key)
+        super().__init__(entry, description.key, description.point)
         self._attr_device_info = DeviceInfo(identifiers={(DOMAIN, config.subentry_id)})
         self.entity_description = description
 

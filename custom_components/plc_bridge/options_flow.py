@@ -58,6 +58,7 @@ class PlcBridgeOptionsFlow(OptionsFlow):
             errors=errors,
             description_placeholders={
                 "minimum": f"{minimum:g}",
+                "cycle": f"{max(float(current), minimum):g}",  # what the coordinator polls at
                 "points": str(len(points)),
                 "requests": str(client.requests_for(points)),
             },

@@ -203,5 +203,5 @@ class PointEntities:
                         registry.async_remove(entity.entity_id)  # a removed point or named bit
             self.configs = new
             async_register_devices(hass, entry, plc_device, self.areas)
-            await entry.runtime_data.coordinator.async_set_points(new)
+            entry.runtime_data.coordinator.async_set_points(new)
             self._add(made)

@@ -150,8 +150,29 @@ class PlcClient(ABC):
 
     @classmethod
     def min_scan_interval(cls, points: Sequence[Point]) -> float:
-        """The shortest poll interval that respects the vendor's advised request rate."""
+        """The shortest poll interval that respects the vendor's advised request rate.
+
+        Also how long one poll of these points takes at that rate: the real poll cycle where
+        the interval asked for is shorter.
+        """
         return cls.request_interval * max(1, cls.requests_for(points))
+
+    @classmethod
+    def points_read_within(cls, points: Sequence[Point], seconds: float) -> int:
+        """How many of the points, from the first, one read takes in at most `seconds` of pacing.
+
+        All of them where the vendor paces no requests; at least one.
+        """
+        if cls.min_scan_interval(points) <= seconds:
+            return len(points)
+        low, high = 1, len(points)
+        while low < high:
+            middle = (low + high + 1) // 2
+            if cls.min_scan_interval(points[:middle]) <= seconds:
+                low = middle
+            else:
+                high = middle - 1
+        return low
 
     @abstractmethod
     async def connect(self) -> DeviceInfo:

@@ -1,0 +1,131 @@
+"""Plant benchmark: ten PLCs of 1,000 points in one Home Assistant, figures beside the targets.
+
+`python -m bench.plant [--minutes N] [--plcs 10] [--points 1000] [--changing 1000] [--trace]`
+runs bench/test_plant.py in Home Assistant's test harness (in this process's Python, real time):
+S7-200 SMART simulators in a subprocess, every point a sensor in ten devices per PLC, the
+vendor's pacing on unless `--pacing 0`. It prints the time until every entity is registered and
+available, the event loop's lag (max, p99, stalls of 250 ms or more with the GC pauses and our
+state writes inside them), how long each poll's state writes hold the loop, full collections,
+and the RSS from the end of the start-up to N minutes later.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+from pathlib import Path
+import shlex
+import subprocess
+import sys
+from typing import Any
+
+ROOT = Path(__file__).resolve().parent.parent
+TARGETS = {
+    "registered": 5.0,  # s after start, every entity registered
+    "hold": 50.0,  # ms a poll of 1,000 changing points holds the loop
+    "stall": 250.0,  # ms: no stall this long caused by us
+    "rss": 5.0,  # % RSS may move in steady polling
+}
+
+
+def run(args: argparse.Namespace) -> dict[str, Any] | str:
+    """Run the Home Assistant part; its figures, or the tail of its output when it failed."""
+    env = os.environ | {
+        "BENCH_PLCS": str(args.plcs),
+        "BENCH_POINTS": str(args.points),
+        "BENCH_MINUTES": str(args.minutes),
+        "BENCH_CHANGING": str(args.changing),
+        "BENCH_PERIOD": str(args.period),
+        "BENCH_PACING": str(args.pacing),
+        "BENCH_TRACE": "1" if args.trace else "",
+        "BENCH_FAULT": str(args.faults),
+    }
+    command = [sys.executable, "-m", "pytest", "bench/test_plant.py", "-q", "-s"]
+    command += ["-p", "no:cacheprovider"]
+    done = subprocess.run(command, cwd=ROOT, env=env, capture_output=True, text=True, check=False)
+    for line in done.stdout.splitlines():
+        if line.startswith("BENCH "):
+            return dict(json.loads(line.removeprefix("BENCH ")))
+    return done.stdout[-3000:] + done.stderr[-3000:]
+
+
+def text(result: dict[str, Any], command: str, load: tuple[float, ...]) -> str:
+    """Return the figures as lines, each beside its target."""
+    rss = result["rss_mib"]
+    first, last = rss[0][1], rss[-1][1]
+    later = next((m for t, m in rss if t >= result["minutes"] * 20), first)
+    faults = f"a PLC away every {result['fault_s']:g} s" if result["fault_s"] else "no faults"
+    # A stall is ours when our state writes, garbage collection inside them aside, fill half of it.
+    ours = [s for s in result["stalls"] if s["ours_ms"] - s["gc_ms"] >= s["lag_ms"] / 2]
+    lines = [
+        f"$ {command}",
+        f"# load average before the run: {' '.join(f'{x:.2f}' for x in load)}"
+        f" ({os.cpu_count()} CPUs, shared)",
+        f"{result['plcs']} PLCs x {result['points']} points (S7-200 SMART simulators,"
+        f" pacing {result['pacing_s']} s, {result['changing_per_plc']} values changing per PLC,"
+        f" {faults}),"
+        f" {result['minutes']} min of polling after the start-up",
+        f"first start (entities registered anew) returned after"
+        f" {result['first_setup_returned_s']} s; then as after a restart:",
+        f"setup returned after {result['setup_returned_s']} s; every entity registered after"
+        f" {result['all_registered_s']} s (target <= {TARGETS['registered']:g} s); all available"
+        f" after {result['all_available_s']} s",
+        f"event loop lag: max {result['lag_max_ms']} ms, p99 {result['lag_p99_ms']} ms;"
+        f" {len(result['stalls'])} stalls >= {TARGETS['stall']:g} ms, {len(ours)} of them"
+        f" mostly our state writes (target 0)",
+    ]
+    lines += [
+        f"  stall {s['lag_ms']} ms at {s['at_s']} s: GC {s['gc_ms']} ms, our writes"
+        f" {s['ours_ms']} ms (GC included) inside"
+        for s in result["stalls"][:10]
+    ]
+    lines += [
+        f"a poll's state writes hold the loop: max {result['hold_max_ms']} ms"
+        f" ({result['hold_max_without_gc_ms']} ms without the GC inside), median"
+        f" {result['hold_median_ms']} ms ({result['holds']} holds, {result['polls']} polls)"
+        f" (target <= {TARGETS['hold']:g} ms); {result['state_changes']} state changes",
+        f"full collections (GC generation 2): {result['gc_gen2']}, longest"
+        f" {result['gc_gen2_max_ms']} ms",
+        f"RSS: {first} MiB after the start-up, {last} MiB after {rss[-1][0]} s"
+        f" ({(last - first) / first * 100:+.1f} %; {(last - later) / later * 100:+.1f} % from a"
+        f" third of the run on, target +/- {TARGETS['rss']:g} % in steady polling);"
+        f" samples every 10 s: {' '.join(f'{m:g}' for _t, m in rss)}",
+    ]
+    if result["growth"]:
+        lines.append("tracemalloc, the largest growths from a third of the run to its end:")
+    for row in result["growth"]:
+        mark = "OURS " if row["ours"] else ""
+        lines.append(f"  {mark}{row['where']}: {row['kib']:+} KiB, {row['count']:+} blocks")
+    return "\n".join(lines)
+
+
+def main() -> int:
+    """Parse the command line, run, print."""
+    parser = argparse.ArgumentParser(prog="python -m bench.plant", description=__doc__)
+    parser.add_argument("--minutes", type=float, default=3.0, help="polling after start-up")
+    parser.add_argument("--plcs", type=int, default=10)
+    parser.add_argument("--points", type=int, default=1000, help="per PLC")
+    parser.add_argument("--changing", type=int, default=1000, help="values changing per PLC")
+    parser.add_argument("--period", type=float, default=5.0, help="s between value changes")
+    parser.add_argument("--pacing", type=float, default=1.0, help="s between requests")
+    parser.add_argument("--trace", action="store_true", help="tracemalloc: what grew, by line")
+    parser.add_argument(
+        "--faults", type=float, default=0.0, help="every N s the next PLC is away for N/2 s"
+    )
+    parser.add_argument("--json", action="store_true")
+    args = parser.parse_args()
+    load = os.getloadavg()
+    result = run(args)
+    if isinstance(result, str):
+        print(f"the plant benchmark failed:\n{result}")
+        return 1
+    if args.json:
+        print(json.dumps(result))
+    else:
+        print(text(result, shlex.join(["python", "-m", "bench.plant", *sys.argv[1:]]), load))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
