@@ -8,6 +8,7 @@ from pathlib import Path
 from typing import Any
 from unittest.mock import AsyncMock, patch
 
+from freezegun.api import FrozenDateTimeFactory
 from homeassistant.config_entries import SOURCE_USER, ConfigEntryState
 from homeassistant.const import CONF_HOST, CONF_PASSWORD, CONF_PORT, CONF_USERNAME
 from homeassistant.core import HomeAssistant
@@ -32,6 +33,7 @@ from tests.flow_fixtures import (
     strings_at,
     translated,
 )
+from tests.ha_fixtures import read_edits
 
 CONFIG = ("config",)
 
@@ -256,7 +258,10 @@ def test_mac_is_unique_id() -> None:
 
 
 async def test_added_plc_and_point_come_alive(
-    hass: HomeAssistant, flow_sim: S7SmartSimulator, entity_registry: er.EntityRegistry
+    hass: HomeAssistant,
+    flow_sim: S7SmartSimulator,
+    entity_registry: er.EntityRegistry,
+    freezer: FrozenDateTimeFactory,
 ) -> None:
     """Nothing patched: the entry the flow makes is set up, a point added later gets an entity."""
     flow_sim.set("VW10", 235)
@@ -282,6 +287,7 @@ async def test_added_plc_and_point_come_alive(
         result["flow_id"], {"next_step_id": "save"}
     )
     await hass.async_block_till_done()
+    await read_edits(hass, freezer)
     assert entry.state is ConfigEntryState.LOADED
     (subentry_id,) = entry.subentries
     (entity,) = [

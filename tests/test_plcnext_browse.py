@@ -15,7 +15,7 @@ from pytest_homeassistant_custom_component.common import MockConfigEntry
 from custom_components.plc_bridge.const import CONF_POINTS, SUBENTRY_DEVICE
 from simulators.plcnext import PlcnextSimulator
 from tests.flow_fixtures import error_message, translated
-from tests.ha_fixtures import point, poll
+from tests.ha_fixtures import point, poll, read_edits
 from tests.plcnext_ha_fixtures import PLCNEXT_POINTS, make_plcnext_entry
 
 DEVICE = ("config_subentries", SUBENTRY_DEVICE)
@@ -113,6 +113,7 @@ async def test_picks_keep_types_and_read_only_flags(
     entities = er.async_entries_for_config_entry(er.async_get(hass), plcnext_entry.entry_id)
     added = {e.entity_id for e in entities if e.config_subentry_id == oven.subentry_id}
     assert len(added) == 5
+    await read_edits(hass, freezer)
     states = {entity_id: hass.states.get(entity_id).state for entity_id in added}
     assert STATE_UNAVAILABLE not in states.values(), states
     assert states["binary_sensor.oven_alarm"] == "on"  # named "Alarm", not by its path
@@ -120,7 +121,8 @@ async def test_picks_keep_types_and_read_only_flags(
     assert states["number.oven_speed"] == "-1200"
     assert states["text.oven_label"] == "Grüße ✓"
     assert states["datetime.oven_today"].startswith("2026-11-2")
-    await poll(hass, freezer)  # the first poll registered the new group; now one read
+    await poll(hass, freezer)  # the first poll after the edit registers the new group
+    await poll(hass, freezer)  # then a poll is one read
     assert plcnext_entry.runtime_data.client.metrics.last_poll_requests == 1
 
 

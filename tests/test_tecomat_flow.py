@@ -6,6 +6,7 @@ from collections.abc import AsyncGenerator
 from typing import Any
 from unittest.mock import AsyncMock
 
+from freezegun.api import FrozenDateTimeFactory
 from homeassistant.config_entries import SOURCE_USER, ConfigEntryState
 from homeassistant.const import CONF_HOST, CONF_PASSWORD, CONF_PORT, CONF_USERNAME
 from homeassistant.core import HomeAssistant
@@ -15,7 +16,7 @@ import pytest
 from custom_components.plc_bridge.const import CONF_TLS, CONF_VENDOR, DOMAIN, SUBENTRY_DEVICE
 from simulators.tecomat import DEFAULT_PASSWORD, DEFAULT_USER, TecomatSimulator
 from tests.flow_fixtures import error_message, translated
-from tests.ha_fixtures import point
+from tests.ha_fixtures import point, read_edits
 from tests.loopback import running
 from tests.tecomat_ha_fixtures import TECOMAT_SERIAL, make_tecomat_entry
 
@@ -177,7 +178,7 @@ def labels_of(result: Any) -> dict[str, str]:
 
 
 async def test_browse_lists_leaves_and_picks(
-    hass: HomeAssistant, tecomat_sim: TecomatSimulator
+    hass: HomeAssistant, tecomat_sim: TecomatSimulator, freezer: FrozenDateTimeFactory
 ) -> None:
     """Browsing the real simulator: leaves of structs, arrays and Main; a 5.3 object fills in."""
     entry = make_tecomat_entry(
@@ -238,6 +239,7 @@ async def test_browse_lists_leaves_and_picks(
     outside = points["Main.myObject1.value"]
     assert (outside["platform"], outside["read_only"]) == ("sensor", True)
     assert "min" not in outside
+    await read_edits(hass, freezer)
     assert hass.states.get("number.heating_requested_temperature").state == "23.0"
     assert entry.state is ConfigEntryState.LOADED
 
