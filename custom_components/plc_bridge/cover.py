@@ -76,6 +76,21 @@ class Travel(PlcCompositeEntity):
         position = round(min(max(value, 0), FULL))
         return FULL - position if self._inverted(role) else position
 
+    @property
+    def is_closed(self) -> bool | None:
+        """Closed by the closed limit, the status map, or a position of 0; None if unknown."""
+        return self._closed()
+
+    @property
+    def is_opening(self) -> bool:
+        """True while the status map says opening."""
+        return self.label("status") == "opening"
+
+    @property
+    def is_closing(self) -> bool:
+        """True while the status map says closing."""
+        return self.label("status") == "closing"
+
     def _closed(self) -> bool | None:
         """Closed by the closed limit, the status map, or a position of 0; None if unknown."""
         if self.on("closed_limit"):
@@ -142,21 +157,6 @@ class PlcCover(Travel, CoverEntity):
     def current_cover_position(self) -> int | None:
         """The position read, 0 closed to 100 open."""
         return self._position()
-
-    @property
-    def is_closed(self) -> bool | None:
-        """Closed by the closed limit, the status map, or a position of 0; None if unknown."""
-        return self._closed()
-
-    @property
-    def is_opening(self) -> bool:
-        """True while the status map says opening."""
-        return self.label("status") == "opening"
-
-    @property
-    def is_closing(self) -> bool:
-        """True while the status map says closing."""
-        return self.label("status") == "closing"
 
     async def async_open_cover(self, **kwargs: Any) -> None:
         """Send the open command, or move to 100 %."""

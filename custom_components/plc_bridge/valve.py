@@ -57,21 +57,6 @@ class PlcValve(Travel, ValveEntity):
         """The position read, 0 closed to 100 open."""
         return self._position()
 
-    @property
-    def is_closed(self) -> bool | None:
-        """Closed by the closed limit, the status map, or a position of 0; None if unknown."""
-        return self._closed()
-
-    @property
-    def is_opening(self) -> bool:
-        """True while the status map says opening."""
-        return self.label("status") == "opening"
-
-    @property
-    def is_closing(self) -> bool:
-        """True while the status map says closing."""
-        return self.label("status") == "closing"
-
     async def async_open_valve(self) -> None:
         """Send the open command, or move to 100 %."""
         await self._async_move("open", FULL)
