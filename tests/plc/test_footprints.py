@@ -153,3 +153,17 @@ def test_connection_config_repr_masks_secrets() -> None:
     assert "'auth': 'digest'" in text
     assert "password='***'" in text
     assert "password=''" in repr(ConnectionConfig(host="plc", port=80))
+
+
+@pytest.mark.parametrize(
+    ("vendor", "bit", "neighbour", "byte"),
+    [("s7_smart", "V60.0", "V60.2", "VB60"), ("s7", "DB1.DBX60.0", "DB1.DBX60.2", "DB1.DBB60")],
+)
+def test_bits_beside_each_other_do_not_overlap(
+    vendor: str, bit: str, neighbour: str, byte: str
+) -> None:
+    """A bit covers itself, not its byte: a read-only bit leaves its neighbours writable."""
+    kind = "signed" if vendor == "s7_smart" else "BOOL"
+    whole = "unsigned" if vendor == "s7_smart" else "BYTE"
+    assert not overlap(vendor, (bit, kind), (neighbour, kind))
+    assert overlap(vendor, (bit, kind), (byte, whole))

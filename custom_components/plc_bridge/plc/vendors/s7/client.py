@@ -84,13 +84,19 @@ class S7Client(PlcClient):
 
     @classmethod
     def footprint(cls, point: Point) -> Footprint:
-        """The area (a DB by its number) and bytes a point covers; a timer or counter its number."""
+        """The area (a DB by its number) and bits a point covers; a timer or counter its number.
+
+        Counted in bits: a BOOL goes out with the BIT transport size and writes that bit
+        alone, so a bit beside a read-only bit of the same byte stays writable.
+        """
         found = variable(point)
-        return Footprint(
-            f"{found.area}:{found.db}",
-            found.start,
-            found.start + (1 if found.counted else found.size),
-        )
+        area = f"{found.area}:{found.db}"
+        if found.counted:
+            return Footprint(area, found.start * 8, found.start * 8 + 8)
+        if found.bit is not None:
+            first = found.start * 8 + found.bit
+            return Footprint(area, first, first + 1)
+        return Footprint(area, found.start * 8, (found.start + found.size) * 8)
 
     @classmethod
     def address_writable(cls, point: Point) -> bool:

@@ -115,9 +115,17 @@ class S7SmartClient(PlcClient):
 
     @classmethod
     def footprint(cls, point: Point) -> Footprint:
-        """The memory area and bytes a point covers (VW100 and VB101 overlap)."""
+        """The memory area and bits a point covers (VW100 and VB101 overlap; V60.0, V60.2 not).
+
+        Counted in bits: a write names a bit by its own address (§9.2: `V7000.0`), so a bit
+        beside a read-only bit of the same byte stays writable.
+        """
         node = node_for(point)
-        return Footprint(*covered(node.address, node.kind))
+        area, start, end = covered(node.address, node.kind)
+        if node.address.bit is not None:
+            first = start * 8 + node.address.bit
+            return Footprint(area, first, first + 1)
+        return Footprint(area, start * 8, end * 8)
 
     @classmethod
     def address_writable(cls, point: Point) -> bool:
