@@ -21,16 +21,67 @@ SUBENTRY_FLOW = "/api/config/config_entries/subentries/flow"
 
 
 @dataclass(frozen=True, slots=True)
+class Drive:
+    """One action the frontend sends an entity, and the PLC value it must leave behind."""
+
+    domain: str  # the entity's domain; the check takes the PLC's first entity of it
+    service: str
+    data: dict[str, Any]
+    address: str  # read back from the PLC with plc_bridge.read
+    data_type: str
+    expected: Any
+
+
+@dataclass(frozen=True, slots=True)
 class Journey:
     """How a user adds one simulator's points, and the writable one that is checked."""
 
     table: str = ""  # pasted points (CSV with a header), when not picked
     pick: str = ""  # the browse filter whose first listed variable becomes the point
+    machines: tuple[tuple[str, str], ...] = ()  # more devices: (name, pasted table)
+    drives: tuple[Drive, ...] = ()  # the actions the check takes on those devices' entities
 
 
 HEADER = "name,address,data_type,platform,min,max\n"
+KINDS = "name,address,data_type,platform,unit,scale,min,max,step,read_only,role,value_map,bits\n"
+SMART_MACHINES = (
+    (
+        "Boiler",
+        KINDS + "Boiler,VW50,signed,climate,°C,0.1,,,,yes,current_temperature,,\n"
+        "Boiler,VW52,signed,climate,°C,0.1,5,30,0.5,no,target_temperature,,\n"
+        'Boiler,VW54,signed,climate,,1,,,,no,hvac_mode,"0=off;1=heat",\n'
+        'Mode,VW30,signed,select,,1,,,,no,,"0=Off;1=Auto;2=Manual",\n'
+        'Alarms,VW70,signed,event,,1,,,,yes,,,"0=Overheat;3=Low water"',
+    ),
+    (
+        "Shutter",
+        KINDS + "Shutter,V60.0,signed,cover,,1,,,,no,open,,\n"
+        "Shutter,V60.1,signed,cover,,1,,,,no,close,,\n"
+        "Shutter,V62.0,signed,cover,,1,,,,yes,open_limit,,\n"
+        "Shutter,V62.1,signed,cover,,1,,,,yes,closed_limit,,",
+    ),
+    (
+        "Pump",
+        KINDS + "Pump,V63.0,signed,switch,,1,,,,yes,state,,\n"
+        "Pump,V61.1,signed,switch,,1,,,,no,command,,\n"
+        "Start,V61.2,signed,button,,1,,,,no,,,",
+    ),
+)
+"""The S7-200 SMART's machines: a boiler, a roller shutter, a pump (see scripts/develop)."""
+SMART_DRIVES = (
+    Drive("climate", "set_temperature", {"temperature": 22.5}, "VW52", "signed", 225),
+    Drive("climate", "set_hvac_mode", {"hvac_mode": "heat"}, "VW54", "signed", 1),
+    Drive("select", "select_option", {"option": "Manual"}, "VW30", "signed", 2),
+    Drive("cover", "open_cover", {}, "V60.0", "signed", True),
+    Drive("switch", "turn_on", {}, "V61.1", "signed", True),
+    Drive("button", "press", {}, "V61.2", "signed", True),
+)
 JOURNEYS = {
-    "s7_smart": Journey(table=HEADER + "Setpoint,VD104,float,number,0,100"),
+    "s7_smart": Journey(
+        table=HEADER + "Setpoint,VD104,float,number,0,100",
+        machines=SMART_MACHINES,
+        drives=SMART_DRIVES,
+    ),
     "tecomat": Journey(pick="Main.myObject3"),
     "plcnext": Journey(pick="MainInstance.Setpoint"),
     "softplc": Journey(table=HEADER + "Preset,T4:0.PRE,INT,number,0,30000"),
@@ -72,11 +123,11 @@ def add_plc(hass: Hass, sim: dict[str, Any]) -> str:
     return str(flow["result"]["entry_id"])
 
 
-def add_device(hass: Hass, entry_id: str, journey: Journey) -> None:
+def add_device(hass: Hass, entry_id: str, journey: Journey, name: str = "Demo device") -> None:
     """Add a device with the journey's point, picked from the PLC's variables or pasted."""
     flow = hass.call("POST", SUBENTRY_FLOW, {"handler": [entry_id, "device"]})
     step = f"{SUBENTRY_FLOW}/{flow['flow_id']}"
-    flow = hass.call("POST", step, {"name": "Demo device"})
+    flow = hass.call("POST", step, {"name": name})
     if journey.pick:
         flow = hass.call("POST", step, {"next_step_id": "browse"})
         flow = hass.call("POST", step, {"filter": journey.pick})
@@ -105,15 +156,58 @@ def wait_for(ready: Callable[[], Any], timeout: float) -> Any:
     return answer
 
 
-def number_of(ws: Socket, entry_id: str) -> str | None:
-    """Return the entity id of the entry's number entity (the journey's point)."""
+def number_of(ws: Socket, entry_id: str, domain: str = "number") -> str | None:
+    """Return the entity id of the entry's first entity of a domain (the journey's point)."""
     entities = ws.call("config/entity_registry/list")
     found = [
         entity["entity_id"]
         for entity in entities
-        if entity["config_entry_id"] == entry_id and entity["entity_id"].startswith("number.")
+        if entity["config_entry_id"] == entry_id
+        and entity["entity_id"].startswith(f"{domain}.")
+        and entity.get("entity_category") is None
     ]
     return found[0] if found else None
+
+
+def plc_value(hass: Hass, entry_id: str, drive: Drive) -> Any:
+    """Return what the PLC holds at the drive's address, read through plc_bridge.read."""
+    point = {"address": drive.address, "data_type": drive.data_type}
+    body = {"config_entry_id": entry_id, "points": [point]}
+    answer = hass.call("POST", "/api/services/plc_bridge/read?return_response", body)
+    return answer["service_response"]["values"].get(drive.address)
+
+
+def drive_kinds(hass: Hass, ws: Socket, entry_id: str, plan: Journey) -> list[str]:
+    """Add the journey's machines, take each action as the frontend does, see the PLC change."""
+    for name, table in plan.machines:
+        add_device(hass, entry_id, Journey(table=table), name)
+    problems = []
+    for drive in plan.drives:
+        try:
+            problem = take(hass, ws, entry_id, drive)
+        except RuntimeError as err:  # a refused action fails its drive, not the others
+            problem = str(err)
+        if problem:
+            problems.append(f"{drive.domain}.{drive.service}: {problem}")
+    return problems
+
+
+def take(hass: Hass, ws: Socket, entry_id: str, drive: Drive) -> str:
+    """Take one drive; print what the PLC held before and after, or return what went wrong."""
+    entity = wait_for(lambda: number_of(ws, entry_id, drive.domain), 30)
+    if entity is None or not wait_for(
+        lambda: _state(hass, entity) not in (None, "unavailable"), 30
+    ):
+        return f"no available {drive.domain} entity ({entity})"
+    before = plc_value(hass, entry_id, drive)
+    service = f"/api/services/{drive.domain}/{drive.service}"
+    hass.call("POST", service, {"entity_id": entity, **drive.data})
+    if not wait_for(lambda: plc_value(hass, entry_id, drive) == drive.expected, 15):
+        now = plc_value(hass, entry_id, drive)
+        return f"{entity}: {drive.address} is {now!r}, not {drive.expected!r}"
+    line = f"{drive.domain}.{drive.service} on {entity}: {drive.address} {before!r} -> "
+    print(f"demo: {line}{drive.expected!r}", flush=True)
+    return ""
 
 
 def journey(hass: Hass, ws: Socket, sim: dict[str, Any]) -> list[str]:
@@ -143,6 +237,7 @@ def journey(hass: Hass, ws: Socket, sim: dict[str, Any]) -> list[str]:
         hass.call("POST", "/api/services/number/set_value", {"entity_id": entity, "value": WRITTEN})
         if not wait_for(lambda: _number(_state(hass, entity)) == WRITTEN, 30):
             return [f"{vendor}: {entity} shows {_state(hass, entity)} after writing {WRITTEN}"]
+        return [f"{vendor}: {problem}" for problem in drive_kinds(hass, ws, entry_id, plan)]
     except Exception as err:  # any step of a journey that fails is one problem of its family
         return [f"{vendor}: {type(err).__name__}: {err}"]
     return []
