@@ -44,48 +44,90 @@ class Journey:
 
 HEADER = "name,address,data_type,platform,min,max\n"
 KINDS = "name,address,data_type,platform,unit,scale,min,max,step,read_only,role,value_map,bits\n"
-SMART_MACHINES = (
-    (
-        "Boiler",
-        KINDS + "Boiler,VW50,signed,climate,°C,0.1,,,,yes,current_temperature,,\n"
-        "Boiler,VW52,signed,climate,°C,0.1,5,30,0.5,no,target_temperature,,\n"
-        'Boiler,VW54,signed,climate,,1,,,,no,hvac_mode,"0=off;1=heat",\n'
-        'Mode,VW30,signed,select,,1,,,,no,,"0=Off;1=Auto;2=Manual",\n'
-        'Alarms,VW70,signed,event,,1,,,,yes,,,"0=Overheat;3=Low water"',
+
+
+def machines(word: str, bit: str, at: dict[str, str]) -> tuple[tuple[str, str], ...]:
+    """Return the boiler, shutter and pump as tables, at one simulator's addresses and types."""
+    w, b = f"{word},", f"{bit},"
+    return (
+        (
+            "Boiler",
+            KINDS + f"Boiler,{at['water']},{w}climate,°C,0.1,,,,yes,current_temperature,,\n"
+            f"Boiler,{at['target']},{w}climate,°C,0.1,5,30,0.5,no,target_temperature,,\n"
+            f'Boiler,{at["hvac"]},{w}climate,,1,,,,no,hvac_mode,"0=off;1=heat",\n'
+            f'Mode,{at["mode"]},{w}select,,1,,,,no,,"0=Off;1=Auto;2=Manual",\n'
+            f'Alarms,{at["alarms"]},{w}event,,1,,,,yes,,,"0=Overheat;3=Low water"',
+        ),
+        (
+            "Shutter",
+            KINDS + f"Shutter,{at['open']},{b}cover,,1,,,,no,open,,\n"
+            f"Shutter,{at['close']},{b}cover,,1,,,,no,close,,\n"
+            f"Shutter,{at['opened']},{b}cover,,1,,,,yes,open_limit,,\n"
+            f"Shutter,{at['closed']},{b}cover,,1,,,,yes,closed_limit,,",
+        ),
+        (
+            "Pump",
+            KINDS + f"Pump,{at['running']},{b}switch,,1,,,,yes,state,,\n"
+            f"Pump,{at['run']},{b}switch,,1,,,,no,command,,\n"
+            f"Start,{at['start']},{b}button,,1,,,,no,,,",
+        ),
+    )
+
+
+def drives(word: str, bit: str, at: dict[str, str]) -> tuple[Drive, ...]:
+    """Return the frontend's actions on those machines and what each leaves in the PLC."""
+    return (
+        Drive("climate", "set_temperature", {"temperature": 22.5}, at["target"], word, 225),
+        Drive("climate", "set_hvac_mode", {"hvac_mode": "heat"}, at["hvac"], word, 1),
+        Drive("select", "select_option", {"option": "Manual"}, at["mode"], word, 2),
+        Drive("cover", "open_cover", {}, at["open"], bit, True),
+        Drive("switch", "turn_on", {}, at["run"], bit, True),
+        Drive("button", "press", {}, at["start"], bit, True),
+    )
+
+
+# Read-only bits sit in other bytes (words) than written ones: a write that covers the byte
+# of a read-only point is refused.
+KIND_ADDRESSES = {
+    "s7_smart": (
+        "signed",
+        "signed",
+        "VW50 VW52 VW54 VW30 VW70 V60.0 V60.1 V62.0 V62.1 V63.0 V61.1 V61.2",
     ),
-    (
-        "Shutter",
-        KINDS + "Shutter,V60.0,signed,cover,,1,,,,no,open,,\n"
-        "Shutter,V60.1,signed,cover,,1,,,,no,close,,\n"
-        "Shutter,V62.0,signed,cover,,1,,,,yes,open_limit,,\n"
-        "Shutter,V62.1,signed,cover,,1,,,,yes,closed_limit,,",
+    "s7": (
+        "INT",
+        "BOOL",
+        "DB1.DBW50 DB1.DBW52 DB1.DBW54 DB1.DBW30 DB1.DBW70 DB1.DBX60.0"
+        " DB1.DBX60.1 DB1.DBX62.0 DB1.DBX62.1 DB1.DBX63.0 DB1.DBX61.1 DB1.DBX61.2",
     ),
-    (
-        "Pump",
-        KINDS + "Pump,V63.0,signed,switch,,1,,,,yes,state,,\n"
-        "Pump,V61.1,signed,switch,,1,,,,no,command,,\n"
-        "Start,V61.2,signed,button,,1,,,,no,,,",
+    "softplc": (
+        "INT",
+        "BOOL",
+        "N7:50 N7:52 N7:54 N7:30 N7:70 B3:4/0 B3:4/1 B3:6/0 B3:6/1 B3:7/0 B3:5/1 B3:5/2",
     ),
+}
+"""Where each address-based simulator keeps the demo's machines (named, in ROLES' order)."""
+ROLES = (
+    *("water", "target", "hvac", "mode", "alarms"),
+    *("open", "close", "opened", "closed", "running", "run", "start"),
 )
-"""The S7-200 SMART's machines: a boiler, a roller shutter, a pump (see scripts/develop)."""
-SMART_DRIVES = (
-    Drive("climate", "set_temperature", {"temperature": 22.5}, "VW52", "signed", 225),
-    Drive("climate", "set_hvac_mode", {"hvac_mode": "heat"}, "VW54", "signed", 1),
-    Drive("select", "select_option", {"option": "Manual"}, "VW30", "signed", 2),
-    Drive("cover", "open_cover", {}, "V60.0", "signed", True),
-    Drive("switch", "turn_on", {}, "V61.1", "signed", True),
-    Drive("button", "press", {}, "V61.2", "signed", True),
-)
+
+
+def kinds(vendor: str) -> dict[str, Any]:
+    """Return a simulator's machines and drives as Journey fields (none where it has none)."""
+    if vendor not in KIND_ADDRESSES:
+        return {}
+    word, bit, addresses = KIND_ADDRESSES[vendor]
+    at = dict(zip(ROLES, addresses.split(), strict=True))
+    return {"machines": machines(word, bit, at), "drives": drives(word, bit, at)}
+
+
 JOURNEYS = {
-    "s7_smart": Journey(
-        table=HEADER + "Setpoint,VD104,float,number,0,100",
-        machines=SMART_MACHINES,
-        drives=SMART_DRIVES,
-    ),
+    "s7_smart": Journey(table=HEADER + "Setpoint,VD104,float,number,0,100", **kinds("s7_smart")),
     "tecomat": Journey(pick="Main.myObject3"),
     "plcnext": Journey(pick="MainInstance.Setpoint"),
-    "softplc": Journey(table=HEADER + "Preset,T4:0.PRE,INT,number,0,30000"),
-    "s7": Journey(table=HEADER + "Setpoint,DB1.DBW6,INT,number,0,1000"),
+    "softplc": Journey(table=HEADER + "Preset,T4:0.PRE,INT,number,0,30000", **kinds("softplc")),
+    "s7": Journey(table=HEADER + "Setpoint,DB1.DBW6,INT,number,0,1000", **kinds("s7")),
 }
 """What each family's simulator offers a first user (see scripts/develop's hints)."""
 WRITTEN = 21.0
@@ -177,14 +219,15 @@ def plc_value(hass: Hass, entry_id: str, drive: Drive) -> Any:
     return answer["service_response"]["values"].get(drive.address)
 
 
-def drive_kinds(hass: Hass, ws: Socket, entry_id: str, plan: Journey) -> list[str]:
+def drive_kinds(hass: Hass, ws: Socket, entry_id: str, vendor: str) -> list[str]:
     """Add the journey's machines, take each action as the frontend does, see the PLC change."""
+    plan = JOURNEYS[vendor]
     for name, table in plan.machines:
         add_device(hass, entry_id, Journey(table=table), name)
     problems = []
     for drive in plan.drives:
         try:
-            problem = take(hass, ws, entry_id, drive)
+            problem = take(hass, ws, entry_id, drive, vendor)
         except RuntimeError as err:  # a refused action fails its drive, not the others
             problem = str(err)
         if problem:
@@ -192,7 +235,7 @@ def drive_kinds(hass: Hass, ws: Socket, entry_id: str, plan: Journey) -> list[st
     return problems
 
 
-def take(hass: Hass, ws: Socket, entry_id: str, drive: Drive) -> str:
+def take(hass: Hass, ws: Socket, entry_id: str, drive: Drive, vendor: str) -> str:
     """Take one drive; print what the PLC held before and after, or return what went wrong."""
     entity = wait_for(lambda: number_of(ws, entry_id, drive.domain), 30)
     if entity is None or not wait_for(
@@ -206,7 +249,7 @@ def take(hass: Hass, ws: Socket, entry_id: str, drive: Drive) -> str:
         now = plc_value(hass, entry_id, drive)
         return f"{entity}: {drive.address} is {now!r}, not {drive.expected!r}"
     line = f"{drive.domain}.{drive.service} on {entity}: {drive.address} {before!r} -> "
-    print(f"demo: {line}{drive.expected!r}", flush=True)
+    print(f"demo: {vendor}: {line}{drive.expected!r}", flush=True)
     return ""
 
 
@@ -237,7 +280,7 @@ def journey(hass: Hass, ws: Socket, sim: dict[str, Any]) -> list[str]:
         hass.call("POST", "/api/services/number/set_value", {"entity_id": entity, "value": WRITTEN})
         if not wait_for(lambda: _number(_state(hass, entity)) == WRITTEN, 30):
             return [f"{vendor}: {entity} shows {_state(hass, entity)} after writing {WRITTEN}"]
-        return [f"{vendor}: {problem}" for problem in drive_kinds(hass, ws, entry_id, plan)]
+        return [f"{vendor}: {problem}" for problem in drive_kinds(hass, ws, entry_id, vendor)]
     except Exception as err:  # any step of a journey that fails is one problem of its family
         return [f"{vendor}: {type(err).__name__}: {err}"]
     return []
