@@ -224,6 +224,8 @@ def drive_kinds(hass: Hass, ws: Socket, entry_id: str, vendor: str) -> list[str]
     plan = JOURNEYS[vendor]
     for name, table in plan.machines:
         add_device(hass, entry_id, Journey(table=table), name)
+    alarm = wait_for(lambda: overheat(ws, entry_id), 30) if plan.machines else None
+    before = _state(hass, alarm) if alarm else None
     problems = []
     for drive in plan.drives:
         try:
@@ -232,7 +234,25 @@ def drive_kinds(hass: Hass, ws: Socket, entry_id: str, vendor: str) -> list[str]
             problem = str(err)
         if problem:
             problems.append(f"{drive.domain}.{drive.service}: {problem}")
+    if plan.machines and alarm is None:
+        problems.append("alarm word: no Overheat binary sensor")
+    elif alarm is not None:
+        # The simulator raises Overheat while the water is above the set point just written.
+        if wait_for(lambda: _state(hass, alarm) == "on", 30):
+            print(f"demo: {vendor}: alarm word: {alarm} {before} -> on", flush=True)
+        else:
+            problems.append(f"alarm word: {alarm} is {_state(hass, alarm)}, not on")
     return problems
+
+
+def overheat(ws: Socket, entry_id: str) -> str | None:
+    """Return the entity id of the entry's Overheat binary sensor (of the alarm word)."""
+    names = {s["entity_id"]: s["attributes"].get("friendly_name") for s in ws.call("get_states")}
+    for entity in ws.call("config/entity_registry/list"):
+        name = str(names.get(entity["entity_id"]))
+        if entity["config_entry_id"] == entry_id and name.endswith("Overheat"):
+            return str(entity["entity_id"])
+    return None
 
 
 def take(hass: Hass, ws: Socket, entry_id: str, drive: Drive, vendor: str) -> str:
