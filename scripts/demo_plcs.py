@@ -3,8 +3,11 @@
 For every PLC family `scripts/develop` starts: add the PLC in the config flow (pinning its
 certificate where it has one), add a device with points (picked from the PLC's variables
 where it publishes them, else pasted as a table), wait until its entity shows the simulator's
-value, write a new value through the entity's action and see it come back. Standard library
-only, as scripts/demo_check.py that calls it.
+value, write a new value through the entity's action and see it come back. Where the simulator
+holds the demo's machines (S7-200 SMART, S7, SoftPLC: a boiler, a shutter, a pump), import them
+too, drive each entity through the action the frontend sends and read the address back from the
+PLC (plc_bridge.read), and see the alarm word's Overheat sensor go on. Standard library only, as
+scripts/demo_check.py that calls it.
 """
 
 from __future__ import annotations
