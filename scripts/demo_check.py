@@ -4,7 +4,8 @@ Starts scripts/develop on a throwaway configuration (inside the work tree, where
 Python can see it) and free ports, completes onboarding through the HTTP and websocket calls
 the frontend makes, waits for Home Assistant to finish starting, loads what the frontend loads
 first and the integrations page, then takes each simulator through a new user's first steps
-(scripts/demo_plcs.py: add the PLC, add a device with a point, read it, write it), and fails on
+(scripts/demo_plcs.py: add the PLC, add a device with a point, read it, write it; import the
+machines and drive each entity, seeing the PLC change), and fails on
 any of those steps, on any integration onboarding set up that did not load, and on any missing
 module or failed setup in the log. Always stops what it started, within a bounded time.
 Standard library only: it runs with the machine's own python3.

@@ -3,8 +3,11 @@
 For every PLC family `scripts/develop` starts: add the PLC in the config flow (pinning its
 certificate where it has one), add a device with points (picked from the PLC's variables
 where it publishes them, else pasted as a table), wait until its entity shows the simulator's
-value, write a new value through the entity's action and see it come back. Standard library
-only, as scripts/demo_check.py that calls it.
+value, write a new value through the entity's action and see it come back. Where the simulator
+holds the demo's machines (S7-200 SMART, S7, SoftPLC: a boiler, a shutter, a pump), import them
+too, drive each entity through the action the frontend sends and read the address back from the
+PLC (plc_bridge.read), and see the alarm word's Overheat sensor go on. Standard library only, as
+scripts/demo_check.py that calls it.
 """
 
 from __future__ import annotations
@@ -21,20 +24,113 @@ SUBENTRY_FLOW = "/api/config/config_entries/subentries/flow"
 
 
 @dataclass(frozen=True, slots=True)
+class Drive:
+    """One action the frontend sends an entity, and the PLC value it must leave behind."""
+
+    domain: str  # the entity's domain; the check takes the PLC's first entity of it
+    service: str
+    data: dict[str, Any]
+    address: str  # read back from the PLC with plc_bridge.read
+    data_type: str
+    expected: Any
+
+
+@dataclass(frozen=True, slots=True)
 class Journey:
     """How a user adds one simulator's points, and the writable one that is checked."""
 
     table: str = ""  # pasted points (CSV with a header), when not picked
     pick: str = ""  # the browse filter whose first listed variable becomes the point
+    machines: tuple[tuple[str, str], ...] = ()  # more devices: (name, pasted table)
+    drives: tuple[Drive, ...] = ()  # the actions the check takes on those devices' entities
 
 
 HEADER = "name,address,data_type,platform,min,max\n"
+KINDS = "name,address,data_type,platform,unit,scale,min,max,step,read_only,role,value_map,bits\n"
+
+
+def machines(word: str, bit: str, at: dict[str, str]) -> tuple[tuple[str, str], ...]:
+    """Return the boiler, shutter and pump as tables, at one simulator's addresses and types."""
+    w, b = f"{word},", f"{bit},"
+    return (
+        (
+            "Boiler",
+            KINDS + f"Boiler,{at['water']},{w}climate,°C,0.1,,,,yes,current_temperature,,\n"
+            f"Boiler,{at['target']},{w}climate,°C,0.1,5,30,0.5,no,target_temperature,,\n"
+            f'Boiler,{at["hvac"]},{w}climate,,1,,,,no,hvac_mode,"0=off;1=heat",\n'
+            f'Mode,{at["mode"]},{w}select,,1,,,,no,,"0=Off;1=Auto;2=Manual",\n'
+            f'Alarms,{at["alarms"]},{w}event,,1,,,,yes,,,"0=Overheat;3=Low water"',
+        ),
+        (
+            "Shutter",
+            KINDS + f"Shutter,{at['open']},{b}cover,,1,,,,no,open,,\n"
+            f"Shutter,{at['close']},{b}cover,,1,,,,no,close,,\n"
+            f"Shutter,{at['opened']},{b}cover,,1,,,,yes,open_limit,,\n"
+            f"Shutter,{at['closed']},{b}cover,,1,,,,yes,closed_limit,,",
+        ),
+        (
+            "Pump",
+            KINDS + f"Pump,{at['running']},{b}switch,,1,,,,yes,state,,\n"
+            f"Pump,{at['run']},{b}switch,,1,,,,no,command,,\n"
+            f"Start,{at['start']},{b}button,,1,,,,no,,,",
+        ),
+    )
+
+
+def drives(word: str, bit: str, at: dict[str, str]) -> tuple[Drive, ...]:
+    """Return the frontend's actions on those machines and what each leaves in the PLC."""
+    return (
+        Drive("climate", "set_temperature", {"temperature": 22.5}, at["target"], word, 225),
+        Drive("climate", "set_hvac_mode", {"hvac_mode": "heat"}, at["hvac"], word, 1),
+        Drive("select", "select_option", {"option": "Manual"}, at["mode"], word, 2),
+        Drive("cover", "open_cover", {}, at["open"], bit, True),
+        Drive("switch", "turn_on", {}, at["run"], bit, True),
+        Drive("button", "press", {}, at["start"], bit, True),
+    )
+
+
+# Read-only bits sit in other bytes (words) than written ones: a write that covers the byte
+# of a read-only point is refused.
+KIND_ADDRESSES = {
+    "s7_smart": (
+        "signed",
+        "signed",
+        "VW50 VW52 VW54 VW30 VW70 V60.0 V60.1 V62.0 V62.1 V63.0 V61.1 V61.2",
+    ),
+    "s7": (
+        "INT",
+        "BOOL",
+        "DB1.DBW50 DB1.DBW52 DB1.DBW54 DB1.DBW30 DB1.DBW70 DB1.DBX60.0"
+        " DB1.DBX60.1 DB1.DBX62.0 DB1.DBX62.1 DB1.DBX63.0 DB1.DBX61.1 DB1.DBX61.2",
+    ),
+    "softplc": (
+        "INT",
+        "BOOL",
+        "N7:50 N7:52 N7:54 N7:30 N7:70 B3:4/0 B3:4/1 B3:6/0 B3:6/1 B3:7/0 B3:5/1 B3:5/2",
+    ),
+}
+"""Where each address-based simulator keeps the demo's machines (named, in ROLES' order)."""
+ROLES = (
+    *("water", "target", "hvac", "mode", "alarms"),
+    *("open", "close", "opened", "closed", "running", "run", "start"),
+)
+
+
+def kinds(vendor: str) -> dict[str, Any]:
+    """Return a simulator's machines and drives as Journey fields (none where it has none)."""
+    if vendor not in KIND_ADDRESSES:
+        return {}
+    word, bit, addresses = KIND_ADDRESSES[vendor]
+    at = dict(zip(ROLES, addresses.split(), strict=True))
+    return {"machines": machines(word, bit, at), "drives": drives(word, bit, at)}
+
+
 JOURNEYS = {
-    "s7_smart": Journey(table=HEADER + "Setpoint,VD104,float,number,0,100"),
+    "s7_smart": Journey(table=HEADER + "Setpoint,VD104,float,number,0,100", **kinds("s7_smart")),
     "tecomat": Journey(pick="Main.myObject3"),
     "plcnext": Journey(pick="MainInstance.Setpoint"),
-    "softplc": Journey(table=HEADER + "Preset,T4:0.PRE,INT,number,0,30000"),
-    "s7": Journey(table=HEADER + "Setpoint,DB1.DBW6,INT,number,0,1000"),
+    "softplc": Journey(table=HEADER + "Preset,T4:0.PRE,INT,number,0,30000", **kinds("softplc")),
+    "s7": Journey(table=HEADER + "Setpoint,DB1.DBW6,INT,number,0,1000", **kinds("s7")),
 }
 """What each family's simulator offers a first user (see scripts/develop's hints)."""
 WRITTEN = 21.0
@@ -72,11 +168,11 @@ def add_plc(hass: Hass, sim: dict[str, Any]) -> str:
     return str(flow["result"]["entry_id"])
 
 
-def add_device(hass: Hass, entry_id: str, journey: Journey) -> None:
+def add_device(hass: Hass, entry_id: str, journey: Journey, name: str = "Demo device") -> None:
     """Add a device with the journey's point, picked from the PLC's variables or pasted."""
     flow = hass.call("POST", SUBENTRY_FLOW, {"handler": [entry_id, "device"]})
     step = f"{SUBENTRY_FLOW}/{flow['flow_id']}"
-    flow = hass.call("POST", step, {"name": "Demo device"})
+    flow = hass.call("POST", step, {"name": name})
     if journey.pick:
         flow = hass.call("POST", step, {"next_step_id": "browse"})
         flow = hass.call("POST", step, {"filter": journey.pick})
@@ -105,15 +201,79 @@ def wait_for(ready: Callable[[], Any], timeout: float) -> Any:
     return answer
 
 
-def number_of(ws: Socket, entry_id: str) -> str | None:
-    """Return the entity id of the entry's number entity (the journey's point)."""
+def number_of(ws: Socket, entry_id: str, domain: str = "number") -> str | None:
+    """Return the entity id of the entry's first entity of a domain (the journey's point)."""
     entities = ws.call("config/entity_registry/list")
     found = [
         entity["entity_id"]
         for entity in entities
-        if entity["config_entry_id"] == entry_id and entity["entity_id"].startswith("number.")
+        if entity["config_entry_id"] == entry_id
+        and entity["entity_id"].startswith(f"{domain}.")
+        and entity.get("entity_category") is None
     ]
     return found[0] if found else None
+
+
+def plc_value(hass: Hass, entry_id: str, drive: Drive) -> Any:
+    """Return what the PLC holds at the drive's address, read through plc_bridge.read."""
+    point = {"address": drive.address, "data_type": drive.data_type}
+    body = {"config_entry_id": entry_id, "points": [point]}
+    answer = hass.call("POST", "/api/services/plc_bridge/read?return_response", body)
+    return answer["service_response"]["values"].get(drive.address)
+
+
+def drive_kinds(hass: Hass, ws: Socket, entry_id: str, vendor: str) -> list[str]:
+    """Add the journey's machines, take each action as the frontend does, see the PLC change."""
+    plan = JOURNEYS[vendor]
+    for name, table in plan.machines:
+        add_device(hass, entry_id, Journey(table=table), name)
+    alarm = wait_for(lambda: overheat(ws, entry_id), 30) if plan.machines else None
+    before = _state(hass, alarm) if alarm else None
+    problems = []
+    for drive in plan.drives:
+        try:
+            problem = take(hass, ws, entry_id, drive, vendor)
+        except RuntimeError as err:  # a refused action fails its drive, not the others
+            problem = str(err)
+        if problem:
+            problems.append(f"{drive.domain}.{drive.service}: {problem}")
+    if plan.machines and alarm is None:
+        problems.append("alarm word: no Overheat binary sensor")
+    elif alarm is not None:
+        # The simulator raises Overheat while the water is above the set point just written.
+        if wait_for(lambda: _state(hass, alarm) == "on", 30):
+            print(f"demo: {vendor}: alarm word: {alarm} {before} -> on", flush=True)
+        else:
+            problems.append(f"alarm word: {alarm} is {_state(hass, alarm)}, not on")
+    return problems
+
+
+def overheat(ws: Socket, entry_id: str) -> str | None:
+    """Return the entity id of the entry's Overheat binary sensor (of the alarm word)."""
+    names = {s["entity_id"]: s["attributes"].get("friendly_name") for s in ws.call("get_states")}
+    for entity in ws.call("config/entity_registry/list"):
+        name = str(names.get(entity["entity_id"]))
+        if entity["config_entry_id"] == entry_id and name.endswith("Overheat"):
+            return str(entity["entity_id"])
+    return None
+
+
+def take(hass: Hass, ws: Socket, entry_id: str, drive: Drive, vendor: str) -> str:
+    """Take one drive; print what the PLC held before and after, or return what went wrong."""
+    entity = wait_for(lambda: number_of(ws, entry_id, drive.domain), 30)
+    if entity is None or not wait_for(
+        lambda: _state(hass, entity) not in (None, "unavailable"), 30
+    ):
+        return f"no available {drive.domain} entity ({entity})"
+    before = plc_value(hass, entry_id, drive)
+    service = f"/api/services/{drive.domain}/{drive.service}"
+    hass.call("POST", service, {"entity_id": entity, **drive.data})
+    if not wait_for(lambda: plc_value(hass, entry_id, drive) == drive.expected, 15):
+        now = plc_value(hass, entry_id, drive)
+        return f"{entity}: {drive.address} is {now!r}, not {drive.expected!r}"
+    line = f"{drive.domain}.{drive.service} on {entity}: {drive.address} {before!r} -> "
+    print(f"demo: {vendor}: {line}{drive.expected!r}", flush=True)
+    return ""
 
 
 def journey(hass: Hass, ws: Socket, sim: dict[str, Any]) -> list[str]:
@@ -143,6 +303,7 @@ def journey(hass: Hass, ws: Socket, sim: dict[str, Any]) -> list[str]:
         hass.call("POST", "/api/services/number/set_value", {"entity_id": entity, "value": WRITTEN})
         if not wait_for(lambda: _number(_state(hass, entity)) == WRITTEN, 30):
             return [f"{vendor}: {entity} shows {_state(hass, entity)} after writing {WRITTEN}"]
+        return [f"{vendor}: {problem}" for problem in drive_kinds(hass, ws, entry_id, vendor)]
     except Exception as err:  # any step of a journey that fails is one problem of its family
         return [f"{vendor}: {type(err).__name__}: {err}"]
     return []

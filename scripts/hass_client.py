@@ -12,6 +12,7 @@ import os
 import socket
 import struct
 from typing import Any
+import urllib.error
 import urllib.parse
 import urllib.request
 
@@ -39,8 +40,11 @@ class Hass:
             data = json.dumps(body).encode()
             headers["Content-Type"] = "application/json"
         request = urllib.request.Request(self.base + path, data, headers, method=method)
-        with urllib.request.urlopen(request, timeout=30) as answer:
-            text = answer.read().decode()
+        try:
+            with urllib.request.urlopen(request, timeout=30) as answer:
+                text = answer.read().decode()
+        except urllib.error.HTTPError as err:  # the body says why (a refused action's message)
+            raise RuntimeError(f"{method} {path}: {err.code} {err.read().decode()[:300]}") from None
         try:
             return json.loads(text)
         except json.JSONDecodeError:

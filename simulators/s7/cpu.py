@@ -114,11 +114,18 @@ class S7Simulator:
         """Move the demo values (called about once a second, `elapsed` seconds since start).
 
         DB1.DBD0 (REAL) drifts like a room temperature, MW20 (INT) counts up by one per call;
-        all other memory stays as it is.
+        the demo boiler's water (DB1.DBW50, tenths of a degree) drifts and raises Overheat (bit
+        0 of DB1.DBW70) above its set point (DB1.DBW52); all other memory stays as it is.
         """
         temperature = round(21.0 + 1.5 * math.sin(2 * math.pi * elapsed / 600), 1)
         if (S7Area.DB, 1) in self._server.memory_areas:
             self.set_db(1, 0, struct.pack(">f", temperature))
+        if len(self._server.memory_areas.get((S7Area.DB, 1), b"")) >= 72:  # the demo's DB1
+            water = round(550 + 50 * math.sin(2 * math.pi * elapsed / 600))
+            target, alarms = struct.unpack(">hxxxxxxxxxxxxxxxxh", self.get_db(1, 52, 20))
+            alarms = alarms & ~1 | int(0 < target < water)
+            self.set_db(1, 50, struct.pack(">h", water))
+            self.set_db(1, 70, struct.pack(">h", alarms))
         memory, lock, _ = self._memory("M", 0)
         with lock:
             count = int.from_bytes(memory[20:22], "big", signed=True)

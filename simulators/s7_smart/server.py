@@ -151,9 +151,24 @@ class S7SmartSimulator(HttpSimulator):
         return bool(value) if where.bit is not None else value
 
     def animate(self, elapsed: float) -> None:
-        """The demo's process: a tank temperature (VD100) drifts, a counter (VW10) counts."""
+        """The demo's process: a tank temperature (VD100) drifts, a counter (VW10) counts.
+
+        The boiler's water (VW50, tenths of a degree) drifts too and raises Overheat (bit 0 of
+        VW70) above a set point (VW52), the pump's contactor (V63.0) follows its command
+        (V61.1), and the shutter's open (V60.0) and close (V60.1) commands reach their limit
+        switches (V62.0, V62.1): scripts/develop's machines.
+        """
         self.set("VD100", round(21.5 + 1.5 * math.sin(2 * math.pi * elapsed / 900), 1), "float")
         self.set("VW10", int(elapsed) % 32768)
+        water = round(550 + 50 * math.sin(2 * math.pi * elapsed / 600))
+        self.set("VW50", water)
+        target = int(self.get("VW52"))
+        self.set("VW70", int(self.get("VW70")) & ~1 | int(0 < target < water))
+        self.set("V63.0", self.get("V61.1"))
+        opening, closing = self.get("V60.0"), self.get("V60.1")
+        if opening != closing:
+            self.set("V62.0", opening)
+            self.set("V62.1", closing)
 
     def invalidate_tokens(self) -> None:
         """Drop every token, as if another client had logged in with each online user."""

@@ -135,9 +135,16 @@ class SoftplcSimulator(HttpSimulator):
         self._ssl.verify_mode = ssl.CERT_OPTIONAL
 
     def animate(self, elapsed: float) -> None:
-        """Let F8:0 (a temperature) drift and the timer T4:0 count."""
+        """Let F8:0 (a temperature) drift and the timer T4:0 count.
+
+        The demo boiler's water (N7:50, tenths of a degree) drifts too and raises Overheat (bit
+        0 of N7:70) above its set point (N7:52).
+        """
         self.files["F", 8].words[0] = round(21.5 + 1.5 * math.sin(2 * math.pi * elapsed / 900), 1)
         self.files["T", 4].words[2] = int(elapsed * 10) % 4000
+        words = self.files["N", 7].words
+        words[50] = water = round(550 + 50 * math.sin(2 * math.pi * elapsed / 600))
+        words[70] = int(words[70]) & ~1 | int(0 < int(words[52]) < water)
 
     # -- HTTP -------------------------------------------------------------------------
 
