@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from collections.abc import Iterator
+from contextlib import contextmanager
 from unittest.mock import patch
 
 from freezegun.api import FrozenDateTimeFactory
@@ -22,6 +24,37 @@ REQUESTS = "sensor.s7_200_smart_requests_per_poll"
 FAILING = "sensor.s7_200_smart_points_failing"
 LAST_POLL = "sensor.s7_200_smart_last_successful_poll"
 DISABLED = (DURATION, REQUESTS, FAILING, LAST_POLL)
+
+
+@contextmanager
+def state_writes() -> Iterator[list[str]]:
+    """Collect the entity ids whose state is written meanwhile."""
+    writes: list[str] = []
+    original = Entity.async_write_ha_state
+
+    def counting(entity: Entity) -> None:
+        writes.append(entity.entity_id)
+        original(entity)
+
+    with patch.object(Entity, "async_write_ha_state", counting):
+        yield writes
+
+
+class PollClock:
+    """A perf_counter for the client whose polls take the given seconds, one after another."""
+
+    def __init__(self, durations: list[float]) -> None:
+        """Time the next polls with these durations."""
+        self.durations = durations
+        self.now = 0.0
+        self.started = False
+
+    def perf_counter(self) -> float:
+        """Return the start of a read, then its end."""
+        if self.started:
+            self.now += self.durations.pop(0)
+        self.started = not self.started
+        return self.now
 
 
 async def test_connectivity_off_while_plc_stopped(
@@ -87,14 +120,38 @@ async def test_quiet_poll_writes_no_link_state(
 ) -> None:
     """Polls that change nothing write no state of the link's entities (but the last poll's)."""
     await poll(hass, freezer, 2)
-    writes: list[str] = []
-    original = Entity.async_write_ha_state
-
-    def counting(entity: Entity) -> None:
-        writes.append(entity.entity_id)
-        original(entity)
-
-    with patch.object(Entity, "async_write_ha_state", counting):
+    with state_writes() as writes:
         await poll(hass, freezer, 3)
     assert [e for e in writes if e in (CONNECTIVITY, DURATION, REQUESTS, FAILING)] == []
     assert writes.count(LAST_POLL) == 3
+
+
+@pytest.mark.usefixtures("entity_registry_enabled_by_default")
+async def test_requests_per_poll_quiet_over_status_reads(
+    hass: HomeAssistant, s7_setup: MockConfigEntry, freezer: FrozenDateTimeFactory
+) -> None:
+    """The S7 reads the CPU state and clock once a minute: those polls take more requests."""
+    requests = "sensor.s7_300_requests_per_poll"
+    with state_writes() as writes:
+        await poll(hass, freezer, 14)  # two status reads
+    assert hass.states.get(requests).state == "3"
+    assert requests not in writes
+
+
+@pytest.mark.usefixtures("entity_registry_enabled_by_default")
+async def test_poll_duration_ignores_noise(
+    hass: HomeAssistant, setup_integration: MockConfigEntry, freezer: FrozenDateTimeFactory
+) -> None:
+    """Milliseconds up or down write nothing; a poll that takes much longer does."""
+    clock = PollClock([0.2, 0.21, 0.19, 0.26, 0.2, 0.6, 0.65])
+    with patch("custom_components.plc_bridge.plc.client.time", clock):
+        await poll(hass, freezer)
+        assert hass.states.get(DURATION).state == "0.2"
+        with state_writes() as writes:
+            await poll(hass, freezer, 4)
+        assert DURATION not in writes
+        await poll(hass, freezer)
+        assert hass.states.get(DURATION).state == "0.6"
+        with state_writes() as writes:
+            await poll(hass, freezer)
+        assert DURATION not in writes

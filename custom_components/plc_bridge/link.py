@@ -28,6 +28,8 @@ POLL_STEP = 0.1
 """Seconds the poll duration must move before it is shown anew (or POLL_SHARE of it, if more)."""
 POLL_SHARE = 0.1
 """Share of the shown poll duration it must move by before it is shown anew."""
+REQUEST_WINDOW = 300.0
+"""Seconds a poll's request count is shown for at least: longer than any vendor's status pace."""
 
 CONNECTIVITY = BinarySensorEntityDescription(
     key="connectivity",
@@ -61,25 +63,20 @@ class PlcLinkCountDescription(SensorEntityDescription):
     value_fn: Callable[[PlcCoordinator], int]
 
 
-COUNTS = (
-    PlcLinkCountDescription(
-        key="poll_requests",
-        translation_key="poll_requests",
-        state_class=SensorStateClass.MEASUREMENT,
-        entity_category=EntityCategory.DIAGNOSTIC,
-        entity_registry_enabled_default=False,
-        value_fn=lambda coordinator: coordinator.client.metrics.last_poll_requests,
-    ),
-    PlcLinkCountDescription(
-        key="points_failing",
-        translation_key="points_failing",
-        state_class=SensorStateClass.MEASUREMENT,
-        entity_category=EntityCategory.DIAGNOSTIC,
-        entity_registry_enabled_default=False,
-        value_fn=lambda coordinator: sum(
-            not result.ok for result in coordinator.data.values.values()
-        ),
-    ),
+POLL_REQUESTS = SensorEntityDescription(
+    key="poll_requests",
+    translation_key="poll_requests",
+    state_class=SensorStateClass.MEASUREMENT,
+    entity_category=EntityCategory.DIAGNOSTIC,
+    entity_registry_enabled_default=False,
+)
+POINTS_FAILING = PlcLinkCountDescription(
+    key="points_failing",
+    translation_key="points_failing",
+    state_class=SensorStateClass.MEASUREMENT,
+    entity_category=EntityCategory.DIAGNOSTIC,
+    entity_registry_enabled_default=False,
+    value_fn=lambda coordinator: sum(not result.ok for result in coordinator.data.values.values()),
 )
 
 
@@ -87,7 +84,8 @@ def link_sensors(entry: PlcBridgeConfigEntry) -> list[SensorEntity]:
     """Return the sensors of what the polls of the entry's PLC cost."""
     return [
         PlcPollDuration(entry),
-        *(PlcLinkCount(entry, description) for description in COUNTS),
+        PlcPollRequests(entry),
+        PlcLinkCount(entry, POINTS_FAILING),
         PlcLastPoll(entry),
     ]
 
@@ -117,7 +115,7 @@ class PlcConnectivity(PlcEntity, BinarySensorEntity):
 
 
 class PlcLinkCount(PlcEntity, SensorEntity):
-    """A count of the last poll (requests it took, points it could not read)."""
+    """A count of the last poll."""
 
     entity_description: PlcLinkCountDescription
 
@@ -134,6 +132,45 @@ class PlcLinkCount(PlcEntity, SensorEntity):
     def observed(self) -> Any:
         """The count of the last poll."""
         return self.native_value
+
+
+class PlcPollRequests(PlcEntity, SensorEntity):
+    """The most requests a successful poll took within the last REQUEST_WINDOW.
+
+    Some vendors read the PLC's status at their own pace (the S7: once a minute), so one poll
+    in several takes more requests: the peak stays shown, and the state is written only when
+    the plan of the read changes, not twice at every status read.
+    """
+
+    entity_description = POLL_REQUESTS
+
+    def __init__(self, entry: PlcBridgeConfigEntry) -> None:
+        """Bind the sensor to the client's poll metrics (the setup's poll just succeeded)."""
+        super().__init__(entry, POLL_REQUESTS.key)
+        self._polls = -1
+        self._peak = 0
+        self._since = 0.0
+        self._measure()
+
+    def _measure(self) -> None:
+        """Take the request count of a successful poll newer than the last one seen."""
+        metrics = self.coordinator.client.metrics
+        if metrics.polls == self._polls or not self.coordinator.last_update_success:
+            return
+        self._polls = metrics.polls
+        now = self.coordinator.hass.loop.time()
+        if metrics.last_poll_requests >= self._peak or now - self._since > REQUEST_WINDOW:
+            self._peak, self._since = metrics.last_poll_requests, now
+
+    @property
+    def native_value(self) -> int:
+        """Return the most requests a recent poll took."""
+        return self._peak
+
+    def observed(self) -> Any:
+        """The count shown, updated from the last poll."""
+        self._measure()
+        return self._peak
 
 
 class PlcPollDuration(PlcEntity, SensorEntity):
@@ -179,7 +216,7 @@ class PlcLastPoll(PlcEntity, SensorEntity):
         """Bind the sensor to the PLC's polls (the setup's poll just succeeded)."""
         super().__init__(entry, LAST_POLL.key)
         self._polls = self.coordinator.client.metrics.polls
-        self._last: datetime | None = dt_util.utcnow()
+        self._last = dt_util.utcnow()
 
     def _measure(self) -> None:
         """Note the time of a successful poll newer than the last one seen."""
@@ -191,11 +228,11 @@ class PlcLastPoll(PlcEntity, SensorEntity):
 
     @property
     def available(self) -> bool:
-        """Always available once a poll succeeded: it tells since when the PLC is unreachable."""
-        return self._last is not None
+        """Always available (a poll succeeded at setup): it tells since when polls fail."""
+        return True
 
     @property
-    def native_value(self) -> datetime | None:
+    def native_value(self) -> datetime:
         """Return the time of the last successful poll."""
         return self._last
 
