@@ -38,6 +38,7 @@ async def test_live_values(hass: HomeAssistant, tecomat_entry: MockConfigEntry) 
     }
     # The clock entity is off by default (its state changes at every read); its drift is on.
     assert int(states.pop("sensor.fx2_cp2080_clock_drift")) < -200_000_000  # a 2018 clock
+    assert states.pop("binary_sensor.fx2_cp2080_connectivity") == STATE_ON
     assert states == {
         INSIDE: "22.1",
         "number.fx2_cp2080_requested_temperature": "23.0",

@@ -21,6 +21,7 @@ from .entity import (
     device_class,
     point_fields,
 )
+from .link import PlcConnectivity
 from .points import PointConfig
 
 PARALLEL_UPDATES = 0
@@ -49,7 +50,8 @@ async def async_setup_entry(
     entry: PlcBridgeConfigEntry,
     async_add_entities: AddConfigEntryEntitiesCallback,
 ) -> None:
-    """Add a binary sensor for each binary sensor point."""
+    """Add the PLC's connectivity sensor, and a binary sensor for each binary sensor point."""
+    async_add_entities([PlcConnectivity(entry)])
     entry.runtime_data.points.async_setup_platform(
         "binary_sensor", point_binary_sensor, async_add_entities
     )

@@ -30,6 +30,7 @@ from .entity import (
     device_class,
     point_fields,
 )
+from .link import link_sensors
 from .plc import PlcStatus, ValueKind
 from .points import PointConfig
 
@@ -182,7 +183,7 @@ async def async_setup_entry(
     entry: PlcBridgeConfigEntry,
     async_add_entities: AddConfigEntryEntitiesCallback,
 ) -> None:
-    """Add the point sensors, and a diagnostic sensor for each status field the PLC reports."""
+    """Add the point sensors, a diagnostic sensor per status field reported, and the link's."""
     status = entry.runtime_data.coordinator.data.status
     descriptions = [d for d in STATUS if REPORTED[d.key](status)]
     settable = entry.runtime_data.client.can_set_clock
@@ -194,6 +195,7 @@ async def async_setup_entry(
     entities: list[SensorEntity] = [PlcStatusSensor(entry, d) for d in descriptions]
     if status.clock is not None:
         entities.append(PlcClockDrift(entry))
+    entities += link_sensors(entry)
     async_add_entities(entities)
     entry.runtime_data.points.async_setup_platform("sensor", point_sensor, async_add_entities)
 
