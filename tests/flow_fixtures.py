@@ -10,6 +10,7 @@ import re
 from typing import Any, ClassVar
 from unittest.mock import AsyncMock, patch
 
+from homeassistant.config_entries import SOURCE_USER
 from homeassistant.const import CONF_HOST, CONF_PASSWORD, CONF_PORT, CONF_USERNAME
 from homeassistant.core import HomeAssistant
 from homeassistant.data_entry_flow import FlowResultType
@@ -23,6 +24,7 @@ from custom_components.plc_bridge.const import (
     CONF_TLS,
     CONF_VENDOR,
     DOMAIN,
+    SUBENTRY_DEVICE,
 )
 from custom_components.plc_bridge.plc import (
     BrowseItem,
@@ -196,3 +198,34 @@ def error_message(result: Any, field: str, *section: str) -> str:
     """Return the English message of a form error, with its placeholders filled in."""
     text: str = strings_at(*section, "error", result["errors"][field])
     return text.format(**(result["description_placeholders"] or {}))
+
+
+MACHINE = ("config_subentries", SUBENTRY_DEVICE)
+"""Where a machine (device subentry) flow's texts are in strings.json."""
+
+
+async def step(hass: HomeAssistant, result: Any, values: dict[str, Any] | None = None) -> Any:
+    """Submit a machine flow's form or menu choice; check its texts."""
+    return translated(
+        await hass.config_entries.subentries.async_configure(result["flow_id"], values or {}),
+        *MACHINE,
+    )
+
+
+async def browse(
+    hass: HomeAssistant, entry: MockConfigEntry, needle: str, name: str = "Heating"
+) -> Any:
+    """Start a machine, open the pick list with a filter; return the pick form."""
+    result = await hass.config_entries.subentries.async_init(
+        (entry.entry_id, SUBENTRY_DEVICE), context={"source": SOURCE_USER}
+    )
+    menu = await step(hass, result, {"name": name})
+    assert "browse" in menu["menu_options"]
+    result = await step(hass, menu, {"next_step_id": "browse"})
+    return await step(hass, result, {"filter": needle})
+
+
+def listed(result: Any) -> dict[str, str]:
+    """Return the pick list's labels and their values."""
+    (selector,) = result["data_schema"].schema.values()
+    return {option["label"]: option["value"] for option in selector.config["options"]}

@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-from typing import Any
 from unittest.mock import AsyncMock
 
 from freezegun.api import FrozenDateTimeFactory
@@ -19,36 +18,9 @@ from custom_components.plc_bridge.plc import BrowseItem, PlcConnectionError
 from simulators.tecomat import TecomatSimulator
 from simulators.tecomat.values import Var
 
-from .flow_fixtures import error_message, translated
+from .flow_fixtures import MACHINE, browse, error_message, listed, step
 from .ha_fixtures import read_edits
 from .tecomat_ha_fixtures import make_tecomat_entry
-
-DEVICE = ("config_subentries", SUBENTRY_DEVICE)
-
-
-async def step(hass: HomeAssistant, result: Any, values: dict[str, Any] | None = None) -> Any:
-    """Submit a form or a menu choice; check its texts."""
-    return translated(
-        await hass.config_entries.subentries.async_configure(result["flow_id"], values or {}),
-        *DEVICE,
-    )
-
-
-async def browse(hass: HomeAssistant, entry: MockConfigEntry, needle: str) -> Any:
-    """Start a device, open the pick list with a filter; return the pick form."""
-    result = await hass.config_entries.subentries.async_init(
-        (entry.entry_id, SUBENTRY_DEVICE), context={"source": SOURCE_USER}
-    )
-    menu = await step(hass, result, {"name": "Heating"})
-    assert "browse" in menu["menu_options"]
-    result = await step(hass, menu, {"next_step_id": "browse"})
-    return await step(hass, result, {"filter": needle})
-
-
-def listed(result: Any) -> dict[str, str]:
-    """Return the pick list's labels and their values."""
-    (selector,) = result["data_schema"].schema.values()
-    return {option["label"]: option["value"] for option in selector.config["options"]}
 
 
 async def test_pick_published_variables(
@@ -114,7 +86,7 @@ async def test_browse_failure_goes_back(
     monkeypatch.setattr(tecomat_entry.runtime_data.client, "browse", browsed)
     result = await browse(hass, tecomat_entry, "x")
     assert result["errors"] == {"base": "browse_failed"}
-    assert "timed out" in error_message(result, "base", *DEVICE)
+    assert "timed out" in error_message(result, "base", *MACHINE)
     menu = await step(hass, result, {})
     assert menu["type"] is FlowResultType.MENU
 
@@ -131,7 +103,7 @@ async def test_a_bad_pick_adds_nothing(
     result = await browse(hass, tecomat_entry, "v")
     result = await step(hass, result, {"variables": ["0", "1"]})
     assert result["errors"] == {"base": "pick_failed"}
-    assert "- bad.v2: Invalid address" in error_message(result, "base", *DEVICE)
+    assert "- bad.v2: Invalid address" in error_message(result, "base", *MACHINE)
     menu = await step(hass, result, {"variables": ["0"]})
     assert menu["description_placeholders"]["count"] == "1"
 
@@ -162,6 +134,6 @@ async def test_variables_too_big_to_list_are_named(
     assert set(listed(result)) == {"big[19] (DINT?)", *(f"big[19{i}] (DINT?)" for i in range(10))}
     result = await browse(hass, tecomat_entry, "RECI")
     assert result["errors"] == {"base": "browse_unlisted"}
-    assert error_message(result, "base", *DEVICE).startswith(
+    assert error_message(result, "base", *MACHINE).startswith(
         "The PLC cannot list these variables here: recipe. "
     )

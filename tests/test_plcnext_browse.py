@@ -2,23 +2,20 @@
 
 from __future__ import annotations
 
-from typing import Any
-
 from freezegun.api import FrozenDateTimeFactory
-from homeassistant.config_entries import SOURCE_USER, ConfigEntryState
+from homeassistant.config_entries import ConfigEntryState
 from homeassistant.const import STATE_UNAVAILABLE
 from homeassistant.core import HomeAssistant
 from homeassistant.data_entry_flow import FlowResultType
 from homeassistant.helpers import entity_registry as er
 from pytest_homeassistant_custom_component.common import MockConfigEntry
 
-from custom_components.plc_bridge.const import CONF_POINTS, SUBENTRY_DEVICE
+from custom_components.plc_bridge.const import CONF_POINTS
 from simulators.plcnext import PlcnextSimulator
-from tests.flow_fixtures import error_message, translated
+from tests.flow_fixtures import MACHINE, browse, error_message, listed, step
 from tests.ha_fixtures import point, poll, read_edits
 from tests.plcnext_ha_fixtures import PLCNEXT_POINTS, make_plcnext_entry
 
-DEVICE = ("config_subentries", SUBENTRY_DEVICE)
 MAIN = "Arp.Plc.Eclr/MainInstance."
 
 
@@ -27,36 +24,11 @@ def label(path: str, kind: str) -> str:
     return f"{path} ({kind})"
 
 
-async def step(hass: HomeAssistant, result: Any, values: dict[str, Any] | None = None) -> Any:
-    """Submit a form or a menu choice; check its texts."""
-    return translated(
-        await hass.config_entries.subentries.async_configure(result["flow_id"], values or {}),
-        *DEVICE,
-    )
-
-
-async def browse(hass: HomeAssistant, entry: MockConfigEntry, needle: str) -> Any:
-    """Start a device, open the pick list with a filter; return the pick form."""
-    result = await hass.config_entries.subentries.async_init(
-        (entry.entry_id, SUBENTRY_DEVICE), context={"source": SOURCE_USER}
-    )
-    menu = await step(hass, result, {"name": "Oven"})
-    assert "browse" in menu["menu_options"]
-    result = await step(hass, menu, {"next_step_id": "browse"})
-    return await step(hass, result, {"filter": needle})
-
-
-def listed(result: Any) -> dict[str, str]:
-    """Return the pick list's labels and their values."""
-    (selector,) = result["data_schema"].schema.values()
-    return {option["label"]: option["value"] for option in selector.config["options"]}
-
-
 async def test_pick_list_from_the_dictionary(
     hass: HomeAssistant, plcnext_entry: MockConfigEntry
 ) -> None:
     """Every HMI variable with its declared type; structures and arrays as leaves."""
-    labels = listed(await browse(hass, plcnext_entry, ""))
+    labels = listed(await browse(hass, plcnext_entry, "", name="Oven"))
     for shown in (
         label(MAIN + "Precise", "LREAL"),
         label(MAIN + "Counter", "DINT"),
@@ -87,7 +59,7 @@ async def test_picks_keep_types_and_read_only_flags(
     plcnext_entry = make_plcnext_entry(hass, plcnext_sim, PLCNEXT_POINTS[:1])
     assert await hass.config_entries.async_setup(plcnext_entry.entry_id)
     await hass.async_block_till_done()
-    result = await browse(hass, plcnext_entry, "MainInstance")
+    result = await browse(hass, plcnext_entry, "MainInstance", name="Oven")
     labels = listed(result)
     names = (("Alarm", "BOOL"), ("Counter", "DINT"), ("Speed", "INT"), ("Label", "WSTRING"))
     ticked = [labels[label(MAIN + name, kind)] for name, kind in (*names, ("Today", "DATE"))]
@@ -130,9 +102,9 @@ async def test_configured_variables_are_not_listed(
     hass: HomeAssistant, plcnext_entry: MockConfigEntry
 ) -> None:
     """A variable that is a point already is not offered again."""
-    labels = listed(await browse(hass, plcnext_entry, "temperature"))
+    labels = listed(await browse(hass, plcnext_entry, "temperature", name="Oven"))
     assert labels == {}
-    labels = listed(await browse(hass, plcnext_entry, "levels"))
+    labels = listed(await browse(hass, plcnext_entry, "levels", name="Oven"))
     assert label(MAIN + "Levels[2]", "INT") not in labels
     assert label(MAIN + "Levels[3]", "INT") in labels
 
@@ -143,9 +115,9 @@ async def test_dictionary_refused(
     """A dictionary the PLC refuses: its words on the form, and back to the menu."""
     plcnext_sim.access.users.clear()  # the token is refused and no login works any more
     plcnext_sim.access.expire_tokens()
-    result = await browse(hass, plcnext_entry, "x")
+    result = await browse(hass, plcnext_entry, "x", name="Oven")
     assert result["errors"] == {"base": "browse_failed"}
-    assert "refused the user or password" in error_message(result, "base", *DEVICE)
+    assert "refused the user or password" in error_message(result, "base", *MACHINE)
     menu = await step(hass, result, {})
     assert menu["type"] is FlowResultType.MENU
 
@@ -158,5 +130,5 @@ async def test_points_stored_with_a_short_path_are_not_offered_again(
         hass, plcnext_sim, [point("counter", "Counter", "sensor", "MainInstance.Counter", "DINT")]
     )
     assert await hass.config_entries.async_setup(entry.entry_id)
-    labels = listed(await browse(hass, entry, "Counter"))
+    labels = listed(await browse(hass, entry, "Counter", name="Oven"))
     assert label(MAIN + "Counter", "DINT") not in labels
