@@ -267,6 +267,7 @@ def ha_checks() -> list[dict[str, Any]] | str:
         "pytest",
         "bench/test_quiet_poll.py",
         "bench/test_setup_time.py",
+        "bench/test_machine_kinds.py",
     ]
     command += ["-q", "-s", "-p", "no:cacheprovider"]
     done = subprocess.run(command, cwd=ROOT, capture_output=True, text=True, check=False)
@@ -292,6 +293,13 @@ def check_text(result: dict[str, Any]) -> str:
             f" written and available; {result['devices']} devices;"
             f" {result['requests_first_poll']} requests in the first poll"
         )
+    if result["check"] == "machine_kinds":
+        return (
+            f"machine kinds ({result['vendor']}: {result['kinds']} = {result['addresses']}"
+            f" addresses, in Home Assistant): {result['requests_per_poll']} request(s) per poll;"
+            f" the plan of its {result['addresses']} addresses alone:"
+            f" {result['planned_requests']} (target: equal)"
+        )
     return (
         f"quiet poll ({result['vendor']}, {result['points']} sensor points, {result['polls']} polls"
         f" with nothing changed, in Home Assistant): {result['state_changed']} state_changed"
@@ -308,7 +316,7 @@ def main() -> int:
     parser.add_argument(
         "--ha",
         action=argparse.BooleanOptionalAction,
-        help="also run the Home Assistant checks: quiet poll, setup time (default: on)",
+        help="also run the Home Assistant checks: quiet poll, setup, machine kinds (default: on)",
     )
     args = parser.parse_args()
     time_transports()
