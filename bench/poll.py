@@ -16,7 +16,6 @@ from pathlib import Path
 import platform
 import shlex
 import statistics
-import subprocess
 import sys
 import tempfile
 import time
@@ -29,6 +28,7 @@ from custom_components.plc_bridge.plc import ConnectionConfig, PlcClient, Point,
 from custom_components.plc_bridge.plc.http import HttpTransport
 from custom_components.plc_bridge.plc.vendors import VENDORS as ALL_VENDORS, client_class
 
+from .ha_checks import check_text, ha_checks
 from .points import VENDORS
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -259,46 +259,6 @@ async def run(sizes: list[int], polls: int) -> list[dict[str, Any]]:
     return rows
 
 
-def ha_checks() -> list[dict[str, Any]] | str:
-    """Run the Home Assistant checks (bench/test_*.py); their figures, or why they failed."""
-    command = [
-        sys.executable,
-        "-m",
-        "pytest",
-        "bench/test_quiet_poll.py",
-        "bench/test_setup_time.py",
-    ]
-    command += ["-q", "-s", "-p", "no:cacheprovider"]
-    done = subprocess.run(command, cwd=ROOT, capture_output=True, text=True, check=False)
-    results = [
-        json.loads(line.removeprefix("BENCH "))
-        for line in done.stdout.splitlines()
-        if line.startswith("BENCH ")
-    ]
-    if not results:
-        return done.stdout[-2000:] + done.stderr[-2000:]
-    for result in results:
-        result["passed"] = done.returncode == 0
-    return results
-
-
-def check_text(result: dict[str, Any]) -> str:
-    """Return one Home Assistant check as text."""
-    if result["check"] == "setup_time":
-        return (
-            f"setup ({result['vendor']}, {result['points']} points in {result['devices'] - 1}"
-            f" devices, in Home Assistant): {result['setup_to_states_ms']} ms from"
-            f" async_setup to {result['available']} of {result['states_written']} states"
-            f" written and available; {result['devices']} devices;"
-            f" {result['requests_first_poll']} requests in the first poll"
-        )
-    return (
-        f"quiet poll ({result['vendor']}, {result['points']} sensor points, {result['polls']} polls"
-        f" with nothing changed, in Home Assistant): {result['state_changed']} state_changed"
-        f" events (target 0), {result['state_writes']} async_write_ha_state calls"
-    )
-
-
 def main() -> int:
     """Parse the command line, run, print."""
     parser = argparse.ArgumentParser(prog="scripts/bench", description=__doc__)
@@ -308,7 +268,7 @@ def main() -> int:
     parser.add_argument(
         "--ha",
         action=argparse.BooleanOptionalAction,
-        help="also run the Home Assistant checks: quiet poll, setup time (default: on)",
+        help="also run the Home Assistant checks: quiet poll, setup, machine kinds (default: on)",
     )
     args = parser.parse_args()
     time_transports()
