@@ -7,7 +7,7 @@ from typing import Any
 
 from freezegun.api import FrozenDateTimeFactory
 from homeassistant.config_entries import SOURCE_USER
-from homeassistant.const import STATE_UNAVAILABLE
+from homeassistant.const import STATE_OFF, STATE_UNAVAILABLE
 from homeassistant.core import HomeAssistant
 from homeassistant.data_entry_flow import FlowResultType
 import pytest
@@ -26,7 +26,11 @@ from simulators.s7_smart import S7SmartSimulator
 from .flow_fixtures import error_message, smart_data, translated
 from .ha_fixtures import add_entry, device, point, poll, sim_data
 
-BOILER = [point("temperature", "Temperature", "sensor", "VW4", "signed")]
+BOILER = [
+    point("temperature", "Temperature", "sensor", "VW4", "signed"),
+    point("p1", "Burner", "switch", "I0.3", "signed", role="state", read_only=True),
+    point("p2", "Burner", "switch", "M1.0", "signed", role="command"),
+]
 DEVICE = ("config_subentries", SUBENTRY_DEVICE)
 PUMP = [point("speed", "Speed", "sensor", "VW6", "signed")]
 
@@ -74,6 +78,7 @@ async def test_bit_gates_the_machine(
     await hass.async_block_till_done()
     assert hass.states.get("sensor.boiler_temperature").state == "42"
     assert hass.states.get("sensor.pump_speed").state == "7"
+    assert hass.states.get("switch.boiler_burner").state == STATE_OFF
 
     reads = s7_smart_sim.calls["read"]
     await poll(hass, freezer)
@@ -82,6 +87,7 @@ async def test_bit_gates_the_machine(
     s7_smart_sim.set("M0.0", 0)
     await poll(hass, freezer, 3)
     assert hass.states.get("sensor.boiler_temperature").state == STATE_UNAVAILABLE
+    assert hass.states.get("switch.boiler_burner").state == STATE_UNAVAILABLE
     assert hass.states.get("sensor.pump_speed").state == "7"
     assert changes(caplog) == [
         "S7-200 SMART: Boiler is unavailable: M0.0 says its data is not valid"
@@ -91,6 +97,7 @@ async def test_bit_gates_the_machine(
     s7_smart_sim.set("VW4", 43)
     await poll(hass, freezer, 3)
     assert hass.states.get("sensor.boiler_temperature").state == "43"
+    assert hass.states.get("switch.boiler_burner").state == STATE_OFF
     assert len(changes(caplog)) == 2
     assert changes(caplog)[1] == "S7-200 SMART: Boiler is available again"
     assert s7_smart_sim.calls["read"] == reads + 7
@@ -163,3 +170,20 @@ async def step(hass: HomeAssistant, result: Any, values: dict[str, Any]) -> Any:
     return translated(
         await hass.config_entries.subentries.async_configure(result["flow_id"], values), *DEVICE
     )
+
+
+async def test_address_removed(hass: HomeAssistant, s7_smart_sim: S7SmartSimulator) -> None:
+    """A machine whose availability address is removed shows its values at once."""
+    s7_smart_sim.set("VW4", 42)
+    entry = plant(
+        hass,
+        s7_smart_sim,
+        **{CONF_AVAILABILITY_ADDRESS: "M0.0", CONF_AVAILABILITY_DATA_TYPE: "signed"},
+    )
+    assert await hass.config_entries.async_setup(entry.entry_id)
+    await hass.async_block_till_done()
+    assert hass.states.get("sensor.boiler_temperature").state == STATE_UNAVAILABLE
+    boiler = entry.subentries["boiler"]
+    hass.config_entries.async_update_subentry(entry, boiler, data={"points": boiler.data["points"]})
+    await hass.async_block_till_done()
+    assert hass.states.get("sensor.boiler_temperature").state == "42"

@@ -129,7 +129,7 @@ class MachineAvailability:
             self.points[sid] = Point(address, data.get(CONF_AVAILABILITY_DATA_TYPE, ""))
             self._values[sid] = [float(v) for v in data.get(CONF_AVAILABILITY_VALUES, [])]
             self._titles[sid] = subentry.title
-        self.invalid &= set(self.points)
+        self.invalid = self.invalid & set(self.points)
 
     def watch(self, values: Mapping[Point, PointResult]) -> bool:
         """Follow one poll's results; return True when a machine's availability changed."""

@@ -132,7 +132,11 @@ class PlcCoordinator(PollingCoordinator):
     @callback
     def async_set_points(self, points: Mapping[str, PointConfig]) -> None:
         """Follow edited points; the new ones are read together once the edits pause."""
+        invalid = set(self.availability.invalid)
         self._set_points(points)
+        if invalid - self.availability.invalid:  # a machine no longer names its address
+            self._changed = None
+            self.async_update_listeners()
         self._unknown &= set(self.points)
         self._queue_edited()
 
