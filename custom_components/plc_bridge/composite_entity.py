@@ -92,6 +92,7 @@ class PlcCompositeEntity(PlcEntity):
         super().__init__(entry, group.key)
         self._attr_name = group.name
         self._attr_device_info = DeviceInfo(identifiers={(DOMAIN, group.subentry_id)})
+        self._machine = group.subentry_id
         self.parts = parts
         self._key = group.key
         self._pulses: dict[str, Pulse] = {}

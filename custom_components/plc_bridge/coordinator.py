@@ -16,6 +16,7 @@ from homeassistant.exceptions import (
 )
 from homeassistant.helpers.update_coordinator import UpdateFailed
 
+from .availability import MachineAvailability
 from .const import CONF_TLS, DOMAIN, LOGGER
 from .models import PlcBridgeConfigEntry, PlcRuntimeData
 from .plc import (
@@ -97,6 +98,7 @@ class PlcCoordinator(PollingCoordinator):
     ) -> None:
         """Collect the points and choose the poll interval the vendor's request rate allows."""
         super().__init__(hass, entry, client)
+        self.availability = MachineAvailability(entry.title)
         self._set_points(points)
         self._failing: set[Point] = set()
         # The others stay open until their point reads, even those a previous setup raised.
@@ -112,7 +114,11 @@ class PlcCoordinator(PollingCoordinator):
             config.point for config in points.values() if config.read_only
         )
         self.write_guard = WriteGuard(self.client, self.read_only_points)
-        self._poll = list(dict.fromkeys(self.points.values()))
+        self.availability.configure(self.config_entry.subentries.values())
+        # Availability points first: a paced first poll reads them with the first points.
+        self._poll = list(
+            dict.fromkeys([*self.availability.points.values(), *self.points.values()])
+        )
         interval = max(
             float(
                 self.config_entry.options.get(CONF_SCAN_INTERVAL, self.client.default_scan_interval)
@@ -126,7 +132,11 @@ class PlcCoordinator(PollingCoordinator):
     @callback
     def async_set_points(self, points: Mapping[str, PointConfig]) -> None:
         """Follow edited points; the new ones are read together once the edits pause."""
+        invalid = set(self.availability.invalid)
         self._set_points(points)
+        if invalid - self.availability.invalid:  # a machine no longer names its address
+            self._changed = None
+            self.async_update_listeners()
         self._unknown &= set(self.points)
         self._queue_edited()
 
@@ -142,6 +152,8 @@ class PlcCoordinator(PollingCoordinator):
             async_clear_issue(self.hass, self.config_entry, CERTIFICATE_CHANGED)
         self._log_point_changes(result)
         self._watch_addresses(result, self._failing)
+        if self.availability.watch(result.values):
+            self._changed = None  # a machine's entities changed availability: update them all
         return result
 
     def _watch_points(self, result: ReadResult) -> None:

@@ -160,6 +160,12 @@ class PlcEntity(CoordinatorEntity[PlcCoordinator]):
         self._attr_unique_id = f"{device_key(entry)}_{key}"
         self._attr_device_info = DeviceInfo(identifiers={(DOMAIN, device_key(entry))})
         self._shown: tuple[bool, Any] | None = None
+        self._machine: str | None = None  # the device subentry whose availability applies
+
+    @property
+    def available(self) -> bool:
+        """Available while the PLC answers and the entity's machine says its data is valid."""
+        return super().available and self._machine not in self.coordinator.availability.invalid
 
     def observed(self) -> Any:
         """What this entity shows of the last poll; its state is written only when this changes."""
@@ -190,6 +196,7 @@ class PlcPointEntity(PlcEntity):
         """Bind the entity to its point and device (the key: the point id, or it and a bit)."""
         super().__init__(entry, description.key, description.point)
         self._attr_device_info = DeviceInfo(identifiers={(DOMAIN, config.subentry_id)})
+        self._machine = config.subentry_id
         self.entity_description = description
 
     @property

@@ -16,6 +16,12 @@ from homeassistant.const import CONF_DEVICE_CLASS, CONF_NAME
 from homeassistant.helpers.selector import AreaSelector, TextSelector, TextSelectorConfig
 import voluptuous as vol
 
+from .availability import (
+    AVAILABILITY_FIELDS,
+    availability_fields,
+    check_availability,
+    shown_availability,
+)
 from .composite import assign_entities
 from .composite_flow import CompositeSteps
 from .const import (
@@ -63,6 +69,7 @@ class DeviceSubentryFlowHandler(CompositeSteps):
         """Start with an unnamed device and no points."""
         self._name = ""
         self._area: str | None = None
+        self._availability: dict[str, Any] = {}  # the availability fields, as stored
         self._points: dict[str, dict[str, Any]] = {}
         self._editing: str | None = None
         self._base: dict[str, Any] = {}
@@ -107,6 +114,9 @@ class DeviceSubentryFlowHandler(CompositeSteps):
         subentry = self._get_reconfigure_subentry()
         self._name = subentry.title
         self._area = subentry.data.get(CONF_AREA)
+        self._availability = {
+            k: subentry.data[k] for k in AVAILABILITY_FIELDS if k in subentry.data
+        }
         self._points = {pid: dict(data) for pid, data in subentry.data.get(CONF_POINTS, {}).items()}
         return await self.async_step_menu()
 
@@ -115,20 +125,30 @@ class DeviceSubentryFlowHandler(CompositeSteps):
     ) -> SubentryFlowResult:
         """Name the device (a machine or part of the plant) and suggest its area."""
         errors: dict[str, str] = {}
+        detail = ""
         if user_input is not None:
-            if name := str(user_input.get(CONF_NAME, "")).strip():
+            name = str(user_input.get(CONF_NAME, "")).strip()
+            availability, errors, detail = check_availability(self._client, user_input)
+            if not name:
+                errors[CONF_NAME] = "device_name_required"
+            if not errors:
                 self._name, self._area = name, user_input.get(CONF_AREA) or None
+                self._availability = availability
                 return await self.async_step_menu()
-            errors[CONF_NAME] = "device_name_required"
         schema = vol.Schema(
-            {vol.Required(CONF_NAME): TextSelector(), vol.Optional(CONF_AREA): AreaSelector()}
+            {
+                vol.Required(CONF_NAME): TextSelector(),
+                vol.Optional(CONF_AREA): AreaSelector(),
+                **availability_fields(self._client),
+            }
         )
+        shown = {CONF_NAME: self._name, CONF_AREA: self._area}
+        shown |= shown_availability(self._availability) | dict(user_input or {})
         return self.async_show_form(
             step_id="device",
-            data_schema=self.add_suggested_values_to_schema(
-                schema, {CONF_NAME: self._name, CONF_AREA: self._area}
-            ),
+            data_schema=self.add_suggested_values_to_schema(schema, shown),
             errors=errors,
+            description_placeholders={"error": detail},
         )
 
     async def async_step_menu(self, user_input: dict[str, Any] | None = None) -> SubentryFlowResult:
@@ -333,6 +353,7 @@ class DeviceSubentryFlowHandler(CompositeSteps):
         data: dict[str, Any] = {CONF_POINTS: self._points}
         if self._area:
             data[CONF_AREA] = self._area
+        data |= self._availability
         if self.source == "reconfigure":
             return self.async_update_and_abort(
                 self._get_entry(), self._get_reconfigure_subentry(), title=self._name, data=data
