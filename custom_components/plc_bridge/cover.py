@@ -11,6 +11,7 @@ open. Without open or close commands, a settable position opens to 100 % and clo
 
 from __future__ import annotations
 
+from enum import IntFlag
 from typing import Any
 
 from homeassistant.components.cover import (
@@ -45,17 +46,21 @@ async def async_setup_entry(
 class Travel(PlcCompositeEntity):
     """What covers and valves share: commands, a position, limit switches, a status map."""
 
-    def _travel_features(self) -> tuple[bool, bool, bool, bool]:
-        """Whether it can open, close, stop, and be set to a position."""
+    def _travel_features[F: IntFlag](self, open_: F, close: F, stop: F, set_position: F) -> F:
+        """The given flags of what the parts allow: open, close, stop, be set to a position."""
         settable = self._setter() is not None
         parts = self.parts
         step = "step" in parts
-        return (
-            settable or step or "open" in parts,
-            settable or step or "close" in parts,
-            step or "stop" in parts,
-            settable,
-        )
+        features = type(open_)(0)
+        for flag, present in (
+            (open_, settable or step or "open" in parts),
+            (close, settable or step or "close" in parts),
+            (stop, step or "stop" in parts),
+            (set_position, settable),
+        ):
+            if present:
+                features |= flag
+        return features
 
     def _setter(self, role: str = "position") -> str | None:
         """The role that takes a position: `set_position`, else a writable `position`."""
@@ -133,16 +138,12 @@ class PlcCover(Travel, CoverEntity):
     ) -> None:
         """Work out what the cover can do from the parts it has."""
         super().__init__(entry, group, parts)
-        features = CoverEntityFeature(0)
-        flags = (
+        features = self._travel_features(
             CoverEntityFeature.OPEN,
             CoverEntityFeature.CLOSE,
             CoverEntityFeature.STOP,
             CoverEntityFeature.SET_POSITION,
         )
-        for flag, present in zip(flags, self._travel_features(), strict=True):
-            if present:
-                features |= flag
         if self._setter("tilt_position") is not None:
             features |= CoverEntityFeature.SET_TILT_POSITION
         self._attr_supported_features = features

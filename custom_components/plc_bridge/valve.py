@@ -39,17 +39,12 @@ class PlcValve(Travel, ValveEntity):
     ) -> None:
         """Work out what the valve can do from the parts it has."""
         super().__init__(entry, group, parts)
-        features = ValveEntityFeature(0)
-        flags = (
+        self._attr_supported_features = self._travel_features(
             ValveEntityFeature.OPEN,
             ValveEntityFeature.CLOSE,
             ValveEntityFeature.STOP,
             ValveEntityFeature.SET_POSITION,
         )
-        for flag, present in zip(flags, self._travel_features(), strict=True):
-            if present:
-                features |= flag
-        self._attr_supported_features = features
         self._attr_reports_position = "position" in parts or "set_position" in parts
 
     @property
