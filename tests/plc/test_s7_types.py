@@ -115,7 +115,7 @@ def test_durations_from_seconds(data_type: str, value: Value, shown: Value) -> N
         ("DB1.DBW0", "COUNTER", -1, "outside 0..999"),
         ("DB1.DBW0", "DATE", datetime(1989, 12, 31), "a DATE runs from 1990-01-01"),
         ("DB1.DBW0", "DATE", datetime(2169, 1, 1), "to 2168-12-31"),
-        ("DB1.DBW0", "DATE", "tomorrow", "takes a DATE"),
+        ("DB1.DBW0", "DATE", "tomorrow", "takes a date"),
         ("DB1.DBW0", "WCHAR", "ab", "exactly one character"),
         ("DB1.DBW0", "WCHAR", "😀", "exactly one character"),  # two UTF-16 code units
         ("DB1.DBB0", "WSTRING[2]", "abc", "at most 2 characters"),

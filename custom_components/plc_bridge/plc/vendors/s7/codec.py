@@ -38,12 +38,12 @@ def check_value(variable: Variable, value: Value) -> Value:
     if variable.area == AREA_P and not variable.write_area:
         # A write to area 0x80 reaches the peripheral outputs of the same address.
         raise PlcValueError(f"{what}: peripheral inputs cannot be written")
-    if kind in CHECKED:  # S7 dates are DATE_AND_TIME and DTL, never DATE or DT
+    if kind in TIMES:  # before the IEC checks: an S7 DATE runs from 1990 to 2168 only
+        return check_time(kind, value, what)
+    if kind in CHECKED:
         return check_iec(kind, value, what)
     if kind in YEARS:
         return _datetime(value, what)
-    if kind in TIMES:
-        return check_time(kind, value, what)
     if not isinstance(value, str):
         raise PlcValueError(f"{what} takes text, not {value!r}")
     wide = kind == "WCHAR" or variable.wide
