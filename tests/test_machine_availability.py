@@ -12,6 +12,10 @@ from homeassistant.core import HomeAssistant
 from homeassistant.data_entry_flow import FlowResultType
 import pytest
 from pytest_homeassistant_custom_component.common import MockConfigEntry
+from pytest_homeassistant_custom_component.components.diagnostics import (
+    get_diagnostics_for_config_entry,
+)
+from pytest_homeassistant_custom_component.typing import ClientSessionGenerator
 
 from custom_components.plc_bridge.availability import (
     CONF_AVAILABILITY_ADDRESS,
@@ -187,3 +191,32 @@ async def test_address_removed(hass: HomeAssistant, s7_smart_sim: S7SmartSimulat
     hass.config_entries.async_update_subentry(entry, boiler, data={"points": boiler.data["points"]})
     await hass.async_block_till_done()
     assert hass.states.get("sensor.boiler_temperature").state == "42"
+
+
+async def test_diagnostics_show_each_machine_and_its_availability(
+    hass: HomeAssistant,
+    hass_client: ClientSessionGenerator,
+    s7_smart_sim: S7SmartSimulator,
+    freezer: FrozenDateTimeFactory,
+) -> None:
+    """Diagnostics name every machine's availability address and whether its data is valid."""
+    s7_smart_sim.set("M0.0", 0)
+    entry = plant(
+        hass,
+        s7_smart_sim,
+        **{CONF_AVAILABILITY_ADDRESS: "M0.0", CONF_AVAILABILITY_DATA_TYPE: "signed"},
+    )
+    assert await hass.config_entries.async_setup(entry.entry_id)
+    await hass.async_block_till_done()
+    machines = (await get_diagnostics_for_config_entry(hass, hass_client, entry))["machines"]
+    assert machines["Boiler"] == {
+        "area": None,
+        CONF_AVAILABILITY_ADDRESS: "M0.0",
+        CONF_AVAILABILITY_DATA_TYPE: "signed",
+        "data_valid": False,
+    }
+    assert machines["Pump"] == {"area": None, "data_valid": True}
+    s7_smart_sim.set("M0.0", 1)
+    await poll(hass, freezer)
+    machines = (await get_diagnostics_for_config_entry(hass, hass_client, entry))["machines"]
+    assert machines["Boiler"]["data_valid"] is True

@@ -9,7 +9,8 @@ from homeassistant.components.diagnostics import async_redact_data
 from homeassistant.const import CONF_HOST, CONF_PASSWORD, CONF_USERNAME
 from homeassistant.core import HomeAssistant
 
-from .const import CONF_FINGERPRINT
+from .availability import AVAILABILITY_FIELDS
+from .const import CONF_AREA, CONF_FINGERPRINT, SUBENTRY_DEVICE
 from .coordinator import PlcBridgeConfigEntry
 from .services import json_value
 
@@ -47,6 +48,15 @@ async def async_get_config_entry_diagnostics(
         "points": {
             point_id: {"device": entry.subentries[config.subentry_id].title, **config.data}
             for point_id, config in runtime.points.configs.items()
+        },
+        "machines": {
+            subentry.title: {
+                CONF_AREA: subentry.data.get(CONF_AREA),
+                **{key: subentry.data[key] for key in AVAILABILITY_FIELDS if key in subentry.data},
+                "data_valid": sid not in coordinator.availability.invalid,
+            }
+            for sid, subentry in entry.subentries.items()
+            if subentry.subentry_type == SUBENTRY_DEVICE
         },
         "device": async_redact_data(asdict(runtime.device), TO_REDACT),
         "status": status,
