@@ -67,7 +67,7 @@ class S7SmartSimulator(HttpSimulator):
     sent), `system_status`, `forced`, `clock` (stands still unless set, so tests stay
     deterministic), `http_faults` (HTTP answers given instead of the next requests'). Where the
     manual is silent, a switch per reading (READINGS.md): `codes`, `stop_refusal`, `max_nodes`
-    with `node_limit_error`, `error_status`, `cookie_name_in_token`, `version`.
+    with `node_limit_error`, `max_write_nodes`, `error_status`, `cookie_name_in_token`, `version`.
     """
 
     tls = True
@@ -97,6 +97,9 @@ class S7SmartSimulator(HttpSimulator):
         self.stop_refusal = "request"  # or "node": each node of a write in STOP is refused
         self.max_nodes = MAX_NODES  # a firmware may take fewer nodes a request than the manual
         self.node_limit_error = TOO_MANY_NODES  # the whole-request error past max_nodes
+        # A firmware refusing writes of more nodes for another reason than their count (reads
+        # of as many pass): the write's payload, say. None: writes take what reads take.
+        self.max_write_nodes: int | None = None
         self.error_status = 200  # the HTTP status of an error reply (JSON-RPC over HTTP: 500)
         self.version = API_VERSION  # the manual's reply shows "${version_string}." (10.3.1)
         self.http_faults: list[HttpFault] = []
@@ -310,6 +313,8 @@ class S7SmartSimulator(HttpSimulator):
         if not self.write_permission:
             raise Fault(PERMISSION_DENIED)
         nodes = self._nodes(params)
+        if self.max_write_nodes is not None and len(nodes) > self.max_write_nodes:
+            raise Fault(self.node_limit_error)
         if nodes and self.mode != "RUN" and self.stop_refusal == "request":
             raise Fault(NOT_IN_RUN)
         return {"status": self._status(), "data": [self._node(n, True) for n in nodes]}

@@ -18,7 +18,10 @@ from custom_components.plc_bridge.plc import (
     Point,
     TlsMode,
 )
-from custom_components.plc_bridge.plc.vendors.s7_smart import S7SmartClient, client as client_module
+from custom_components.plc_bridge.plc.vendors.s7_smart import (
+    S7SmartClient,
+    session as session_module,
+)
 from custom_components.plc_bridge.plc.vendors.s7_smart.errors import STOP_MESSAGE
 from simulators.s7_smart import CODES, S7SmartSimulator
 
@@ -279,7 +282,7 @@ async def test_close_does_not_wait_for_a_silent_plc(
 
     server = await asyncio.start_server(silent, "127.0.0.1", 0)
     port = server.sockets[0].getsockname()[1]
-    monkeypatch.setattr(client_module, "LOGOUT_TIMEOUT", 0.05)
+    monkeypatch.setattr(session_module, "LOGOUT_TIMEOUT", 0.05)
     client = S7SmartClient(s7_smart_config(port=port, tls=TlsMode.OFF, fingerprint=""))
     client._token = "Session-Id=abc"  # logged in before the PLC went silent
     client._http()
@@ -330,3 +333,32 @@ async def test_fewer_nodes_learned(
     assert all(outcome.ok for outcome in written.values())
     assert s7_smart_sim.calls["write"] == 2
     assert s7_smart_sim.calls["login"] == 2
+
+
+async def test_write_past_an_unknown_limit_is_sent_again_smaller(
+    s7_smart_sim: S7SmartSimulator, s7_smart_client: S7SmartClient
+) -> None:
+    """A firmware taking 8 nodes, not met by reads yet: a write of 20 refused whole is sent
+    again in requests of the limit reads of the same nodes find; every value arrives once."""
+    s7_smart_sim.max_nodes = 8
+    points = [Point(f"VW{2 * index}", "signed") for index in range(20)]
+    written = await s7_smart_client.write({point: index for index, point in enumerate(points)})
+    assert all(outcome.ok for outcome in written.values())
+    assert [s7_smart_sim.get(point.address) for point in points] == list(range(20))
+    assert s7_smart_sim.calls["write"] == 1 + 3  # refused whole, then 8 + 8 + 4
+    before = s7_smart_sim.calls["read"]
+    await s7_smart_client.read(points)
+    assert s7_smart_sim.calls["read"] - before == 3  # the limit is kept for polls
+
+
+async def test_write_refused_whole_for_another_reason_fails(
+    s7_smart_sim: S7SmartSimulator, s7_smart_client: S7SmartClient
+) -> None:
+    """A write refused whole while a read of the same nodes passes: nothing learned, no resend."""
+    points = [Point(f"VW{2 * index}", "signed") for index in range(4)]
+    await s7_smart_client.read(points)
+    s7_smart_sim.max_write_nodes = 2
+    with pytest.raises(PlcWriteRefusedError, match="refused the write"):
+        await s7_smart_client.write(dict.fromkeys(points, 1))
+    assert s7_smart_sim.calls["write"] == 1
+    assert s7_smart_client._max_nodes == 32

@@ -45,6 +45,10 @@ class RequestRefused(PlcProtocolError):
     """The PLC refused a whole read that a fresh login did not cure, its session working."""
 
 
+class WriteRefused(PlcWriteRefusedError):
+    """The PLC refused a whole write, its session working, in RUN, the user allowed to write."""
+
+
 def said(message: Any, code: Any) -> str:
     """Return the PLC's message (or that it gave none) and its code, for an error's text."""
     text = message.strip() if isinstance(message, str) else ""
@@ -82,7 +86,7 @@ def permission_error(err: RpcError) -> PlcWriteRefusedError:
 def request_error(err: RpcError, *, write: bool) -> PlcError:
     """Return the error of a request refused with the session working, in the PLC's words."""
     if write:
-        return PlcWriteRefusedError(f"the PLC refused the write ({err.words})")
+        return WriteRefused(f"the PLC refused the write ({err.words})")
     return RequestRefused(f"the PLC refused the request ({err.words})")
 
 
