@@ -8,16 +8,11 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from dataclasses import dataclass
-import socket
 from typing import Any
 
 from homeassistant.config_entries import SOURCE_USER, ConfigEntry
 from homeassistant.const import (
-    CONF_HOST,
-    CONF_NAME,
     CONF_PASSWORD,
-    CONF_PORT,
-    CONF_USERNAME,
 )
 from homeassistant.core import HomeAssistant
 from homeassistant.data_entry_flow import FlowResultType
@@ -25,31 +20,16 @@ from homeassistant.helpers import entity_registry as er
 import pytest
 from pytest_homeassistant_custom_component.common import MockConfigEntry
 
-from custom_components.plc_bridge.config_file import dump_config
 from custom_components.plc_bridge.config_file_flow import CONF_CONFIGURATION, PASTE
 from custom_components.plc_bridge.config_flow import device_unique_id
 from custom_components.plc_bridge.connection import create_client
-from custom_components.plc_bridge.const import (
-    CONF_POINTS,
-    CONF_TLS,
-    CONF_VENDOR,
-    DOMAIN,
-    SUBENTRY_DEVICE,
-)
+from custom_components.plc_bridge.const import CONF_VENDOR, DOMAIN
 from simulators.plcnext import DEFAULT_PASSWORD as PLCNEXT_PASSWORD
-from simulators.s7_smart import DEFAULT_PASSWORD as SMART_PASSWORD, DEFAULT_USER, S7SmartSimulator
+from simulators.s7_smart import DEFAULT_PASSWORD as SMART_PASSWORD
 from simulators.tecomat import DEFAULT_PASSWORD as TECOMAT_PASSWORD
 
-from .flow_fixtures import suggested, translated
-from .ha_fixtures import (
-    DEVICE_ID,
-    POINTS,
-    PointData,
-    add_entry,
-    device,
-    legacy_point,
-    sim_data,
-)
+from .flow_fixtures import translated
+from .ha_fixtures import POINTS, PointData, add_entry, device, sim_data
 from .plcnext_ha_fixtures import PLCNEXT_POINTS, plcnext_data
 from .s7_ha_fixtures import S7_POINTS, S7_TITLE, fill, s7_data
 from .softplc_ha_fixtures import SOFTPLC_POINTS, pem_pair, softplc_data
@@ -239,91 +219,3 @@ async def test_round_trip(hass: HomeAssistant, vendor_sim: tuple[Vendor, Any]) -
         before = {uid.replace(entry.entry_id, new.entry_id): eid for uid, eid in before.items()}
     assert after == before
     assert states(hass, list(after.values())) == shown
-
-
-async def test_same_plc_already_configured(
-    hass: HomeAssistant, s7_smart_sim: S7SmartSimulator
-) -> None:
-    """Pasting the file of a PLC that is configured ends in already_configured; nothing added."""
-    vendor = VENDORS["s7_smart"]
-    entry = await original(hass, vendor, s7_smart_sim, {})
-    result = await paste(hass, await export(hass, entry))
-    result = await hass.config_entries.flow.async_configure(
-        result["flow_id"], {CONF_PASSWORD: SMART_PASSWORD}
-    )
-    translated(result, *CONFIG)
-    assert (result["type"], result["reason"]) == (FlowResultType.ABORT, "already_configured")
-    assert hass.config_entries.async_entries(DOMAIN) == [entry]
-
-
-async def test_moved_plc_asks_its_address(
-    hass: HomeAssistant, s7_smart_sim: S7SmartSimulator
-) -> None:
-    """Where nothing answers at the file's address, the connection page asks for it, filled in;
-    the PLC is then added with the file's machines and options."""
-    with socket.socket() as closed:
-        closed.bind(("127.0.0.1", 0))
-        gone = closed.getsockname()[1]
-    entry = MockConfigEntry(
-        domain=DOMAIN,
-        title="Boiler house",
-        data=sim_data(s7_smart_sim, port=gone),
-        options={"scan_interval": 30.0},
-        subentries_data=[device(POINTS, title="Boiler")],
-        version=2,
-    )
-    result = await paste(hass, dump_config(entry))
-    result = translated(
-        await hass.config_entries.flow.async_configure(
-            result["flow_id"], {CONF_PASSWORD: SMART_PASSWORD}
-        ),
-        *CONFIG,
-    )
-    assert (result["step_id"], result["errors"]) == (
-        "connection_s7_smart",
-        {CONF_HOST: "cannot_connect"},
-    )
-    assert suggested(result, CONF_PORT) == gone
-    result = await hass.config_entries.flow.async_configure(
-        result["flow_id"],
-        {
-            CONF_HOST: s7_smart_sim.host,
-            CONF_PORT: s7_smart_sim.port,
-            CONF_TLS: "pin",
-            CONF_USERNAME: DEFAULT_USER,
-            CONF_PASSWORD: SMART_PASSWORD,
-        },
-    )
-    assert result["type"] is FlowResultType.CREATE_ENTRY
-    await hass.async_block_till_done()
-    new = result["result"]
-    assert (new.title, dict(new.options)) == ("Boiler house", {"scan_interval": 30.0})
-    assert new.data[CONF_PORT] == s7_smart_sim.port
-    (machine,) = new.subentries.values()
-    assert dict(machine.data) == dict(entry.subentries[DEVICE_ID].data)
-    assert hass.states.get("sensor.boiler_temperature").state == "21.5"
-
-
-async def test_older_file_migrated(hass: HomeAssistant, s7_smart_sim: S7SmartSimulator) -> None:
-    """A file of an older entry version is created at that version, then migrated as entries
-    are: version 1's one point per subentry becomes one machine of points."""
-    legacy = MockConfigEntry(
-        domain=DOMAIN,
-        title="Boiler house",
-        data=sim_data(s7_smart_sim),
-        subentries_data=[legacy_point(p) for p in POINTS[:2]],
-        version=1,
-    )
-    result = await paste(hass, dump_config(legacy))
-    result = await hass.config_entries.flow.async_configure(
-        result["flow_id"], {CONF_PASSWORD: SMART_PASSWORD}
-    )
-    assert result["type"] is FlowResultType.CREATE_ENTRY
-    await hass.async_block_till_done()
-    new = result["result"]
-    assert new.version == 2
-    (machine,) = new.subentries.values()
-    assert (machine.subentry_type, machine.title) == (SUBENTRY_DEVICE, "Boiler house points")
-    names = sorted(point[CONF_NAME] for point in machine.data[CONF_POINTS].values())
-    assert names == ["Pressure", "Temperature"]
-    assert hass.states.get("sensor.boiler_house_points_temperature").state == "21.5"

@@ -10,14 +10,15 @@ from __future__ import annotations
 from collections.abc import Mapping
 from typing import Any
 
-from homeassistant.config_entries import ConfigFlow, ConfigFlowResult
+from homeassistant.config_entries import ConfigFlow, ConfigFlowResult, ConfigSubentryData
 from homeassistant.const import CONF_PASSWORD
+from homeassistant.helpers import area_registry as ar
 from homeassistant.helpers.selector import TextSelector, TextSelectorConfig
 import voluptuous as vol
 
 from .config_file import ConfigFile, ConfigFileError, check_addresses, load_config
 from .connection_form import CREDENTIALS_SCHEMA, VENDOR_FIELDS, on_form, option_error
-from .const import CONF_FINGERPRINT, CONF_OPTIONS
+from .const import CONF_AREA, CONF_FINGERPRINT, CONF_OPTIONS
 from .plc import PlcOptionError
 from .plc.vendors import client_class
 
@@ -118,11 +119,24 @@ class ConfigFileSteps(ConfigFlow):
             title=pasted.title,
             data=self._data,
             options=pasted.options,
-            subentries=pasted.subentries,
+            subentries=[self._local_areas(subentry) for subentry in pasted.subentries],
         )
         result["version"] = pasted.version
         result["minor_version"] = pasted.minor_version
         return result
+
+    def _local_areas(self, subentry: ConfigSubentryData) -> ConfigSubentryData:
+        """Return a subentry without an area this installation lacks (area ids are local)."""
+        area = subentry["data"].get(CONF_AREA)
+        if area is None or ar.async_get(self.hass).async_get_area(str(area)) is not None:
+            return subentry
+        data = {key: value for key, value in subentry["data"].items() if key != CONF_AREA}
+        return ConfigSubentryData(
+            data=data,
+            subentry_type=subentry["subentry_type"],
+            title=subentry["title"],
+            unique_id=subentry["unique_id"],
+        )
 
     async def _check_and_connect(self) -> ConfigFlowResult:
         """Check the options, then connect and create the entry (the config flow's own)."""
