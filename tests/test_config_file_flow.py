@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import socket
 
+from homeassistant.config_entries import ConfigEntryState
 from homeassistant.const import (
     CONF_HOST,
     CONF_NAME,
@@ -128,3 +129,23 @@ async def test_older_file_migrated(hass: HomeAssistant, s7_smart_sim: S7SmartSim
     names = sorted(point[CONF_NAME] for point in machine.data[CONF_POINTS].values())
     assert names == ["Pressure", "Temperature"]
     assert hass.states.get("sensor.boiler_house_points_temperature").state == "21.5"
+
+
+async def test_export_while_the_plc_is_away(hass: HomeAssistant) -> None:
+    """The export reads the stored configuration: it works while the PLC cannot be reached."""
+    with socket.socket() as closed:
+        closed.bind(("127.0.0.1", 0))
+        gone = closed.getsockname()[1]
+    entry = MockConfigEntry(
+        domain=DOMAIN,
+        title="Boiler house",
+        data=sim_data(S7SmartSimulator(), port=gone) | {CONF_HOST: "127.0.0.1"},
+        subentries_data=[device(POINTS, title="Boiler")],
+        version=2,
+    )
+    entry.add_to_hass(hass)
+    assert not await hass.config_entries.async_setup(entry.entry_id)
+    assert entry.state is ConfigEntryState.SETUP_RETRY
+    text = await export(hass, entry)
+    assert f"port: {gone}\n" in text
+    assert "address: VD100\n" in text

@@ -57,7 +57,7 @@ FILE_SCHEMA = vol.Schema(
                 vol.Required(CONF_VENDOR): str,
                 vol.Required(CONF_HOST): vol.All(str, vol.Length(min=1)),
                 vol.Required(CONF_PORT): vol.All(int, vol.Range(min=1, max=65535)),
-                vol.Optional(CONF_TLS): vol.In([mode.value for mode in TlsMode]),
+                vol.Required(CONF_TLS): vol.In([mode.value for mode in TlsMode]),
                 vol.Optional(CONF_OPTIONS, default={}): dict,
             },
             extra=vol.ALLOW_EXTRA,
