@@ -15,7 +15,9 @@ from simulators.s7_smart import S7SmartSimulator
 from .ha_fixtures import POINTS, call, make_entry, point
 
 
-@pytest.mark.parametrize("service", ["write", "sync_clock", "read", "export_points"])
+@pytest.mark.parametrize(
+    "service", ["write", "sync_clock", "read", "export_points", "export_config"]
+)
 async def test_actions_for_administrators_only(
     hass: HomeAssistant,
     setup_integration: MockConfigEntry,
@@ -23,6 +25,8 @@ async def test_actions_for_administrators_only(
     service: str,
 ) -> None:
     """A user without administrator rights cannot write, set the clock, read by address or export.
+
+    The configuration export lists every address and the PLC's host, user and certificate pin.
 
     Reading by address reaches any memory, not only the points shown, and holds the PLC's lock.
     """
@@ -38,7 +42,7 @@ async def test_actions_for_administrators_only(
             data,
             blocking=True,
             context=Context(user_id=hass_read_only_user.id),
-            return_response=service in ("read", "export_points"),
+            return_response=service in ("read", "export_points", "export_config"),
         )
 
 

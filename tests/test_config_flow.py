@@ -19,6 +19,7 @@ import pytest
 from pytest_homeassistant_custom_component.common import MockConfigEntry
 
 from custom_components.plc_bridge import config_flow, connection_form
+from custom_components.plc_bridge.config_file_flow import PASTE
 from custom_components.plc_bridge.connection_form import VendorField
 from custom_components.plc_bridge.const import CONF_TLS, CONF_VENDOR, DOMAIN
 from custom_components.plc_bridge.plc import DeviceInfo
@@ -73,10 +74,12 @@ def test_strings_copied_to_english() -> None:
 
 
 async def test_only_implemented_vendors_listed(hass: HomeAssistant) -> None:
-    """The vendor list offers what PLC Bridge implements, nothing to be refused afterwards."""
+    """The vendor list offers what PLC Bridge implements, nothing to be refused afterwards, and
+    last the way to paste an exported configuration."""
     result = await hass.config_entries.flow.async_init(DOMAIN, context={"source": SOURCE_USER})
     selector = result["data_schema"].schema[CONF_VENDOR].config
-    assert selector["options"] == implemented() == list(VENDORS)
+    assert selector["options"] == [*implemented(), PASTE]
+    assert implemented() == list(VENDORS)
     assert selector["translation_key"] == CONF_VENDOR
     assert set(selector["options"]) <= set(strings_at("selector", CONF_VENDOR, "options"))
 

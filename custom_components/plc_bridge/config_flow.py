@@ -9,7 +9,6 @@ from homeassistant.config_entries import (
     SOURCE_RECONFIGURE,
     ConfigEntry,
     ConfigEntryState,
-    ConfigFlow,
     ConfigFlowResult,
     ConfigSubentryFlow,
 )
@@ -18,6 +17,7 @@ from homeassistant.core import callback
 from homeassistant.helpers.device_registry import format_mac
 import voluptuous as vol
 
+from .config_file_flow import PASTE, ConfigFileSteps
 from .connection import create_client
 from .connection_form import (
     CREDENTIALS_SCHEMA,
@@ -66,7 +66,7 @@ def device_unique_id(device: DeviceInfo, data: Mapping[str, Any]) -> str:
 
 
 @with_vendor_steps
-class PlcBridgeConfigFlow(ConfigFlow, domain=DOMAIN):
+class PlcBridgeConfigFlow(ConfigFileSteps, domain=DOMAIN):
     """Add a PLC: vendor, connection, certificate; reauth and reconfigure reuse the checks.
 
     Each vendor's connection pages have step ids of their own, worded for its PLC family in
@@ -98,12 +98,14 @@ class PlcBridgeConfigFlow(ConfigFlow, domain=DOMAIN):
         return {SUBENTRY_DEVICE: DeviceSubentryFlowHandler}
 
     async def async_step_user(self, user_input: Input = None) -> ConfigFlowResult:
-        """Pick the vendor among those PLC Bridge implements."""
+        """Pick the vendor among those PLC Bridge implements, or paste an exported file."""
+        if user_input is not None and user_input[CONF_VENDOR] == PASTE:
+            return await self.async_step_paste_configuration()
         if user_input is not None:
             self._vendor = user_input[CONF_VENDOR]
             self._data = {CONF_VENDOR: self._vendor, CONF_USERNAME: "", CONF_PASSWORD: ""}
             return self._connection_form({})
-        return self.async_show_form(step_id="user", data_schema=vendor_schema())
+        return self.async_show_form(step_id="user", data_schema=vendor_schema(PASTE))
 
     async def async_step_reconfigure(self, user_input: Input = None) -> ConfigFlowResult:
         """Show a configured PLC's connection page, filled in; its name stays as it is."""
@@ -266,7 +268,7 @@ class PlcBridgeConfigFlow(ConfigFlow, domain=DOMAIN):
             self._abort_if_unique_id_configured()
             # Named after what the PLC reports: Home Assistant's own dialog then asks the device's
             # name and area (and renames the entity ids), so the name is asked once.
-            return self.async_create_entry(title=device.name or device.model, data=self._data)
+            return self._create_entry(device.name or device.model)
         entry = self._get_reconfigure_entry()
         if device.serial or device.mac:
             self._abort_if_unique_id_mismatch()

@@ -132,9 +132,9 @@ CREDENTIALS_SCHEMA = vol.Schema(
 )
 
 
-def vendor_schema() -> vol.Schema:
-    """Return the first page: the PLC family, among those PLC Bridge implements."""
-    return vol.Schema({vol.Required(CONF_VENDOR): _choice(CONF_VENDOR, implemented())})
+def vendor_schema(*others: str) -> vol.Schema:
+    """Return the first page: the PLC family, among those PLC Bridge implements, or `others`."""
+    return vol.Schema({vol.Required(CONF_VENDOR): _choice(CONF_VENDOR, [*implemented(), *others])})
 
 
 def connection_step(vendor: str, *, reconfigure: bool) -> str:

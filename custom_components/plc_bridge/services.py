@@ -19,6 +19,7 @@ from homeassistant.helpers.service import async_register_admin_service
 from homeassistant.util import dt as dt_util
 import voluptuous as vol
 
+from .config_file import dump_config
 from .const import (
     ATTR_CONFIG_ENTRY_ID,
     ATTR_POINTS,
@@ -37,6 +38,7 @@ SERVICE_WRITE = "write"
 SERVICE_READ = "read"
 SERVICE_SYNC_CLOCK = "sync_clock"
 SERVICE_EXPORT_POINTS = "export_points"
+SERVICE_EXPORT_CONFIG = "export_config"
 
 POINT = {vol.Required(CONF_ADDRESS): cv.string, vol.Required(CONF_DATA_TYPE): cv.string}
 VALUE = vol.Any(bool, int, float, str, [vol.Coerce(int)])
@@ -59,8 +61,8 @@ READ_SCHEMA = ENTRY_SCHEMA.extend(
 )
 
 
-def loaded_entry(call: ServiceCall) -> PlcBridgeConfigEntry:
-    """Return the PLC the action names; it must be set up."""
+def named_entry(call: ServiceCall) -> PlcBridgeConfigEntry:
+    """Return the PLC the action names, set up or not."""
     entry_id: str = call.data[ATTR_CONFIG_ENTRY_ID]
     entry: PlcBridgeConfigEntry | None = call.hass.config_entries.async_get_entry(entry_id)
     if entry is None or entry.domain != DOMAIN:
@@ -69,6 +71,12 @@ def loaded_entry(call: ServiceCall) -> PlcBridgeConfigEntry:
             translation_key="entry_not_found",
             translation_placeholders={"entry_id": entry_id},
         )
+    return entry
+
+
+def loaded_entry(call: ServiceCall) -> PlcBridgeConfigEntry:
+    """Return the PLC the action names; it must be set up."""
+    entry = named_entry(call)
     if entry.state is not ConfigEntryState.LOADED:
         raise ServiceValidationError(
             translation_domain=DOMAIN,
@@ -144,6 +152,14 @@ async def async_export_points(call: ServiceCall) -> ServiceResponse:
     return {"points": export_points(config.data for config in configs), "devices": devices}
 
 
+async def async_export_config(call: ServiceCall) -> ServiceResponse:
+    """Return the whole PLC as the file the config flow takes, secrets left out.
+
+    Read from the stored entry: it works while the PLC cannot be reached, too.
+    """
+    return {"yaml": dump_config(named_entry(call))}
+
+
 async def async_sync_clock(call: ServiceCall) -> None:
     """Set the PLC clock to Home Assistant's time."""
     await loaded_entry(call).runtime_data.coordinator.async_set_clock(dt_util.now())
@@ -154,7 +170,7 @@ def async_setup_services(hass: HomeAssistant) -> None:
     """Register the actions (once, for every PLC), all for administrators only.
 
     Reading by address reaches any memory of the PLC, not only the points shown to users, and
-    holds the PLC's request lock; the export lists every address.
+    holds the PLC's request lock; the exports list every address.
     """
     async_register_admin_service(hass, DOMAIN, SERVICE_WRITE, async_write, schema=WRITE_SCHEMA)
     async_register_admin_service(
@@ -168,6 +184,14 @@ def async_setup_services(hass: HomeAssistant) -> None:
         DOMAIN,
         SERVICE_EXPORT_POINTS,
         async_export_points,
+        ENTRY_SCHEMA,
+        SupportsResponse.ONLY,
+    )
+    async_register_admin_service(
+        hass,
+        DOMAIN,
+        SERVICE_EXPORT_CONFIG,
+        async_export_config,
         ENTRY_SCHEMA,
         SupportsResponse.ONLY,
     )

@@ -1,0 +1,239 @@
+"""The whole PLC as a YAML file: an entry written out without its secrets, and read back.
+
+The file carries the entry as it is stored, whatever its keys: the connection (entry data),
+the options and every subentry of every type with its data, so that settings added later
+travel without code here. Only the secrets are left out, by the list below.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterator, Mapping
+from dataclasses import dataclass
+import json
+from typing import Any
+
+from homeassistant.config_entries import ConfigEntry, ConfigSubentry, ConfigSubentryData
+from homeassistant.const import CONF_HOST, CONF_NAME, CONF_PORT
+import voluptuous as vol
+from voluptuous.humanize import humanize_error
+import yaml
+
+from .const import CONF_ADDRESS, CONF_DATA_TYPE, CONF_OPTIONS, CONF_POINTS, CONF_TLS, CONF_VENDOR
+from .plc import PlcClient, PlcError, Point, TlsMode
+from .plc.vendors import implemented
+from .point_table import point_order
+
+FORMAT_KEY = "plc_bridge"
+FORMAT = 1
+"""The version of the file's own layout (not the entry's: that is `version`)."""
+
+SECRETS = ("password", "token", "cookie", "client_certificate", "client_key")
+"""Keys never written, in the entry data or its vendor options: the import asks for them.
+
+A SoftPLC's client certificate goes with its key; together they let anyone write to the PLC.
+"""
+
+HEADER = (
+    "# A PLC of PLC Bridge. Add it with Add integration > PLC Bridge > Paste a configuration\n"
+    "# exported from PLC Bridge; the secrets listed under `secrets` are asked for then.\n"
+)
+
+SUBENTRY_SCHEMA = vol.Schema(
+    {
+        vol.Required("type"): vol.All(str, vol.Length(min=1)),
+        vol.Required("title"): str,
+        vol.Optional("unique_id", default=None): vol.Any(None, str),
+        vol.Optional("data", default={}): dict,
+    }
+)
+FILE_SCHEMA = vol.Schema(
+    {
+        vol.Required(FORMAT_KEY): vol.All(int, vol.Range(min=1)),
+        vol.Required("version"): vol.All(int, vol.Range(min=1)),
+        vol.Optional("minor_version", default=1): vol.All(int, vol.Range(min=1)),
+        vol.Required("title"): vol.All(str, vol.Length(min=1)),
+        vol.Required("connection"): vol.Schema(
+            {
+                vol.Required(CONF_VENDOR): str,
+                vol.Required(CONF_HOST): vol.All(str, vol.Length(min=1)),
+                vol.Required(CONF_PORT): vol.All(int, vol.Range(min=1, max=65535)),
+                vol.Required(CONF_TLS): vol.In([mode.value for mode in TlsMode]),
+                vol.Optional(CONF_OPTIONS, default={}): dict,
+            },
+            extra=vol.ALLOW_EXTRA,
+        ),
+        vol.Optional("secrets", default=[]): [vol.In(SECRETS)],
+        vol.Optional("options", default={}): dict,
+        vol.Optional("subentries", default=[]): [SUBENTRY_SCHEMA],
+    }
+)
+
+
+class ConfigFileError(Exception):
+    """A pasted text that cannot become a PLC: a config flow error key and its placeholders."""
+
+    def __init__(self, key: str, **placeholders: str) -> None:
+        """Keep the error key and what its message names."""
+        super().__init__(key, placeholders)
+        self.key = key
+        self.placeholders = placeholders
+
+
+@dataclass(frozen=True, slots=True)
+class ConfigFile:
+    """A PLC read from a file: its entry as stored, less the secrets the file left out."""
+
+    title: str
+    version: int
+    minor_version: int
+    data: dict[str, Any]
+    secrets: tuple[str, ...]
+    options: dict[str, Any]
+    subentries: list[ConfigSubentryData]
+
+    @property
+    def vendor(self) -> str:
+        """The vendor key of the PLC."""
+        return str(self.data[CONF_VENDOR])
+
+
+def dump_config(entry: ConfigEntry[Any]) -> str:
+    """Return an entry as a YAML file, secrets left out, ordered to diff well in git."""
+    data = {key: value for key, value in entry.data.items() if not _secret(key, value)}
+    options = dict(entry.data.get(CONF_OPTIONS) or {})
+    data[CONF_OPTIONS] = {key: value for key, value in options.items() if not _secret(key, value)}
+    removed = [key for key in SECRETS if entry.data.get(key) or options.get(key)]
+    subentries = sorted(entry.subentries.values(), key=_subentry_order)
+    document = {
+        FORMAT_KEY: FORMAT,
+        "version": entry.version,
+        "minor_version": entry.minor_version,
+        "title": entry.title,
+        "connection": _plain(data),
+        "secrets": removed,
+        "options": _plain(entry.options),
+        "subentries": [
+            {
+                "type": subentry.subentry_type,
+                "title": subentry.title,
+                "unique_id": subentry.unique_id,
+                "data": _subentry_data(subentry.data),
+            }
+            for subentry in subentries
+        ],
+    }
+    text: str = yaml.safe_dump(
+        document, sort_keys=False, allow_unicode=True, default_flow_style=False, width=100
+    )
+    return HEADER + text
+
+
+def _secret(key: str, value: Any) -> bool:
+    """True for a secret that is set (an empty password, of a PLC without users, is kept)."""
+    return key in SECRETS and bool(value)
+
+
+def _subentry_order(subentry: ConfigSubentry) -> tuple[str, str, str, str]:
+    """Return the key that orders subentries: by type, title, unique id, then content."""
+    return (
+        subentry.subentry_type,
+        subentry.title.casefold(),
+        subentry.unique_id or "",
+        json.dumps(_plain(subentry.data), default=str),
+    )
+
+
+def _subentry_data(data: Mapping[str, Any]) -> dict[str, Any]:
+    """Return a subentry's data with sorted keys, its points ordered as `export_points` lists."""
+    plain: dict[str, Any] = _plain(data)
+    points = plain.get(CONF_POINTS)
+    if isinstance(points, dict) and all(
+        isinstance(point, dict) and CONF_NAME in point and CONF_ADDRESS in point
+        for point in points.values()
+    ):
+        ordered = sorted(points.items(), key=lambda item: (point_order(item[1]), item[0]))
+        plain[CONF_POINTS] = dict(ordered)
+    return plain
+
+
+def _plain(value: Any) -> Any:
+    """Return stored data as plain YAML values: mappings with sorted keys, lists for sequences."""
+    if isinstance(value, Mapping):
+        return {str(key): _plain(value[key]) for key in sorted(value, key=str)}
+    if isinstance(value, list | tuple):
+        return [_plain(item) for item in value]
+    return value
+
+
+def load_config(text: str, version: int) -> ConfigFile:
+    """Return the PLC a pasted file describes; raise ConfigFileError on what cannot be used.
+
+    `version` is the newest entry version this release knows: a file of a newer one is
+    refused, an older one is created at its own version and migrated as stored entries are.
+    """
+    try:
+        document = yaml.safe_load(text)
+    except yaml.YAMLError as err:
+        mark = getattr(err, "problem_mark", None)
+        line = str(mark.line + 1) if mark is not None else "?"
+        raise ConfigFileError("config_malformed", line=line) from err
+    if not isinstance(document, dict) or FORMAT_KEY not in document:
+        raise ConfigFileError("config_not_ours")
+    try:
+        document = FILE_SCHEMA(document)
+    except vol.Invalid as err:
+        raise ConfigFileError("config_invalid", problem=humanize_error(document, err)) from err
+    if document[FORMAT_KEY] > FORMAT or document["version"] > version:
+        raise ConfigFileError("config_newer")
+    data: dict[str, Any] = document["connection"]
+    if data[CONF_VENDOR] not in implemented():
+        raise ConfigFileError("config_unknown_vendor", vendor=data[CONF_VENDOR])
+    return ConfigFile(
+        title=document["title"],
+        version=document["version"],
+        minor_version=document["minor_version"],
+        data=data,
+        secrets=tuple(dict.fromkeys(document["secrets"])),
+        options=document["options"],
+        subentries=[
+            ConfigSubentryData(
+                data=subentry["data"],
+                subentry_type=subentry["type"],
+                title=subentry["title"],
+                unique_id=subentry["unique_id"],
+            )
+            for subentry in document["subentries"]
+        ],
+    )
+
+
+def check_addresses(client: type[PlcClient], pasted: ConfigFile) -> None:
+    """Raise ConfigFileError for the first point whose address the vendor's parser refuses.
+
+    A point is any mapping of a subentry's data with an address and a data type: the points of
+    a device, the parts of an entity of several points, and whatever else names an address.
+    """
+    for subentry in pasted.subentries:
+        for name, values in _addressed(subentry["data"], subentry["title"]):
+            point = Point(str(values[CONF_ADDRESS]), str(values[CONF_DATA_TYPE]))
+            try:
+                client.validate_point(point)
+            except PlcError as err:
+                raise ConfigFileError(
+                    "config_bad_address",
+                    point=name,
+                    address=point.address,
+                    problem=str(err),
+                ) from err
+
+
+def _addressed(value: Any, name: str) -> Iterator[tuple[str, Mapping[str, Any]]]:
+    """Yield every mapping within a value that names an address and a data type, named."""
+    if isinstance(value, Mapping):
+        if CONF_ADDRESS in value and CONF_DATA_TYPE in value:
+            yield str(value.get(CONF_NAME) or name), value
+        for key, item in value.items():
+            yield from _addressed(item, f"{name} {key}" if key != CONF_POINTS else name)
+    elif isinstance(value, list):
+        for item in value:
+            yield from _addressed(item, name)
