@@ -124,9 +124,9 @@ async def test_tecomat_poll_and_write(
     assert (await tecomat_client.write({TECO_TIME: 90.5}))[TECO_TIME].ok
     assert tecomat_sim.get(TECO_TIME.address) == 90_500
     before = tecomat_sim.requests
-    with pytest.raises(PlcValueError, match="a TOD holds 0..86399.999 s, not 86400 s"):
+    with pytest.raises(PlcValueError, match=r"a TOD holds .*, not 86400 s"):
         await tecomat_client.write({TECO_TOD: timedelta(days=1)})
-    with pytest.raises(PlcValueError, match="a TIME holds 0..2147483.647 s, not -1 s"):
+    with pytest.raises(PlcValueError, match=r"a TIME holds .*, not -1 s"):
         await tecomat_client.write({TECO_TIME: -1})
     assert tecomat_sim.requests == before
     tecomat_sim.rewrite = lambda body: body.replace(b'"07:30:00.000"', b'"7h"')
