@@ -74,6 +74,7 @@ class PlcBridgeConfigFlow(ConfigFlow, domain=DOMAIN):
     """
 
     VERSION = 2
+    MINOR_VERSION = 2  # 2.2: TecoApi and PLCnext times are durations (migration.py)
 
     def __init__(self) -> None:
         """Start with nothing chosen and no certificate trusted."""
