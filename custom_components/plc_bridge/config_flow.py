@@ -256,7 +256,7 @@ class PlcBridgeConfigFlow(ConfigFlow, domain=DOMAIN):
     async def _finish(self) -> ConfigFlowResult:
         """Connect with the gathered settings, then create or update the entry."""
         device, errors = await self._connect(self._data)
-        if device is None and (field := await refused_field(self._vendor, self._data, errors)):
+        if device is None and (field := refused_field(self._vendor, self._data, errors)):
             return self._second_form({field: "session_refused"})
         if device is None:
             return self._connection_form(errors)
