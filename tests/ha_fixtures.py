@@ -171,11 +171,12 @@ def add_entry(
     points: Iterable[PointData] = (),
     subentries: list[ConfigSubentryDataWithId] | None = None,
     version: int = 2,
+    minor_version: int = 2,
 ) -> MockConfigEntry:
     """Add a PLC's entry, polled every SCAN_INTERVAL (not set up).
 
     Its points go into one device with the PLC's name, as a migrated entry's: entity ids stay
-    the PLC's. `subentries` (and `version`) store other shapes instead.
+    the PLC's. `subentries` (and `version`, `minor_version`) store other shapes instead.
     """
     points = list(points)
     if subentries is None:
@@ -189,6 +190,7 @@ def add_entry(
         options={CONF_SCAN_INTERVAL: SCAN_INTERVAL},
         subentries_data=subentries,
         version=version,
+        minor_version=minor_version,
     )
     entry.add_to_hass(hass)
     return entry

@@ -55,6 +55,17 @@ async def test_write_checked_before_sending(
     assert s7_ha_sim.get_db(1, 2, 2) == (1234).to_bytes(2, "big")
 
 
+@pytest.mark.parametrize("day", ["1989-12-31", "2169-01-01T12:00:00+01:00"])
+async def test_date_checked_before_sending(
+    hass: HomeAssistant, s7_ha_sim: S7Simulator, s7_setup: MockConfigEntry, day: str
+) -> None:
+    """A DATE outside 1990..2168 is refused by the action's check, before any write."""
+    points = [{"address": "DB1.DBW4", "data_type": "DATE", "value": day}]
+    with pytest.raises(ServiceValidationError, match="a DATE runs from 1990-01-01"):
+        await call(hass, "write", s7_setup, points=points)
+    assert s7_ha_sim.calls["write"] == 0
+
+
 async def test_read(hass: HomeAssistant, s7_ha_sim: S7Simulator, s7_setup: MockConfigEntry) -> None:
     """The read action answers each point; one outside its DB fails alone."""
     s7_ha_sim.set_db(1, 20, bytes([20, 2]) + b"OK")

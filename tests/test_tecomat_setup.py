@@ -46,7 +46,7 @@ async def test_live_values(hass: HomeAssistant, tecomat_entry: MockConfigEntry) 
         "binary_sensor.fx2_cp2080_bool_1": STATE_ON,
         "sensor.fx2_cp2080_int": "-2222",
         "sensor.fx2_cp2080_salary": "70000",
-        "sensor.fx2_cp2080_time": "120:02:03.450",
+        "sensor.fx2_cp2080_time": "432123.45",  # a duration in seconds
         "sensor.fx2_cp2080_element": "1.3",
         "text.fx2_cp2080_greeting": "Hello everybody",
         "datetime.fx2_cp2080_stamp": "2014-05-11T18:22:33+00:00",

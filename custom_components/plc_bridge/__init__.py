@@ -11,7 +11,7 @@ from .connection import create_polling_client
 from .const import DOMAIN, PLATFORMS
 from .coordinator import PlcBridgeConfigEntry, PlcCoordinator, PlcRuntimeData, link_error
 from .entity import plc_device
-from .migration import async_migrate_points
+from .migration import async_migrate_durations, async_migrate_points
 from .plc import PlcError
 from .points import PointEntities, async_register_devices
 from .repairs import CERTIFICATE_CHANGED, async_check_tls, async_clear_all, async_clear_issue
@@ -64,6 +64,8 @@ async def async_migrate_entry(hass: HomeAssistant, entry: ConfigEntry) -> bool:
         return False
     if entry.version == 1:
         async_migrate_points(hass, entry)
+    if entry.minor_version < 2:
+        async_migrate_durations(hass, entry)
     return True
 
 

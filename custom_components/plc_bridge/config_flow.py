@@ -74,6 +74,7 @@ class PlcBridgeConfigFlow(ConfigFileSteps, domain=DOMAIN):
     """
 
     VERSION = 2
+    MINOR_VERSION = 2  # 2.2: TecoApi and PLCnext times are durations (migration.py)
 
     def __init__(self) -> None:
         """Start with nothing chosen and no certificate trusted."""
@@ -257,7 +258,7 @@ class PlcBridgeConfigFlow(ConfigFileSteps, domain=DOMAIN):
     async def _finish(self) -> ConfigFlowResult:
         """Connect with the gathered settings, then create or update the entry."""
         device, errors = await self._connect(self._data)
-        if device is None and (field := await refused_field(self._vendor, self._data, errors)):
+        if device is None and (field := refused_field(self._vendor, self._data, errors)):
             return self._second_form({field: "session_refused"})
         if device is None:
             return self._connection_form(errors)

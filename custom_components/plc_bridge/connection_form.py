@@ -6,9 +6,7 @@ so that strings.json words each form for its PLC family alone.
 
 from __future__ import annotations
 
-import asyncio
 from collections.abc import Mapping, Sequence
-import contextlib
 from dataclasses import dataclass
 from typing import Any
 
@@ -34,14 +32,12 @@ from .plc import (
     PlcConnectionError,
     PlcError,
     PlcOptionError,
+    PlcSessionRefusedError,
     PlcTimeoutError,
     PlcTlsError,
     TlsMode,
 )
 from .plc.vendors import implemented
-
-PROBE_TIMEOUT = 10.0
-"""Seconds to wait for the PLC's port to take a TCP link, after the PLC refused a session."""
 
 
 @dataclass(frozen=True, slots=True)
@@ -153,33 +149,16 @@ def second_page(vendor: str, options: Mapping[str, Any]) -> tuple[str, tuple[Ven
     return f"{vendor}_{way}", page.ways[way]
 
 
-async def refused_field(
-    vendor: str, data: Mapping[str, Any], errors: Mapping[str, str]
-) -> str | None:
-    """Return the second page's field to blame for a connection the PLC refused, if any.
+def refused_field(vendor: str, data: Mapping[str, Any], errors: Mapping[str, str]) -> str | None:
+    """Return the second page's field to blame for a session the PLC refused, if any.
 
-    That is where the PLC's port takes a TCP link but the PLC refused the way chosen on the
-    second page (a wrong slot or TSAP); None where nothing answers at the host and port.
+    The client tells it (PlcSessionRefusedError): the PLC took the connection but refused the
+    way chosen on the second page (a wrong slot or TSAP).
     """
     page = SECOND_PAGES.get(vendor)
-    if page is None or errors.get(CONF_HOST) not in ("cannot_connect", "timeout"):
-        return None
-    if not await port_answers(data[CONF_HOST], data[CONF_PORT], PROBE_TIMEOUT):
+    if page is None or errors.get(CONF_HOST) != "session_refused":
         return None
     return page.refused_on[second_page(vendor, data[CONF_OPTIONS])[0].removeprefix(f"{vendor}_")]
-
-
-async def port_answers(host: str, port: int, timeout: float) -> bool:
-    """True when something at host:port accepts a TCP connection (closed again at once)."""
-    try:
-        async with asyncio.timeout(timeout):
-            _, writer = await asyncio.open_connection(host, port)
-    except OSError:  # TimeoutError is one
-        return False
-    writer.close()
-    with contextlib.suppress(OSError):
-        await writer.wait_closed()
-    return True
 
 
 def fields_schema(fields: Sequence[VendorField]) -> dict[vol.Marker, Any]:
@@ -287,6 +266,8 @@ def error_for(err: PlcError, client: type[PlcClient] | None = None) -> dict[str,
         return {CONF_TLS: "tls_failed"}
     if isinstance(err, PlcTimeoutError):
         return {CONF_HOST: "timeout"}
+    if isinstance(err, PlcSessionRefusedError):
+        return {CONF_HOST: "session_refused"}
     if isinstance(err, PlcConnectionError):
         return {CONF_HOST: "cannot_connect"}
     return {"base": "protocol_error"}

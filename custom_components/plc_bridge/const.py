@@ -46,6 +46,8 @@ CONF_PULSE: Final = "pulse"
 CONF_BITS: Final = "bits"
 CONF_ROLE: Final = "role"
 """The part a point plays in an entity of several points (see composite.py)."""
+CONF_AS_TEXT: Final = "as_text"
+"""A duration point shown as clock text, hh:mm:ss.zzz (TecoApi TIME/TOD as they showed before)."""
 CONF_ENTITY: Final = "entity"
 """The key of the entity of several points a part belongs to (its unique id's end)."""
 PULSE_MIN: Final = 0.1

@@ -17,6 +17,7 @@ from homeassistant.helpers.entity_platform import AddConfigEntryEntitiesCallback
 
 from .const import CONF_MAX, CONF_MIN, CONF_STEP
 from .coordinator import PlcBridgeConfigEntry
+from .duration_units import UNITS, duration_unit, in_unit, of_unit
 from .entity import (
     PlcPointDescription,
     PlcPointEntity,
@@ -27,6 +28,7 @@ from .plc import ValueKind
 from .points import PointConfig
 
 PARALLEL_UPDATES = 1
+MILLISECOND = timedelta(milliseconds=1)
 
 # Without a range from the user, allow what a 32-bit point can hold; the vendor's check
 # refuses a value that does not fit the point's own type before anything is sent.
@@ -44,23 +46,24 @@ def point_number(entry: PlcBridgeConfigEntry, config: PointConfig) -> PlcNumber:
     fields = point_fields(entry, config)
     data = config.data
     precision = fields["conversion"].precision
+    duration = fields["kind"] is ValueKind.DURATION  # seconds or its time unit; the PLC checks
+    unit = duration_unit(data) if duration else data.get(CONF_UNIT_OF_MEASUREMENT)
     step = data.get(CONF_STEP) or (
         10.0**-precision
         if precision is not None
         else abs(fields["scale"])
         if fields["kind"] is ValueKind.INTEGER
+        else in_unit(MILLISECOND, duration_unit(data))
+        if duration
         else 0.001
     )
     low, high = fields["conversion"].bounds or (DEFAULT_MIN, DEFAULT_MAX)
-    duration = fields["kind"] is ValueKind.DURATION  # written in seconds, the PLC checks them
     description = PlcNumberDescription(
         **fields,
         device_class=NumberDeviceClass.DURATION
         if duration
         else device_class(config, NumberDeviceClass),
-        native_unit_of_measurement=UnitOfTime.SECONDS
-        if duration
-        else data.get(CONF_UNIT_OF_MEASUREMENT),
+        native_unit_of_measurement=unit,
         native_min_value=float(data.get(CONF_MIN, low)),
         native_max_value=float(data.get(CONF_MAX, high)),
         native_step=float(step),
@@ -88,10 +91,16 @@ class PlcNumber(PlcPointEntity, NumberEntity):
     def native_value(self) -> float | None:
         """Return the scaled value."""
         value = self.entity_description.value_fn(self.raw_value)
+        unit = self.entity_description.native_unit_of_measurement
         if isinstance(value, timedelta):
-            return value.total_seconds()
+            return in_unit(value, unit or UnitOfTime.SECONDS)
         return value if isinstance(value, int | float) else None
 
     async def async_set_native_value(self, value: float) -> None:
-        """Write the value with the scaling inverted."""
-        await self.async_write(self.entity_description.raw_fn(value))
+        """Write the value with the scaling inverted (a duration in its unit)."""
+        description = self.entity_description
+        unit = description.native_unit_of_measurement
+        if description.kind is ValueKind.DURATION and unit in UNITS:
+            await self.async_write(of_unit(value, unit))
+        else:
+            await self.async_write(description.raw_fn(value))

@@ -50,6 +50,7 @@ from .const import (
     CONF_STEP,
     POINT_PLATFORMS,
 )
+from .duration_units import UNITS as DURATION_UNITS
 from .plc import BrowseItem, PlcAddressError, PlcClient, Point, ValueKind
 from .point_kinds import KIND_CONTROLS, KIND_PLATFORMS, kind_data, kind_fields
 
@@ -61,7 +62,7 @@ PLATFORM_KINDS: dict[str, tuple[frozenset[ValueKind], str]] = {
     "switch": (frozenset({ValueKind.BOOL}), "needs_bool"),
     "number": (NUMERIC | {ValueKind.DURATION}, "needs_number"),
     "datetime": (frozenset({ValueKind.DATETIME}), "needs_datetime"),
-    "text": (frozenset({ValueKind.TEXT}), "needs_text"),
+    "text": (frozenset({ValueKind.TEXT, ValueKind.DURATION}), "needs_text"),  # hh:mm:ss.zzz
     **KIND_PLATFORMS,
 }
 """The kinds of value a platform can show, and the error when a point is not one (sensor: all)."""
@@ -111,8 +112,8 @@ def base_schema(client: type[PlcClient]) -> vol.Schema:
 def takes_unit(platform: str, kind: ValueKind | None) -> bool:
     """True when the platform shows the point as a number that can have a unit."""
     if platform == "sensor":
-        return kind is None or kind in COUNTED
-    return platform == "number" and kind is not ValueKind.DURATION  # durations: seconds
+        return kind is None or kind in COUNTED or kind is ValueKind.DURATION
+    return platform == "number"  # a duration: a time unit (seconds unless given)
 
 
 def device_classes(platform: str, kind: ValueKind | None) -> list[str]:
@@ -175,7 +176,8 @@ def details_schema(
             )
         )
     if takes_unit(platform, kind):
-        fields[vol.Optional(CONF_UNIT_OF_MEASUREMENT)] = unit_selector(platform, device_class)
+        unit_class = "duration" if kind is ValueKind.DURATION else device_class
+        fields[vol.Optional(CONF_UNIT_OF_MEASUREMENT)] = unit_selector(platform, unit_class)
     if platform == "sensor" and takes_unit(platform, kind):
         fields[vol.Optional(CONF_STATE_CLASS)] = SelectSelector(
             SelectSelectorConfig(
@@ -246,6 +248,8 @@ def class_errors(
         errors[CONF_DEVICE_CLASS] = "invalid_device_class"
     elif unit and not takes_unit(platform, kind):
         errors[CONF_UNIT_OF_MEASUREMENT] = "unit_numeric"
+    elif kind is ValueKind.DURATION and unit and unit not in DURATION_UNITS:
+        errors[CONF_UNIT_OF_MEASUREMENT], units = "unit_not_valid", set(DURATION_UNITS)
     elif (units := allowed_units(platform, device_class)) is not None and unit not in units:
         errors[CONF_UNIT_OF_MEASUREMENT] = "unit_not_valid" if unit else "unit_required"
     if state_class and (platform != "sensor" or not takes_unit(platform, kind)):

@@ -25,6 +25,7 @@ import voluptuous as vol
 
 from .const import (
     BIT_LIMIT,
+    CONF_AS_TEXT,
     CONF_BITS,
     CONF_INVERT,
     CONF_OFF_VALUE,
@@ -99,6 +100,8 @@ def kind_fields(platform: str, kind: ValueKind | None) -> dict[vol.Marker, Any]:
             fields[vol.Optional(key)] = _NUMBER
     if platform in ("switch", "binary_sensor"):
         fields[vol.Required(CONF_INVERT, default=False)] = BooleanSelector()
+    if platform == "sensor" and kind is ValueKind.DURATION:
+        fields[vol.Optional(CONF_AS_TEXT, default=False)] = BooleanSelector()
     if platform in ("switch", "binary_sensor", "button") and _codes(kind):
         fields[vol.Optional(CONF_ON_VALUE)] = _NUMBER
         fields[vol.Optional(CONF_OFF_VALUE)] = _NUMBER
@@ -145,8 +148,9 @@ def kind_data(
     for key in NUMBER_FIELDS:
         if key in asked and values.get(key) is not None:
             data[key] = float(values[key])
-    if CONF_INVERT in asked and values.get(CONF_INVERT):
-        data[CONF_INVERT] = True  # stored only when set: older points compare unchanged
+    for key in (CONF_INVERT, CONF_AS_TEXT):
+        if key in asked and values.get(key):
+            data[key] = True  # stored only when set: older points compare unchanged
     errors |= _number_errors(data)
     if platform == "sensor" and CONF_VALUE_MAP in data and any(map(values.get, NOT_WITH_MAP)):
         errors[CONF_VALUE_MAP] = "map_shows_labels"

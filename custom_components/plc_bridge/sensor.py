@@ -22,6 +22,7 @@ from homeassistant.util import dt as dt_util
 from .const import LOGGER
 from .conversion import UnmappedLog
 from .coordinator import PlcBridgeConfigEntry
+from .duration_units import as_text, duration_unit, in_unit
 from .entity import (
     PlcEntity,
     PlcPointDescription,
@@ -32,6 +33,7 @@ from .entity import (
 )
 from .link import link_sensors
 from .plc import PlcStatus, ValueKind
+from .plc.durations import clock_text
 from .points import PointConfig
 
 PARALLEL_UPDATES = 0
@@ -51,11 +53,6 @@ KNOWN_EXTRA = (
 SHOWN_EXTRA = ("program", "program_compiled", "project_crc")
 """Extra keys whose sensors are enabled by default (the others are there, disabled)."""
 NUMERIC = (ValueKind.INTEGER, ValueKind.FLOAT, ValueKind.BOOL)
-DURATION: dict[str, Any] = {
-    "device_class": SensorDeviceClass.DURATION,
-    "native_unit_of_measurement": UnitOfTime.SECONDS,
-}
-"""A duration point (S7 TIME, S5TIME, TIME_OF_DAY) shows its seconds."""
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -173,8 +170,13 @@ def point_sensor(entry: PlcBridgeConfigEntry, config: PointConfig) -> PlcPointSe
             extra["state_class"] = SensorStateClass(extra["state_class"])
     elif fields["kind"] is ValueKind.DATETIME:
         extra = {"device_class": SensorDeviceClass.TIMESTAMP}
-    elif fields["kind"] is ValueKind.DURATION:
-        extra = DURATION
+    elif fields["kind"] is ValueKind.DURATION and not as_text(config.data):
+        extra = {  # seconds, or the time unit the point names; no unit: clock text
+            "device_class": SensorDeviceClass.DURATION,
+            "native_unit_of_measurement": duration_unit(config.data),
+            "state_class": config.data.get(CONF_STATE_CLASS),
+            "suggested_display_precision": fields["conversion"].precision,
+        }
     return PlcPointSensor(entry, config, PlcSensorDescription(**fields, **extra))
 
 
@@ -210,7 +212,8 @@ class PlcPointSensor(PlcPointEntity, SensorEntity):
         """Return the scaled value (text for strings and raw bytes)."""
         value = self.entity_description.value_fn(self.raw_value)
         if isinstance(value, timedelta):
-            return value.total_seconds()
+            unit = self.entity_description.native_unit_of_measurement
+            return clock_text(value) if unit is None else in_unit(value, unit)
         return int(value) if isinstance(value, bool) else value
 
 

@@ -1,8 +1,9 @@
-"""Texts: writable STRING points."""
+"""Texts: writable STRING points, and durations as hh:mm:ss.zzz (as TecoApi TIME showed)."""
 
 from __future__ import annotations
 
 from dataclasses import dataclass
+from datetime import timedelta
 
 from homeassistant.components.text import TextEntity, TextEntityDescription
 from homeassistant.core import HomeAssistant
@@ -10,6 +11,7 @@ from homeassistant.helpers.entity_platform import AddConfigEntryEntitiesCallback
 
 from .coordinator import PlcBridgeConfigEntry
 from .entity import PlcPointDescription, PlcPointEntity, point_fields
+from .plc.durations import clock_text
 from .points import PointConfig
 
 PARALLEL_UPDATES = 1
@@ -41,10 +43,12 @@ class PlcText(PlcPointEntity, TextEntity):
 
     @property
     def native_value(self) -> str | None:
-        """Return the point's text."""
+        """Return the point's text (a duration as hh:mm:ss.zzz)."""
         value = self.raw_value
+        if isinstance(value, timedelta):
+            return clock_text(value)
         return None if value is None else str(value)
 
     async def async_set_value(self, value: str) -> None:
-        """Write the text (ASCII and length are checked by the vendor before sending)."""
+        """Write the text (ASCII, length or duration are checked by the vendor before sending)."""
         await self.async_write(value)

@@ -14,6 +14,7 @@ import pytest
 from custom_components.plc_bridge.plc import (
     PlcConnectionError,
     PlcProtocolError,
+    PlcSessionRefusedError,
     PlcTimeoutError,
     Point,
 )
@@ -61,10 +62,23 @@ async def test_s7_200_by_tsap(s7_config: ConfigFactory) -> None:
 
 async def test_wrong_rack_or_slot_is_refused(s7_sim: S7Simulator, s7_config: ConfigFactory) -> None:
     client = S7Client(s7_config(options={"rack": 0, "slot": 2}))
-    with pytest.raises(PlcConnectionError, match=r"cannot connect to .* \(TSAP 01\.02\)"):
+    with pytest.raises(PlcSessionRefusedError, match=r"cannot connect to .* \(TSAP 01\.02\)"):
         await client.connect()
     await client.close()
     assert s7_sim.connections == 0
+
+
+async def test_closed_port_is_no_refused_session(s7_config: ConfigFactory) -> None:
+    """Nothing listening: a connection error, not a session the PLC refused (no slot blamed)."""
+    sim = S7Simulator()
+    await sim.start()
+    port = sim.port
+    await sim.stop()
+    client = S7Client(s7_config(port=port))
+    with pytest.raises(PlcConnectionError) as caught:
+        await client.connect()
+    await client.close()
+    assert not isinstance(caught.value, PlcSessionRefusedError)
 
 
 async def test_last_connection_taken(s7_config: ConfigFactory) -> None:
@@ -282,7 +296,7 @@ def refuse(pdu: bytes) -> bytes:
     ("answer", "error", "message"),
     [
         (lambda pdu: setup_ack(pdu, pdu=16), PlcProtocolError, "unusable PDU size 16"),
-        (refuse, PlcConnectionError, "refused the S7 session"),
+        (refuse, PlcSessionRefusedError, "refused the S7 session"),
         (lambda pdu: b"\x32\x03\x00\x00\x99\x99" + bytes(14), PlcProtocolError, "another request"),
     ],
 )  # fmt: skip

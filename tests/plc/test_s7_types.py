@@ -130,6 +130,12 @@ def test_refused_before_sending(address: str, data_type: str, value: Value, mess
         encode(variable(Point(address, data_type)), value, PRAGUE)
 
 
+def test_date_refused_by_the_check() -> None:
+    """validate_value refuses a DATE out of range, not only its encoding (the write action)."""
+    with pytest.raises(PlcValueError, match="a DATE runs from 1990-01-01 to 2168-12-31"):
+        S7Client.validate_value(Point("DB1.DBW0", "DATE"), datetime(1989, 12, 31))
+
+
 @pytest.mark.parametrize(
     ("address", "data_type", "raw", "message"),
     [

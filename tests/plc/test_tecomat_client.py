@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from datetime import date, datetime
+from datetime import date, datetime, timedelta
 import math
 from typing import TYPE_CHECKING
 from zoneinfo import ZoneInfo
@@ -40,8 +40,8 @@ ROUND_TRIPS: list[tuple[str, str, Value]] = [
     ("plcData.varDint", "DINT", -(2**31)),
     ("plcData.varReal", "REAL", -1.25),
     ("plcData.varLreal", "LREAL", 123456.5),
-    ("plcData.varTime", "TIME", "596:31:23.647"),
-    ("plcData.varTod", "TOD", "23:59:59.999"),
+    ("plcData.varTime", "TIME", timedelta(milliseconds=2**31 - 1)),
+    ("plcData.varTod", "TOD", timedelta(milliseconds=86_399_999)),
     ("plcData.varDate", "DATE", datetime(2024, 2, 29, tzinfo=PRAGUE)),
     ("plcData.varDT", "DT", datetime(2025, 7, 1, 12, 30, 15, 250000, tzinfo=PRAGUE)),
     ("plcData.varString", "STRING", 'say "hi" \\ ok'),

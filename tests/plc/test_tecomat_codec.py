@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from datetime import datetime
+from datetime import datetime, timedelta
 import math
 from typing import Any
 from zoneinfo import ZoneInfo
@@ -77,7 +77,7 @@ def test_data_types() -> None:
     assert TecomatClient.validate_point(Point("a", "Date_And_Time")).data_type == "DT"
     with pytest.raises(PlcAddressError, match="unknown data type 'LINT'"):
         TecomatClient.validate_point(Point("a", "LINT"))
-    assert TecomatClient.value_kind(Point("a", "TIME")) is ValueKind.TEXT
+    assert TecomatClient.value_kind(Point("a", "TIME")) is ValueKind.DURATION
     assert TecomatClient.value_kind(Point("a", "DT")) is ValueKind.DATETIME
     assert TecomatClient.value_kind(Point("a", "UDINT")) is ValueKind.INTEGER
     assert TecomatClient.value_kind(Point("a", "nope")) is None
@@ -91,9 +91,11 @@ def test_data_types() -> None:
         ("USINT", 255.0, 255),
         ("REAL", "2.5", 2.5),
         ("LREAL", -1e250, -1e250),  # 252 plain digits: within the parser's 255
-        ("TIME", 90.5, "00:01:30.500"),
-        ("TIME", "1:02:03.4", "01:02:03.400"),
-        ("TOD", "07:30:00", "07:30:00.000"),
+        ("TIME", 90.5, timedelta(seconds=90.5)),
+        ("TIME", "1:02:03.4", timedelta(hours=1, minutes=2, seconds=3.4)),
+        ("TIME", "0.0014", timedelta(milliseconds=1)),  # TIME counts whole milliseconds
+        ("TIME", timedelta(days=24, seconds=73883.647), timedelta(milliseconds=2**31 - 1)),
+        ("TOD", "07:30:00", timedelta(hours=7.5)),
         ("DATE", "2015-06-17", datetime(2015, 6, 17)),
         ("DT", datetime(2020, 1, 1, tzinfo=PRAGUE), datetime(2020, 1, 1, tzinfo=PRAGUE)),
         ("STRING", "", ""),
@@ -111,11 +113,11 @@ def test_values(kind: str, value: Value, checked: Value) -> None:
         ("LREAL", math.inf, "does not fit a LREAL"),
         ("LREAL", 1e300, "1e\\+300 written without an exponent takes 301 characters; the"),
         ("LREAL", 5e-324, "takes 326 characters; the PLC reads numbers of at most 255"),
-        ("TIME", -1, "outside the range of a TIME"),
-        ("TIME", 2**31 / 1000, "outside the range of a TIME"),
-        ("TIME", math.nan, "takes a TIME as hh:mm:ss.zzz"),
-        ("TOD", "24:00:00", "outside the range of a TOD"),
-        ("TOD", "7h", "takes a TOD as hh:mm:ss.zzz"),
+        ("TIME", -1, "a TIME holds 0..2147483.647 s, not -1 s"),
+        ("TIME", 2**31 / 1000, "a TIME holds 0..2147483.647 s, not 2147483.648 s"),
+        ("TIME", math.nan, "takes a TIME in seconds or as hh:mm:ss.zzz"),
+        ("TOD", "24:00:00", "a TOD holds 0..86399.999 s, not 86400 s"),
+        ("TOD", "7h", "takes a TOD in seconds or as hh:mm:ss.zzz"),
         ("DATE", "17.6.2015", "takes a DATE as an ISO date"),
         ("DT", 5, "takes a DT"),
         ("DT", "1969-12-31T23:00:00", "starts on 1970-01-01"),
@@ -232,7 +234,8 @@ def test_dumps() -> None:
         ("REAL", 22.299999, 22.3),  # the PLC prints a REAL's 32 bits with six decimals
         ("REAL", 1000.000000, 1000.0),
         ("LREAL", 22.299999, 22.299999),
-        ("TOD", "7:30:00", "07:30:00.000"),
+        ("TOD", "7:30:00", timedelta(hours=7.5)),
+        ("TIME", "596:31:23.647", timedelta(milliseconds=2**31 - 1)),
         ("DATE", "2015-06-17", datetime(2015, 6, 17, tzinfo=PRAGUE)),
         ("DT", "2018-05-11T11:22:33.4Z", datetime(2018, 5, 11, 11, 22, 33, 400000, tzinfo=PRAGUE)),
         ("DT", "2018-05-11 11:22:33", datetime(2018, 5, 11, 11, 22, 33, tzinfo=PRAGUE)),
@@ -251,6 +254,10 @@ def test_decode(kind: str, raw: Any, value: Value) -> None:
         ("REAL", "1", "which is no REAL"),
         ("DT", "2018-02-30T00:00:00.000Z", "which is no DT"),
         ("DATE", "yesterday", "which is no DATE"),
+        ("TIME", "-00:00:01.000", "which is no TIME"),
+        ("TIME", "596:31:23.648", "which is no TIME"),  # past chapter 4's 24d20:31:23.647
+        ("TIME", "00:00:01.0005", "which is no TIME"),  # finer than a millisecond
+        ("TOD", "24:00:00.000", "which is no TOD"),
         ("STRING", ["a"], "is an array"),
         ("INT", {"a": 1}, "is a structure"),
     ],

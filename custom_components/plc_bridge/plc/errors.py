@@ -15,6 +15,10 @@ class PlcTimeoutError(PlcConnectionError):
     """The PLC did not answer in time."""
 
 
+class PlcSessionRefusedError(PlcConnectionError):
+    """The PLC took the connection but refused the session asked for (a wrong slot or TSAP)."""
+
+
 class PlcTlsError(PlcConnectionError):
     """TLS failed: untrusted certificate, or not the certificate pinned at setup."""
 

@@ -214,4 +214,4 @@ def platform(kind: str, read_only: bool) -> str:
         return "datetime"
     if kind in ("STRING", "WSTRING"):
         return "text"
-    return "number" if KINDS[kind] in ("integer", "float") else "sensor"
+    return "number" if KINDS[kind] in ("integer", "float", "duration") else "sensor"

@@ -102,7 +102,7 @@ class PlcnextClient(PlcClient):
 
     @classmethod
     def value_kind(cls, point: Point) -> ValueKind | None:
-        """Return what the point holds (TIME and LTIME: whole milliseconds, nanoseconds)."""
+        """Return what the point holds (TIME and LTIME: durations, sent as ms and ns counts)."""
         try:
             return KINDS[data_type(point.data_type)]
         except PlcAddressError:

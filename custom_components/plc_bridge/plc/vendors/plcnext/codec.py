@@ -8,7 +8,7 @@ silent this module follows IEC 61131-3 and ISO 8601 (see `decode`), and says so.
 
 from __future__ import annotations
 
-from datetime import UTC, date, datetime, tzinfo
+from datetime import UTC, date, datetime, timedelta, tzinfo
 import math
 import re
 from typing import Any
@@ -17,7 +17,6 @@ from ...codec import (
     CHECKED,
     INTEGER_RANGES,
     check_iec,
-    check_integer,
     check_text,
     decode_error,
     iec_kinds,
@@ -25,6 +24,7 @@ from ...codec import (
     shortest_real,
     type_name,
 )
+from ...durations import DurationType, count_of, from_count
 from ...errors import PlcValueError
 from ...types import Value, ValueKind
 
@@ -32,9 +32,14 @@ INTEGERS = tuple(INTEGER_RANGES)
 TYPES = ("BOOL", *INTEGERS, "REAL", "LREAL", "STRING", "WSTRING", "TIME", "LTIME", "DATE", "DT")
 """The elementary types a point may have, also the point form's data types."""
 ALIASES = {"DATE_AND_TIME": "DT", "LDT": "DT", "LDATE": "DATE"}
-# TIME: milliseconds (IEC TIME, a signed 32-bit count in PLCnext); LTIME: nanoseconds (64 bits)
-KINDS = iec_kinds(TYPES, TIME=ValueKind.INTEGER, LTIME=ValueKind.INTEGER)
+KINDS = iec_kinds(TYPES, TIME=ValueKind.DURATION, LTIME=ValueKind.DURATION)
+TIME_UNITS = {"TIME": 1_000_000, "LTIME": 1}
+"""Nanoseconds a count of TIME (IEC: signed 32-bit ms) and LTIME (signed 64-bit ns) stands for."""
 TIME_RANGES = {"TIME": INTEGER_RANGES["DINT"], "LTIME": INTEGER_RANGES["LINT"]}
+DURATIONS = {
+    kind: DurationType.of_count(kind, *TIME_RANGES[kind], TIME_UNITS[kind]) for kind in TIME_UNITS
+}
+"""LTIME is kept to the microsecond (a timedelta's): nanoseconds read are rounded to them."""
 _LIMITS = {**INTEGER_RANGES, **TIME_RANGES}
 MAX_STRING = 255  # no source gives PLCnext's STRING limit; the PLC refuses a longer one itself
 _WHOLE = re.compile(r"\s*[+-]?\d{1,20}\s*", re.ASCII)
@@ -49,12 +54,12 @@ def data_type(text: str) -> str:
 def check_value(kind: str, value: Value, what: str) -> Value:
     """Return a value coerced for an IEC type; raise PlcValueError before anything is sent.
 
-    A STRING holds one byte a character (IEC), a WSTRING UTF-16; TIME and LTIME are counts.
+    A STRING holds one byte a character (IEC), a WSTRING UTF-16; TIME and LTIME are durations.
     """
     if kind in CHECKED:
         return check_iec(kind, value, what)
-    if kind in TIME_RANGES:
-        return check_integer(value, *TIME_RANGES[kind], what)
+    if kind in DURATIONS:
+        return DURATIONS[kind].check(value, what)
     if kind == "STRING":
         return check_text(value, MAX_STRING, what, encoding="latin-1", hint="; use a WSTRING")
     return check_text(value, MAX_STRING, what, kind=kind, encoding="utf-16")
@@ -65,7 +70,10 @@ def encode(kind: str, value: Value, zone: tzinfo) -> Any:
 
     A DT goes as ISO 8601 in UTC with its `Z` (the sources show no date; an aware ISO time is
     the one form no reader can take for another zone); a naive one is the PLC's local time.
+    TIME and LTIME go as their counts (ms, ns), as they read.
     """
+    if isinstance(value, timedelta):
+        return count_of(value, TIME_UNITS[kind])
     if isinstance(value, datetime):
         if kind == "DATE":
             return f"{local_time(value, zone):%Y-%m-%d}"
@@ -82,14 +90,14 @@ def decode(kind: str, raw: Any, zone: tzinfo, what: str) -> Value:
     """Return a point's value from its JSON; raise PlcProtocolError when it does not fit."""
     limits = _LIMITS.get(kind)
     if type(raw) is int and limits is not None and limits[0] <= raw <= limits[1]:
-        return raw  # the common case first: a JSON number that fits
+        return raw if kind not in TIME_UNITS else from_count(raw, TIME_UNITS[kind])
     if kind == "BOOL":
         return _bool(raw, what)
     if limits is not None:
         low, high = limits
         number = _whole(raw)
         if number is not None and low <= number <= high:
-            return number
+            return number if kind not in TIME_UNITS else from_count(number, TIME_UNITS[kind])
     elif kind in ("REAL", "LREAL"):
         real = _real(raw)
         if real is not None:

@@ -25,6 +25,7 @@ from ...errors import (
     PlcError,
     PlcOptionError,
     PlcProtocolError,
+    PlcSessionRefusedError,
     PlcTimeoutError,
 )
 from ...types import ClientMetrics
@@ -145,6 +146,21 @@ def endpoint(options: Mapping[str, object]) -> Endpoint:
     return Endpoint(LOCAL_TSAP, PG << 8 | rack << 5 | slot, s7_200)
 
 
+class _Connection(AsyncISOTCPConnection):
+    """python-snap7's ISO-on-TCP connection, noting whether TCP was open when the ISO step began.
+
+    A CPU that refuses the TSAP (a wrong slot) has taken the TCP connection: that tells a wrong
+    slot or TSAP from a wrong host or port without a second connection to probe the port.
+    """
+
+    tcp_opened = False
+
+    async def _iso_connect(self) -> None:
+        """Note the open TCP connection, then send the COTP connection request."""
+        self.tcp_opened = True
+        await super()._iso_connect()
+
+
 class S7Link:
     """An open S7 session; unusable once an exchange broke it (the client then opens another)."""
 
@@ -152,7 +168,7 @@ class S7Link:
         self, host: str, port: int, ends: Endpoint, timeout: float, metrics: ClientMetrics
     ) -> None:
         """Prepare the connection; nothing is sent until `open`."""
-        self._connection = AsyncISOTCPConnection(host, port, ends.local_tsap, ends.remote_tsap)
+        self._connection = _Connection(host, port, ends.local_tsap, ends.remote_tsap)
         self._where = f"{host}:{port} (TSAP {tsap_text(ends.remote_tsap)})"
         self._protocol = S7Protocol()
         self._timeout = timeout
@@ -174,7 +190,9 @@ class S7Link:
                 f"{self._where} did not answer within {self._timeout:g} s"
             ) from err
         except S7ConnectionError as err:
-            raise PlcConnectionError(f"cannot connect to {self._where}: {err}") from err
+            refused = self._connection.tcp_opened
+            error = PlcSessionRefusedError if refused else PlcConnectionError
+            raise error(f"cannot connect to {self._where}: {err}") from err
         try:
             request = self._protocol.build_setup_communication_request(1, 1, requested_pdu)
             response = await self.exchange(request)
@@ -183,7 +201,7 @@ class S7Link:
                 raise PlcProtocolError(f"the PLC negotiated an unusable PDU size {pdu!r}")
         except S7RequestError as err:
             await self.close()
-            raise PlcConnectionError(f"the PLC refused the S7 session: {err}") from err
+            raise PlcSessionRefusedError(f"the PLC refused the S7 session: {err}") from err
         except PlcError:
             await self.close()
             raise

@@ -67,7 +67,9 @@ def check_time(kind: str, value: Value, what: str) -> Value:
     if kind == "COUNTER":
         return check_integer(value, 0, BCD_MAX, what=what)
     if kind == "DATE":
-        return _moment(value, what)
+        moment = _moment(value, what)
+        _check_day(moment.date(), what)  # its own day; encode_time checks the PLC's again
+        return moment
     milliseconds = _milliseconds(value, what)
     low, high = MS_RANGES[kind]
     if not low <= milliseconds <= high:
@@ -129,6 +131,13 @@ def _moment(value: Value, what: str) -> datetime:
     raise PlcValueError(f"{what} takes a date, not {value!r}")
 
 
+def _check_day(day: date, what: str) -> date:
+    """Return a day a DATE holds; raise PlcValueError for one outside 1990-01-01..2168-12-31."""
+    if not EPOCH <= day <= LAST_DATE:
+        raise PlcValueError(f"{what}: a DATE runs from {EPOCH} to {LAST_DATE}, not {day}")
+    return day
+
+
 def encode_time(kind: str, value: Value, zone: tzinfo, what: str) -> bytes:
     """Return the bytes of a checked TIME, S5TIME, TIME_OF_DAY, DATE or COUNTER."""
     if kind == "COUNTER":
@@ -136,9 +145,7 @@ def encode_time(kind: str, value: Value, zone: tzinfo, what: str) -> bytes:
         return _to_bcd(value).to_bytes(2, "big")
     if kind == "DATE":
         assert isinstance(value, datetime)
-        day = local_time(value, zone).date()
-        if not EPOCH <= day <= LAST_DATE:
-            raise PlcValueError(f"{what}: a DATE runs from {EPOCH} to {LAST_DATE}, not {day}")
+        day = _check_day(local_time(value, zone).date(), what)
         return (day - EPOCH).days.to_bytes(2, "big")
     assert isinstance(value, timedelta)
     milliseconds = round(value / timedelta(milliseconds=1))

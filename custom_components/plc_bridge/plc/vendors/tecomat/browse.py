@@ -156,7 +156,7 @@ def suggested_platform(kind: str, read_only: bool) -> str:
         return "binary_sensor" if kind == "BOOL" else "sensor"
     if kind in controls:
         return controls[kind]
-    return "number" if KINDS[kind] in ("integer", "float") else "sensor"
+    return "number" if KINDS[kind] in ("integer", "float", "duration") else "sensor"
 
 
 def _number(value: Any) -> float | None:

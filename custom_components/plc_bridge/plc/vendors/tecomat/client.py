@@ -126,7 +126,7 @@ class TecomatClient(PlcClient):
 
     @classmethod
     def value_kind(cls, point: Point) -> ValueKind | None:
-        """Return what the point holds; TIME and TOD are text as the PLC writes them."""
+        """Return what the point holds; TIME and TOD are durations (sent as hh:mm:ss.zzz)."""
         try:
             return KINDS[data_type(point.data_type)]
         except PlcAddressError:

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from datetime import datetime, tzinfo
+from datetime import datetime, timedelta, tzinfo
 import json
 import math
 import re
@@ -21,6 +21,7 @@ from ...codec import (
     shortest_real,
     type_name,
 )
+from ...durations import MILLISECOND, DurationType, clock_duration, clock_text
 from ...errors import PlcValueError
 from ...types import Value, ValueKind
 
@@ -28,13 +29,16 @@ INTEGERS = ("BYTE", "WORD", "DWORD", "SINT", "INT", "DINT", "USINT", "UINT", "UD
 TYPES = ("BOOL", *INTEGERS, "REAL", "LREAL", "TIME", "TOD", "DATE", "DT", "STRING")
 """The elementary types of chapter 4, also the point form's data types."""
 ALIASES = {"TIME_OF_DAY": "TOD", "DATE_AND_TIME": "DT"}
-KINDS = iec_kinds(TYPES, TIME=ValueKind.TEXT, TOD=ValueKind.TEXT)  # "hh:mm:ss.zzz", as sent
+KINDS = iec_kinds(TYPES, TIME=ValueKind.DURATION, TOD=ValueKind.DURATION)  # sent "hh:mm:ss.zzz"
 MAX_STRING = 255  # chapter 4: STRING holds at most 255 ASCII characters
 MAX_VALUE = 255  # 3.6: an item's value is at most 255 characters in a PutObject body
-MAX_TIME_MS = 2**31 - 1  # chapter 4: TIME and TOD run from 0 to 24d 20:31:23.647
+MAX_TIME_MS = 2**31 - 1  # chapter 4: TIME runs from 0 to 24d 20:31:23.647
 DAY_MS = 24 * 3600 * 1000
+DURATIONS = {
+    "TIME": DurationType.of_count("TIME", 0, MAX_TIME_MS, 1_000_000),
+    "TOD": DurationType.of_count("TOD", 0, DAY_MS - 1, 1_000_000),  # since midnight
+}
 
-_CLOCK = re.compile(r"(\d+):([0-5]\d):([0-5]\d)(?:\.(\d{1,3}))?", re.ASCII)
 _DATE = re.compile(r"(\d{4})-(\d\d)-(\d\d)", re.ASCII)
 _DT = re.compile(r"(\d{4})-(\d\d)-(\d\d)[T ](\d\d):(\d\d):(\d\d)(?:\.(\d{1,3}))?Z?", re.ASCII)
 
@@ -49,8 +53,8 @@ def check_value(kind: str, value: Value, what: str) -> Value:
     if kind in CHECKED:
         checked = check_iec(kind, value, what)
         return _check_number(checked, what) if isinstance(checked, float) else checked
-    if kind in ("TIME", "TOD"):
-        return _format_clock(_check_clock(kind, value, what))
+    if kind in DURATIONS:
+        return DURATIONS[kind].check(value, what)
     return _check_text(value, what)
 
 
@@ -73,41 +77,10 @@ def _check_text(value: Value, what: str) -> str:
     return value
 
 
-def _check_clock(kind: str, value: Value, what: str) -> int:
-    """Return a TIME or TOD as milliseconds: "hh:mm:ss.zzz" text, or a number of seconds."""
-    high = MAX_TIME_MS if kind == "TIME" else DAY_MS - 1
-    finite = isinstance(value, int) or (isinstance(value, float) and math.isfinite(value))
-    if finite and isinstance(value, int | float) and not isinstance(value, bool):
-        # Checked before round(): 10**400 is no float, and 1e308 * 1000 is infinite.
-        if not -0.5 < value * 1000 < high + 0.5:
-            raise PlcValueError(f"{what}: the number is outside the range of a {kind}")
-        millis = round(value * 1000)
-    elif isinstance(value, str) and (match := _CLOCK.fullmatch(value.strip())):
-        millis = _clock_millis(match)
-    else:
-        raise PlcValueError(f"{what} takes a {kind} as hh:mm:ss.zzz, not {value!r}")
-    if not 0 <= millis <= high:
-        raise PlcValueError(f"{what}: {value!r} is outside the range of a {kind}")
-    return millis
-
-
-def _clock_millis(match: re.Match[str]) -> int:
-    """Return the milliseconds of a matched hh:mm:ss.zzz."""
-    hours, minutes, seconds, fraction = match.groups()
-    millis = int((fraction or "0").ljust(3, "0"))
-    return ((int(hours) * 60 + int(minutes)) * 60 + int(seconds)) * 1000 + millis
-
-
-def _format_clock(millis: int) -> str:
-    """Return milliseconds as the JSON form of TIME and TOD: hh:mm:ss.zzz."""
-    seconds, millis = divmod(millis, 1000)
-    minutes, seconds = divmod(seconds, 60)
-    hours, minutes = divmod(minutes, 60)
-    return f"{hours:02d}:{minutes:02d}:{seconds:02d}.{millis:03d}"
-
-
 def encode(kind: str, value: Value, zone: tzinfo) -> Any:
     """Return the JSON value of a checked value; dates and times in the PLC's zone."""
+    if isinstance(value, timedelta):
+        return clock_text(value)  # chapter 4: TIME and TOD travel as "hh:mm:ss.zzz"
     if not isinstance(value, datetime):
         return value
     value = local_time(value, zone)
@@ -161,11 +134,20 @@ def decode(kind: str, raw: Any, zone: tzinfo, what: str) -> Value:
         return raw
     if isinstance(raw, str):
         text = raw.strip()
-        if kind in ("TIME", "TOD") and (match := _CLOCK.fullmatch(text)):
-            return _format_clock(_clock_millis(match))
+        if kind in DURATIONS and (duration := _clock(kind, text)) is not None:
+            return duration
         if kind in ("DATE", "DT") and (moment := parse_datetime(kind, text, zone)):
             return moment
     raise decode_error(kind, raw, what)
+
+
+def _clock(kind: str, text: str) -> timedelta | None:
+    """Return a TIME or TOD the PLC sent as hh:mm:ss.zzz; None when it is none or off range."""
+    duration = clock_duration(text)
+    if duration is None or duration % MILLISECOND or not text[:1].isdigit():
+        return None
+    durations = DURATIONS[kind]
+    return duration if durations.low <= duration <= durations.high else None
 
 
 def parse_datetime(kind: str, text: str, zone: tzinfo) -> datetime | None:
@@ -211,7 +193,7 @@ def guess_type(raw: Any) -> str | None:
         return "DT"
     if _DATE.fullmatch(text):
         return "DATE"
-    if _CLOCK.fullmatch(text):
+    if clock_duration(text) is not None and text[:1].isdigit():
         return "TIME"
     return "STRING"
 
