@@ -11,6 +11,7 @@ from .connection import create_polling_client
 from .const import DOMAIN, PLATFORMS
 from .coordinator import PlcBridgeConfigEntry, PlcCoordinator, PlcRuntimeData, link_error
 from .entity import plc_device
+from .expose import async_start_exposes
 from .migration import async_migrate_points
 from .plc import PlcError
 from .points import PointEntities, async_register_devices
@@ -45,6 +46,7 @@ async def async_setup_entry(hass: HomeAssistant, entry: PlcBridgeConfigEntry) ->
     )
     async_register_devices(hass, entry, plc_device(hass, entry), points.areas)
     await hass.config_entries.async_forward_entry_setups(entry, PLATFORMS)
+    async_start_exposes(hass, entry)
     entry.async_on_unload(entry.add_update_listener(async_update_entry))
     return True
 
