@@ -9,7 +9,7 @@ from homeassistant.components.diagnostics import async_redact_data
 from homeassistant.const import CONF_HOST, CONF_PASSWORD, CONF_USERNAME
 from homeassistant.core import HomeAssistant
 
-from .const import CONF_FINGERPRINT
+from .const import CONF_FINGERPRINT, SUBENTRY_EXPOSE
 from .coordinator import PlcBridgeConfigEntry
 from .services import json_value
 
@@ -47,6 +47,11 @@ async def async_get_config_entry_diagnostics(
         "points": {
             point_id: {"device": entry.subentries[config.subentry_id].title, **config.data}
             for point_id, config in runtime.points.configs.items()
+        },
+        "exposes": {
+            subentry_id: {"title": subentry.title, **subentry.data}
+            for subentry_id, subentry in entry.subentries.items()
+            if subentry.subentry_type == SUBENTRY_EXPOSE
         },
         "device": async_redact_data(asdict(runtime.device), TO_REDACT),
         "status": status,
