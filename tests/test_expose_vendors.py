@@ -1,0 +1,105 @@
+"""Exposes on every vendor: Home Assistant states written to the simulator, bursts batched."""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+from freezegun.api import FrozenDateTimeFactory
+from homeassistant.const import STATE_UNAVAILABLE
+from homeassistant.core import HomeAssistant
+import pytest
+
+from tests.ha_fixtures import set_up
+
+from .expose_fixtures import VENDORS, VendorCase, add_expose, settle, shown
+
+OUTDOOR = "sensor.outdoor_temperature"
+PRESENCE = "person.anna"
+
+
+@pytest.fixture(params=VENDORS, ids=lambda case: case.vendor)
+def case(request: pytest.FixtureRequest) -> tuple[VendorCase, Any]:
+    """Each vendor, with its simulator started (time frozen until its entries are unloaded)."""
+    vendor: VendorCase = request.param
+    return vendor, request.getfixturevalue(vendor.sim)
+
+
+def shown_entity(title: str) -> str:
+    """Return the entity id of the `shown` sensor of a PLC with this title."""
+    return f"sensor.{title.lower().replace(' ', '_').replace('-', '_')}_shown"
+
+
+def near(held: Any, value: float) -> bool:
+    """True when a REAL the PLC holds is the value (single precision)."""
+    return math.isclose(float(held), value, rel_tol=1e-6)
+
+
+async def test_state_change_written(
+    hass: HomeAssistant, freezer: FrozenDateTimeFactory, case: tuple[VendorCase, Any]
+) -> None:
+    """A temperature and a presence (value map) reach the PLC; the polled point shows it."""
+    vendor, sim = case
+    hass.states.async_set(OUTDOOR, "3.5")
+    hass.states.async_set(PRESENCE, "not_home")
+    entry = vendor.entry(hass, sim, [shown(vendor)])
+    add_expose(hass, entry, OUTDOOR, vendor.real)
+    add_expose(hass, entry, PRESENCE, vendor.bool, value_map="home=1;not_home=0")
+    await set_up(hass, entry)
+    writes = vendor.writes(sim)
+    hass.states.async_set(OUTDOOR, "21.5")
+    hass.states.async_set(PRESENCE, "home")
+    await settle(hass, freezer)
+    assert near(vendor.read(sim, *vendor.real), 21.5)
+    assert vendor.read(sim, *vendor.bool) in (True, 1)
+    assert hass.states.get(shown_entity(entry.title)).state == "21.5"
+    hass.states.async_set(PRESENCE, "not_home")
+    await settle(hass, freezer, 1.0)  # past the cooldown
+    assert vendor.read(sim, *vendor.bool) in (False, 0)
+    assert vendor.writes(sim) > writes
+
+
+async def test_unavailable_writes_nothing_or_the_default(
+    hass: HomeAssistant, freezer: FrozenDateTimeFactory, case: tuple[VendorCase, Any]
+) -> None:
+    """An unavailable entity writes nothing, or the expose's default where it has one."""
+    vendor, sim = case
+    hass.states.async_set(OUTDOOR, "4.5")
+    hass.states.async_set(PRESENCE, "home")
+    entry = vendor.entry(hass, sim, [shown(vendor)])
+    add_expose(hass, entry, OUTDOOR, vendor.real, send_on_start=True)
+    add_expose(hass, entry, PRESENCE, vendor.burst[0], default="7", value_map="home=1;not_home=0")
+    await set_up(hass, entry)
+    await settle(hass, freezer)
+    assert near(vendor.read(sim, *vendor.real), 4.5)
+    writes = vendor.writes(sim)
+    hass.states.async_set(OUTDOOR, STATE_UNAVAILABLE)
+    await settle(hass, freezer, 2.0)
+    assert vendor.writes(sim) == writes
+    assert near(vendor.read(sim, *vendor.real), 4.5)
+    hass.states.async_set(PRESENCE, STATE_UNAVAILABLE)
+    await settle(hass, freezer, 2.0)
+    assert vendor.read(sim, *vendor.burst[0]) == 7
+
+
+async def test_burst_costs_the_minimum_requests(
+    hass: HomeAssistant, freezer: FrozenDateTimeFactory, case: tuple[VendorCase, Any]
+) -> None:
+    """Ten exposes changed at once go out in the vendor's fewest write requests (one)."""
+    vendor, sim = case
+    entities = [f"input_number.level_{index}" for index in range(len(vendor.burst))]
+    for entity_id in entities:
+        hass.states.async_set(entity_id, "0")
+    entry = vendor.entry(hass, sim, [shown(vendor)])
+    for entity_id, target in zip(entities, vendor.burst, strict=True):
+        add_expose(hass, entry, entity_id, target)
+    await set_up(hass, entry)
+    client = entry.runtime_data.client
+    writes, requests = vendor.writes(sim), client.metrics.requests
+    for index, entity_id in enumerate(entities):
+        hass.states.async_set(entity_id, str(index + 11))
+    await settle(hass, freezer)
+    assert [vendor.read(sim, *target) for target in vendor.burst] == list(range(11, 21))
+    assert vendor.writes(sim) - writes == 1
+    # Tecomat reads the written variables back (a PutObject's 204 proves nothing): one more.
+    assert client.metrics.requests - requests == (2 if vendor.vendor == "tecomat" else 1)
