@@ -8,14 +8,19 @@ from typing import Any
 from freezegun.api import FrozenDateTimeFactory
 from homeassistant.const import STATE_UNAVAILABLE
 from homeassistant.core import HomeAssistant
+from homeassistant.helpers import issue_registry as ir
 import pytest
 
+from custom_components.plc_bridge.const import DOMAIN
+from custom_components.plc_bridge.expose import FAILURE_LIMIT
+from custom_components.plc_bridge.repairs import expose_issue_id
 from tests.ha_fixtures import set_up
 
 from .expose_fixtures import VENDORS, VendorCase, add_expose, settle, shown
 
 OUTDOOR = "sensor.outdoor_temperature"
 PRESENCE = "person.anna"
+SUN = "sun.sun"
 
 
 @pytest.fixture(params=VENDORS, ids=lambda case: case.vendor)
@@ -38,20 +43,24 @@ def near(held: Any, value: float) -> bool:
 async def test_state_change_written(
     hass: HomeAssistant, freezer: FrozenDateTimeFactory, case: tuple[VendorCase, Any]
 ) -> None:
-    """A temperature and a presence (value map) reach the PLC; the polled point shows it."""
+    """A temperature, an attribute and a presence (value map) reach the PLC; polled: shown."""
     vendor, sim = case
     hass.states.async_set(OUTDOOR, "3.5")
     hass.states.async_set(PRESENCE, "not_home")
+    hass.states.async_set(SUN, "above_horizon", {"azimuth": 120})
     entry = vendor.entry(hass, sim, [shown(vendor)])
     add_expose(hass, entry, OUTDOOR, vendor.real)
     add_expose(hass, entry, PRESENCE, vendor.bool, value_map="home=1;not_home=0")
+    add_expose(hass, entry, SUN, vendor.burst[1], attribute="azimuth")
     await set_up(hass, entry)
     writes = vendor.writes(sim)
     hass.states.async_set(OUTDOOR, "21.5")
     hass.states.async_set(PRESENCE, "home")
+    hass.states.async_set(SUN, "above_horizon", {"azimuth": 121})
     await settle(hass, freezer)
     assert near(vendor.read(sim, *vendor.real), 21.5)
     assert vendor.read(sim, *vendor.bool) in (True, 1)
+    assert vendor.read(sim, *vendor.burst[1]) == 121
     assert hass.states.get(shown_entity(entry.title)).state == "21.5"
     hass.states.async_set(PRESENCE, "not_home")
     await settle(hass, freezer, 1.0)  # past the cooldown
@@ -103,3 +112,70 @@ async def test_burst_costs_the_minimum_requests(
     assert vendor.writes(sim) - writes == 1
     # Tecomat reads the written variables back (a PutObject's 204 proves nothing): one more.
     assert client.metrics.requests - requests == (2 if vendor.vendor == "tecomat" else 1)
+
+
+async def test_send_on_start_after_a_restart(
+    hass: HomeAssistant, freezer: FrozenDateTimeFactory, case: tuple[VendorCase, Any]
+) -> None:
+    """The current state is written at setup, and again at the next setup (a restart)."""
+    vendor, sim = case
+    hass.states.async_set(OUTDOOR, "4.5")
+    entry = vendor.entry(hass, sim, [shown(vendor)])
+    add_expose(hass, entry, OUTDOOR, vendor.real, send_on_start=True)
+    await set_up(hass, entry)
+    await settle(hass, freezer)
+    assert near(vendor.read(sim, *vendor.real), 4.5)
+    assert await hass.config_entries.async_unload(entry.entry_id)
+    hass.states.async_set(OUTDOOR, "6.5")
+    await settle(hass, freezer, 2.0)
+    assert near(vendor.read(sim, *vendor.real), 4.5)  # not loaded: nothing written
+    await set_up(hass, entry)
+    await settle(hass, freezer)
+    assert near(vendor.read(sim, *vendor.real), 6.5)
+
+
+async def test_value_out_of_range_refused(
+    hass: HomeAssistant,
+    freezer: FrozenDateTimeFactory,
+    case: tuple[VendorCase, Any],
+    caplog: pytest.LogCaptureFixture,
+) -> None:
+    """A value no REAL holds is refused before sending, logged once; nothing is written."""
+    vendor, sim = case
+    hass.states.async_set(OUTDOOR, "1.5")
+    entry = vendor.entry(hass, sim, [shown(vendor)])
+    add_expose(hass, entry, OUTDOOR, vendor.real)
+    await set_up(hass, entry)
+    writes = vendor.writes(sim)
+    for value in ("1e39", "-1e39"):
+        hass.states.async_set(OUTDOOR, value)
+        await settle(hass, freezer, 2.0)
+    assert vendor.writes(sim) == writes
+    assert len([r for r in caplog.records if "nothing sent" in r.message]) == 1
+
+
+async def test_lost_plc_raises_an_issue_cleared_when_back(
+    hass: HomeAssistant,
+    freezer: FrozenDateTimeFactory,
+    case: tuple[VendorCase, Any],
+    issue_registry: ir.IssueRegistry,
+) -> None:
+    """Writes to a PLC that is gone fail; an issue after a few in a row, gone once one works."""
+    vendor, sim = case
+    hass.states.async_set(OUTDOOR, "1.5")
+    entry = vendor.entry(hass, sim, [shown(vendor)])
+    subentry_id = add_expose(hass, entry, OUTDOOR, vendor.real)
+    await set_up(hass, entry)
+    issue = expose_issue_id(entry, subentry_id)
+    await sim.stop()
+    for index in range(FAILURE_LIMIT):
+        assert issue_registry.async_get_issue(DOMAIN, issue) is None
+        hass.states.async_set(OUTDOOR, str(2.5 + index))
+        await settle(hass, freezer, 2.0)
+    assert issue_registry.async_get_issue(DOMAIN, issue) is not None
+    await sim.start(sim.host, sim.port)
+    await settle(hass, freezer, 10.0)  # past any reconnect wait, and a poll
+    hass.states.async_set(OUTDOOR, "9.5")
+    await settle(hass, freezer, 2.0)
+    assert near(vendor.read(sim, *vendor.real), 9.5)
+    assert issue_registry.async_get_issue(DOMAIN, issue) is None
