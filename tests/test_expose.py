@@ -248,3 +248,20 @@ async def test_diagnostics_list_exposes(
     assert result["exposes"][subentry_id]["address"] == "VW120"
     assert result["exposes"][subentry_id]["entity_id"] == LEVEL
     assert result["exposes"][subentry_id]["value_map"] == "on=1;off=0"
+
+
+async def test_export_lists_machines_only(
+    hass: HomeAssistant, entry: MockConfigEntry, s7_smart_sim: S7SmartSimulator
+) -> None:
+    """The points export names the machines, not the exposes beside them."""
+    add_expose(hass, entry, LEVEL, WORD)
+    await set_up(hass, entry)
+    response = await hass.services.async_call(
+        DOMAIN,
+        "export_points",
+        {"config_entry_id": entry.entry_id},
+        blocking=True,
+        return_response=True,
+    )
+    assert response is not None
+    assert list(response["devices"]) == [entry.title]
