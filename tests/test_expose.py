@@ -114,7 +114,7 @@ async def test_periodic_resend(
     entry: MockConfigEntry,
     s7_smart_sim: S7SmartSimulator,
 ) -> None:
-    """The last value is written again every resend period, whatever the PLC holds since."""
+    """The last value is written again every resend period; not once the entity is unavailable."""
     add_expose(hass, entry, LEVEL, WORD, resend=30.0, send_on_start=True)
     await set_up(hass, entry)
     await settle(hass, freezer)
@@ -124,6 +124,10 @@ async def test_periodic_resend(
     await settle(hass, freezer, 30.0)
     assert s7_smart_sim.get(*WORD) == 10
     assert writes(s7_smart_sim) == before + 1
+    hass.states.async_set(LEVEL, "unavailable")
+    s7_smart_sim.set(WORD[0], 99)
+    await settle(hass, freezer, 30.0)
+    assert s7_smart_sim.get(*WORD) == 99  # an unavailable entity's last value is not resent
 
 
 async def test_send_on_start_after_a_reload(
@@ -192,6 +196,7 @@ async def test_failing_writes_raise_an_issue_cleared_on_success(  # noqa: PLR091
     assert found is not None
     assert found.translation_placeholders is not None
     assert found.translation_placeholders["expose"] == f"{LEVEL} → VW120"
+    assert "STOP" in found.translation_placeholders["error"]
     failed = [r for r in caplog.records if "cannot be written to VW120:" in r.message]
     assert len(failed) == 1
     s7_smart_sim.mode = "RUN"

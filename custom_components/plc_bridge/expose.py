@@ -163,8 +163,9 @@ class PlcExposes:
         """Convert a state; queue its value, or log once that it cannot be written."""
         config = expose.config
         source: Any = config.source(state)
-        if source is None:
-            return  # unavailable or unknown, and no default: nothing is written
+        if source is None:  # unavailable or unknown, and no default: nothing is written
+            expose.value = None  # nor resent, nor written when a cooldown ends
+            return
         try:
             value = config.plc_value(self._entry.runtime_data.client, source)
         except PlcValueError as err:
