@@ -270,3 +270,26 @@ async def test_export_lists_machines_only(
     )
     assert response is not None
     assert list(response["devices"]) == [entry.title]
+
+
+async def test_edited_expose_writes_its_new_address(
+    hass: HomeAssistant,
+    freezer: FrozenDateTimeFactory,
+    entry: MockConfigEntry,
+    s7_smart_sim: S7SmartSimulator,
+) -> None:
+    """Editing a loaded PLC's expose in its form moves its writes to the new address at once."""
+    subentry_id = add_expose(hass, entry, LEVEL, WORD)
+    await set_up(hass, entry)
+    result = await entry.start_subentry_reconfigure_flow(hass, subentry_id)
+    result = await hass.config_entries.subentries.async_configure(
+        result["flow_id"],
+        {"entity_id": LEVEL, "address": "vw130", "data_type": "signed", "send_on_start": True},
+    )
+    assert result["reason"] == "reconfigure_successful"
+    await settle(hass, freezer)
+    assert s7_smart_sim.get("VW130") == 10
+    hass.states.async_set(LEVEL, "11")
+    await settle(hass, freezer, 2.0)
+    assert s7_smart_sim.get("VW130") == 11
+    assert s7_smart_sim.get(*WORD) == 0
