@@ -20,6 +20,7 @@ def ha_checks() -> list[dict[str, Any]] | str:
         "bench/test_quiet_poll.py",
         "bench/test_setup_time.py",
         "bench/test_machine_kinds.py",
+        "bench/test_expose_burst.py",
     ]
     command += ["-q", "-s", "-p", "no:cacheprovider"]
     done = subprocess.run(command, cwd=ROOT, capture_output=True, text=True, check=False)
@@ -53,6 +54,14 @@ def check_text(result: dict[str, Any]) -> str:
             f" addresses, in Home Assistant): {requests} per poll;"
             f" the plan of its {result['addresses']} addresses alone:"
             f" {result['planned_requests']} (target: equal)"
+        )
+    if result["check"] == "expose_burst":
+        count = result["write_requests"]
+        extra = result["requests"] - count
+        return (
+            f"exposes ({result['vendor']}: {result['exposes']} changed at once):"
+            f" {count} write request{'s' * (count != 1)} = minimum {result['minimum']}"
+            + (f" (+{extra} read-back)" if extra else "")
         )
     return (
         f"quiet poll ({result['vendor']}, {result['points']} sensor points, {result['polls']} polls"

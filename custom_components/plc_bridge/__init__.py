@@ -11,13 +11,15 @@ from .connection import create_polling_client
 from .const import DOMAIN, PLATFORMS
 from .coordinator import PlcBridgeConfigEntry, PlcCoordinator, PlcRuntimeData, link_error
 from .entity import plc_device
-from .migration import async_migrate_durations, async_migrate_points
+from .expose import async_start_exposes
+from .migration import async_migrate_entry
 from .plc import PlcError
 from .points import PointEntities, async_register_devices
 from .repairs import CERTIFICATE_CHANGED, async_check_tls, async_clear_all, async_clear_issue
 from .services import async_setup_services
 
 CONFIG_SCHEMA = cv.config_entry_only_config_schema(DOMAIN)
+__all__ = ["async_migrate_entry"]  # Home Assistant looks it up here
 
 
 async def async_setup(hass: HomeAssistant, config: ConfigType) -> bool:
@@ -45,6 +47,7 @@ async def async_setup_entry(hass: HomeAssistant, entry: PlcBridgeConfigEntry) ->
     )
     async_register_devices(hass, entry, plc_device(hass, entry), points.areas)
     await hass.config_entries.async_forward_entry_setups(entry, PLATFORMS)
+    async_start_exposes(hass, entry)
     entry.async_on_unload(entry.add_update_listener(async_update_entry))
     return True
 
@@ -56,17 +59,6 @@ async def async_update_entry(hass: HomeAssistant, entry: PlcBridgeConfigEntry) -
         await hass.config_entries.async_reload(entry.entry_id)
         return
     await runtime.points.async_sync(hass, plc_device(hass, entry))
-
-
-async def async_migrate_entry(hass: HomeAssistant, entry: ConfigEntry) -> bool:
-    """Migrate an entry of an older version; refuse one from a newer release."""
-    if entry.version > 2:
-        return False
-    if entry.version == 1:
-        async_migrate_points(hass, entry)
-    if entry.minor_version < 2:
-        async_migrate_durations(hass, entry)
-    return True
 
 
 async def async_unload_entry(hass: HomeAssistant, entry: PlcBridgeConfigEntry) -> bool:

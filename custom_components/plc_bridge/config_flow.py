@@ -44,7 +44,9 @@ from .const import (
     DOMAIN,
     LOGGER,
     SUBENTRY_DEVICE,
+    SUBENTRY_EXPOSE,
 )
+from .expose_flow import ExposeSubentryFlowHandler
 from .options_flow import PlcBridgeOptionsFlow
 from .plc import DeviceInfo, PlcError, PlcOptionError, PlcValueError, TlsMode
 from .plc.http import fetch_fingerprint, format_fingerprint
@@ -95,8 +97,11 @@ class PlcBridgeConfigFlow(ConfigFileSteps, domain=DOMAIN):
     def async_get_supported_subentry_types(
         cls, config_entry: ConfigEntry
     ) -> dict[str, type[ConfigSubentryFlow]]:
-        """Return the subentry flows: a device of the plant, holding its points."""
-        return {SUBENTRY_DEVICE: DeviceSubentryFlowHandler}
+        """Return the subentry flows: a device of the plant, holding its points; an expose."""
+        return {
+            SUBENTRY_DEVICE: DeviceSubentryFlowHandler,
+            SUBENTRY_EXPOSE: ExposeSubentryFlowHandler,
+        }
 
     async def async_step_user(self, user_input: Input = None) -> ConfigFlowResult:
         """Pick the vendor among those PLC Bridge implements, or paste an exported file."""

@@ -56,6 +56,14 @@ PULSE_MAX: Final = 60.0
 BIT_LIMIT: Final = 63
 """The highest bit number an alarm word can name (an LWORD's)."""
 
+SUBENTRY_EXPOSE: Final = "expose"
+"""A Home Assistant entity's state (or attribute) written to one PLC address: one per subentry."""
+CONF_COOLDOWN: Final = "cooldown"
+CONF_RESEND: Final = "resend"
+CONF_SEND_ON_START: Final = "send_on_start"
+CONF_DEFAULT: Final = "default"
+"""Expose data: the value written while the entity is unavailable or unknown (absent: none)."""
+
 PLATFORMS: Final = [
     Platform.BINARY_SENSOR,
     Platform.BUTTON,

@@ -221,11 +221,11 @@ class PlcCoordinator(PollingCoordinator):
             await self.client.set_clock(when)
         await self.async_request_refresh()
 
-    async def async_write(self, values: Mapping[Point, Value]) -> None:
-        """Write the values in one call, then refresh; any point the PLC refused is an error.
+    async def async_write_values(self, values: Mapping[Point, Value]) -> dict[Point, PointResult]:
+        """Write the values in one call after the checks every write passes; show what was taken.
 
-        The points the PLC took show their new value at once; the refresh that follows (held
-        back by the debouncer after a burst of writes) reads back what the PLC really holds.
+        Raises before anything is sent (no permission, a read-only point) and for a link error;
+        a point the PLC refused keeps its error in its result. Exposes write through this alone.
         """
         check_can_write(self.config_entry)
         for point in values:
@@ -239,6 +239,15 @@ class PlcCoordinator(PollingCoordinator):
         }
         if taken:
             self._show(taken)
+        return results
+
+    async def async_write(self, values: Mapping[Point, Value]) -> None:
+        """Write the values in one call, then refresh; any point the PLC refused is an error.
+
+        The points the PLC took show their new value at once; the refresh that follows (held
+        back by the debouncer after a burst of writes) reads back what the PLC really holds.
+        """
+        results = await self.async_write_values(values)
         await self.async_request_refresh()
         failed = [named(point, res.error) for point, res in results.items() if res.error]
         if failed:

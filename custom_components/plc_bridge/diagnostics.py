@@ -10,7 +10,7 @@ from homeassistant.const import CONF_HOST, CONF_PASSWORD, CONF_USERNAME
 from homeassistant.core import HomeAssistant
 
 from .availability import AVAILABILITY_FIELDS
-from .const import CONF_AREA, CONF_FINGERPRINT, SUBENTRY_DEVICE
+from .const import CONF_AREA, CONF_FINGERPRINT, SUBENTRY_DEVICE, SUBENTRY_EXPOSE
 from .coordinator import PlcBridgeConfigEntry
 from .services import json_value
 
@@ -57,6 +57,11 @@ async def async_get_config_entry_diagnostics(
             }
             for sid, subentry in entry.subentries.items()
             if subentry.subentry_type == SUBENTRY_DEVICE
+        },
+        "exposes": {
+            subentry_id: {"title": subentry.title, **subentry.data}
+            for subentry_id, subentry in entry.subentries.items()
+            if subentry.subentry_type == SUBENTRY_EXPOSE
         },
         "device": async_redact_data(asdict(runtime.device), TO_REDACT),
         "status": status,

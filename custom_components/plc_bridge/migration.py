@@ -143,3 +143,14 @@ def count_unit(data: Mapping[str, Any], seconds: float) -> str | None:
     if unit is None or given not in (None, unit) or (given is None and data.get(CONF_STATE_CLASS)):
         return None
     return unit
+
+
+async def async_migrate_entry(hass: HomeAssistant, entry: ConfigEntry[Any]) -> bool:
+    """Migrate an entry of an older version; refuse one from a newer release."""
+    if entry.version > 2:
+        return False
+    if entry.version == 1:
+        async_migrate_points(hass, entry)
+    if entry.minor_version < 2:
+        async_migrate_durations(hass, entry)
+    return True

@@ -28,6 +28,8 @@ PLAIN_PASSWORD = "plain_password"
 ISSUES = (TLS_OFF, CERTIFICATE_CHANGED, SESSION_CONFLICT, PLAIN_PASSWORD)
 UNKNOWN_ADDRESS = "unknown_address"
 """One issue per point whose address the PLC does not know (typically a renamed variable)."""
+EXPOSE_FAILED = "expose_failed"
+"""One issue per expose whose writes keep failing."""
 
 
 def issue_id(entry: PlcBridgeConfigEntry, key: str) -> str:
@@ -117,6 +119,50 @@ def async_clear_point_issues(
         async_clear_point_issue(hass, entry, point_id)
 
 
+def expose_issue_id(entry: PlcBridgeConfigEntry, subentry_id: str) -> str:
+    """Return the id of an expose's issue."""
+    return f"{EXPOSE_FAILED}_{entry.entry_id}_{subentry_id}"
+
+
+@callback
+def async_raise_expose_issue(
+    hass: HomeAssistant,
+    entry: PlcBridgeConfigEntry,
+    subentry_id: str,
+    *,
+    name: str,
+    address: str,
+    error: str,
+) -> None:
+    """Create (or update) the issue of an expose whose writes keep failing."""
+    ir.async_create_issue(
+        hass,
+        DOMAIN,
+        expose_issue_id(entry, subentry_id),
+        is_fixable=False,
+        severity=ir.IssueSeverity.WARNING,
+        translation_key=EXPOSE_FAILED,
+        translation_placeholders={
+            "title": entry.title,
+            "expose": name,
+            "address": address,
+            "error": error,
+        },
+        data={"entry_id": entry.entry_id, "subentry_id": subentry_id},
+    )
+
+
+@callback
+def async_clear_expose_issues(
+    hass: HomeAssistant, entry: ConfigEntry, keep: Collection[str] = ()
+) -> None:
+    """Delete the expose issues of an entry, except those of the subentry ids in `keep`."""
+    prefix = expose_issue_id(entry, "")
+    for domain, issue in list(ir.async_get(hass).issues):
+        if domain == DOMAIN and issue.startswith(prefix) and issue[len(prefix) :] not in keep:
+            ir.async_delete_issue(hass, DOMAIN, issue)
+
+
 @callback
 def async_check_tls(hass: HomeAssistant, entry: PlcBridgeConfigEntry) -> None:
     """Raise the issues of a link that leaks: no certificate check, a readable password."""
@@ -137,6 +183,7 @@ def async_clear_all(hass: HomeAssistant, entry: ConfigEntry) -> None:
     for key in ISSUES:
         async_clear_issue(hass, entry, key)
     async_clear_point_issues(hass, entry)
+    async_clear_expose_issues(hass, entry)
 
 
 class CertificateRepairFlow(RepairsFlow):

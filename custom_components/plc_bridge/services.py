@@ -27,6 +27,7 @@ from .const import (
     CONF_ADDRESS,
     CONF_DATA_TYPE,
     DOMAIN,
+    SUBENTRY_DEVICE,
 )
 from .coordinator import PlcBridgeConfigEntry
 from .plc import PlcClient, PlcError, Point, Value
@@ -148,6 +149,7 @@ async def async_export_points(call: ServiceCall) -> ServiceResponse:
             config.data for config in configs if config.subentry_id == subentry_id
         )
         for subentry_id, subentry in entry.subentries.items()
+        if subentry.subentry_type == SUBENTRY_DEVICE  # not the exposes
     }
     return {"points": export_points(config.data for config in configs), "devices": devices}
 

@@ -1,0 +1,298 @@
+"""Exposes at run time: Home Assistant states written to the PLC, batched, paced, watched.
+
+Each expose follows its entity. A new value is written at once unless the expose wrote less
+than its cooldown ago: then the latest value goes when the cooldown ends. Every value that
+becomes due within BATCH_WINDOW goes out in one write of the coordinator (the checks every
+write passes), which the vendor packs into its fewest requests. A periodic resend writes the
+last value again; send-on-start writes the current states once Home Assistant has started,
+after every setup of the entry. A value that cannot be written is logged once and not sent; a
+failing write is logged once (and once when it works again), and after FAILURE_LIMIT failures
+in a row raises a repair issue naming the expose, cleared by its next write that works.
+"""
+
+from __future__ import annotations
+
+from datetime import datetime, timedelta
+from functools import partial
+from typing import Any
+
+from homeassistant.core import (
+    CALLBACK_TYPE,
+    Event,
+    EventStateChangedData,
+    HassJob,
+    HomeAssistant,
+    State,
+    callback,
+)
+from homeassistant.exceptions import HomeAssistantError
+from homeassistant.helpers import issue_registry as ir
+from homeassistant.helpers.event import (
+    async_call_later,
+    async_track_state_change_event,
+    async_track_time_interval,
+)
+from homeassistant.helpers.start import async_at_started
+
+from .const import DOMAIN, LOGGER
+from .expose_config import ExposeConfig, entry_exposes
+from .models import PlcBridgeConfigEntry
+from .plc import PlcValueError, Point, Value
+from .repairs import async_clear_expose_issues, async_raise_expose_issue, expose_issue_id
+
+BATCH_WINDOW = 0.1
+"""Seconds over which the values that become due are gathered into one write."""
+FAILURE_LIMIT = 3
+"""Failed writes in a row of one expose that raise its repair issue."""
+
+
+class Expose:
+    """One expose running: the value it holds, when it last wrote, and how its writes go."""
+
+    def __init__(self, config: ExposeConfig) -> None:
+        """Start with nothing written."""
+        self.config = config
+        self.value: Value | None = None  # the latest value converted: written, or to be
+        self.sent: Value | None = None  # the value the PLC last took
+        self.sent_at: float | None = None  # loop time of the last write
+        self.again = False  # write the value even if the PLC holds it (start, resend)
+        self.timer: CALLBACK_TYPE | None = None  # the end of the cooldown
+        self.unsubscribe: list[CALLBACK_TYPE] = []
+        self.refused = False  # a value that cannot be written was logged
+        self.failures = 0  # failed writes in a row
+        self.issue = False
+
+    @property
+    def name(self) -> str:
+        """What the log and the repair issue call the expose."""
+        return self.config.title
+
+    def stop(self) -> None:
+        """Stop following the entity and forget a pending write."""
+        for unsubscribe in [*self.unsubscribe, self.timer]:
+            if unsubscribe is not None:
+                unsubscribe()
+        self.unsubscribe, self.timer = [], None
+
+
+class PlcExposes:
+    """The exposes of one loaded PLC entry, kept in step with its expose subentries."""
+
+    def __init__(self, hass: HomeAssistant, entry: PlcBridgeConfigEntry) -> None:
+        """Bind to the entry; nothing is followed until `async_start`."""
+        self._hass = hass
+        self._entry = entry
+        self._exposes: dict[str, Expose] = {}
+        self._batch: dict[str, Expose] = {}
+        self._flush: CALLBACK_TYPE | None = None
+
+    @callback
+    def async_start(self) -> None:
+        """Follow every expose; send the current states once Home Assistant has started."""
+        for config in entry_exposes(self._entry).values():
+            self._start(config)
+        async_clear_expose_issues(self._hass, self._entry, keep=self._exposes)
+        self._entry.async_on_unload(async_at_started(self._hass, self._send_on_start))
+        self._entry.async_on_unload(self._entry.add_update_listener(self._async_entry_updated))
+        self._entry.async_on_unload(self.async_stop)
+
+    @callback
+    def async_stop(self) -> None:
+        """Stop every expose; values not written yet are dropped."""
+        for expose in self._exposes.values():
+            expose.stop()
+        self._exposes, self._batch = {}, {}
+        if self._flush is not None:
+            self._flush()
+            self._flush = None
+
+    def _start(self, config: ExposeConfig) -> Expose:
+        """Follow one expose's entity (and resend its value periodically, if it asks)."""
+        expose = self._exposes[config.subentry_id] = Expose(config)
+        expose.unsubscribe.append(
+            async_track_state_change_event(
+                self._hass, [config.entity_id], partial(self._state_changed, expose)
+            )
+        )
+        if config.resend:
+            expose.unsubscribe.append(
+                async_track_time_interval(
+                    self._hass,
+                    partial(self._resend, expose),
+                    timedelta(seconds=config.resend),
+                    name=f"{self._entry.title} {config.title} resend",
+                )
+            )
+        return expose
+
+    @callback
+    def _send_on_start(self, _hass: HomeAssistant) -> None:
+        """Write the current state of every expose that asks for it."""
+        for expose in self._exposes.values():
+            if expose.config.send_on_start:
+                self._follow(expose, self._hass.states.get(expose.config.entity_id), again=True)
+
+    async def _async_entry_updated(self, hass: HomeAssistant, entry: PlcBridgeConfigEntry) -> None:
+        """Follow added, edited and removed exposes; an unchanged one goes on as it was."""
+        configs = entry_exposes(entry)
+        for subentry_id, expose in list(self._exposes.items()):
+            if configs.get(subentry_id) != expose.config:
+                expose.stop()
+                del self._exposes[subentry_id]
+                self._batch.pop(subentry_id, None)
+        for subentry_id, config in configs.items():
+            if subentry_id not in self._exposes:
+                expose = self._start(config)
+                if config.send_on_start and hass.is_running:
+                    self._follow(expose, hass.states.get(config.entity_id), again=True)
+        async_clear_expose_issues(hass, entry, keep=configs)
+
+    @callback
+    def _state_changed(self, expose: Expose, event: Event[EventStateChangedData]) -> None:
+        """Take the entity's new state."""
+        self._follow(expose, event.data["new_state"])
+
+    @callback
+    def _resend(self, expose: Expose, _now: datetime) -> None:
+        """Write the last value again (none yet: nothing)."""
+        if expose.value is not None:
+            self._queue(expose, again=True)
+
+    @callback
+    def _follow(self, expose: Expose, state: State | None, *, again: bool = False) -> None:
+        """Convert a state; queue its value, or log once that it cannot be written."""
+        config = expose.config
+        source: Any = config.source(state)
+        if source is None:  # unavailable or unknown, and no default: nothing is written
+            expose.value = None  # nor resent, nor written when a cooldown ends
+            return
+        try:
+            value = config.plc_value(self._entry.runtime_data.client, source)
+        except PlcValueError as err:
+            if not expose.refused:
+                expose.refused = True
+                LOGGER.warning(
+                    "%s: %s: %r cannot be written to %s, nothing sent: %s",
+                    self._entry.title,
+                    expose.name,
+                    source,
+                    config.point.address,
+                    err,
+                )
+            return
+        expose.refused = False
+        expose.value = value
+        self._queue(expose, again=again)
+
+    @callback
+    def _queue(self, expose: Expose, *, again: bool) -> None:
+        """Write the expose's value with the next batch, or when its cooldown ends."""
+        expose.again |= again
+        if expose.timer is not None:
+            return  # the cooldown's end writes the latest value
+        now = self._hass.loop.time()
+        if expose.sent_at is not None and expose.sent_at + expose.config.cooldown > now:
+            wait = expose.sent_at + expose.config.cooldown - now
+            expose.timer = async_call_later(
+                self._hass, wait, HassJob(partial(self._cooled, expose), cancel_on_shutdown=True)
+            )
+            return
+        self._add(expose)
+
+    @callback
+    def _cooled(self, expose: Expose, _now: datetime) -> None:
+        """The cooldown ended: write the latest value."""
+        expose.timer = None
+        self._add(expose)
+
+    @callback
+    def _add(self, expose: Expose) -> None:
+        """Put the expose into the batch (unless the PLC holds its value and none is asked)."""
+        if expose.value == expose.sent and not expose.again:
+            return
+        self._batch[expose.config.subentry_id] = expose
+        if self._flush is None:
+            self._flush = async_call_later(
+                self._hass, BATCH_WINDOW, HassJob(self._flush_due, cancel_on_shutdown=True)
+            )
+
+    @callback
+    def _flush_due(self, _now: datetime) -> None:
+        """Write the batch in the background (cancelled when Home Assistant stops)."""
+        self._flush = None
+        batch, self._batch = list(self._batch.values()), {}
+        self._entry.async_create_background_task(
+            self._hass, self._async_write(batch), f"{self._entry.title} exposes"
+        )
+
+    async def _async_write(self, batch: list[Expose]) -> None:
+        """Write the batch's values in one call; note each expose's outcome."""
+        coordinator = self._entry.runtime_data.coordinator
+        now = self._hass.loop.time()
+        values: dict[Point, Value] = {}
+        sending: dict[Point, Expose] = {}
+        for expose in batch:
+            expose.sent_at, expose.again = now, False
+            if expose.value is None:
+                continue
+            try:
+                coordinator.write_guard.check(expose.config.point)
+            except HomeAssistantError as err:
+                self._failed(expose, str(err))
+                continue
+            values[expose.config.point] = expose.value
+            sending[expose.config.point] = expose
+        if not values:
+            return
+        try:
+            results = await coordinator.async_write_values(values)
+        except HomeAssistantError as err:
+            for expose in sending.values():
+                self._failed(expose, str(err))
+            return
+        for point, expose in sending.items():
+            result = results.get(point)
+            if result is None or result.error is not None:
+                self._failed(expose, str(result.error if result else "no answer for the address"))
+            else:
+                self._written(expose, values[point])
+
+    def _written(self, expose: Expose, value: Value) -> None:
+        """Note a write the PLC took; say so once after failures, and clear the issue."""
+        expose.sent = value
+        if expose.failures:
+            LOGGER.info("%s: %s is written again", self._entry.title, expose.name)
+        expose.failures = 0
+        if expose.issue:
+            expose.issue = False
+            issue = expose_issue_id(self._entry, expose.config.subentry_id)
+            ir.async_delete_issue(self._hass, DOMAIN, issue)
+
+    def _failed(self, expose: Expose, error: str) -> None:
+        """Note a failed write: logged at the first, an issue after FAILURE_LIMIT in a row."""
+        expose.sent = None  # the same value is written again at the next change or resend
+        expose.failures += 1
+        if expose.failures == 1:
+            LOGGER.warning(
+                "%s: %s cannot be written to %s: %s",
+                self._entry.title,
+                expose.name,
+                expose.config.point.address,
+                error,
+            )
+        if expose.failures >= FAILURE_LIMIT and not expose.issue:
+            expose.issue = True
+            async_raise_expose_issue(
+                self._hass,
+                self._entry,
+                expose.config.subentry_id,
+                name=expose.name,
+                address=expose.config.point.address,
+                error=error,
+            )
+
+
+@callback
+def async_start_exposes(hass: HomeAssistant, entry: PlcBridgeConfigEntry) -> None:
+    """Start the entry's exposes; they stop when it unloads."""
+    PlcExposes(hass, entry).async_start()

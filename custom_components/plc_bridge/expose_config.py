@@ -1,0 +1,174 @@
+"""What one expose is: its stored settings, and the PLC value a Home Assistant state becomes.
+
+An expose subentry stores the entity (and optionally one of its attributes), the PLC address
+and data type, and how the state is converted: a value map (`on=1;off=0`, `home=1;not_home=0`)
+names the PLC value of a state; any other state is taken as a number, written as
+number × scale + offset. Without a map, `on`/`off` and `true`/`false` mean 1 and 0.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from dataclasses import dataclass
+import math
+from typing import Any
+
+from homeassistant.const import CONF_ATTRIBUTE, CONF_ENTITY_ID, STATE_UNAVAILABLE, STATE_UNKNOWN
+from homeassistant.core import State
+
+from .const import (
+    CONF_ADDRESS,
+    CONF_COOLDOWN,
+    CONF_DATA_TYPE,
+    CONF_DEFAULT,
+    CONF_OFFSET,
+    CONF_RESEND,
+    CONF_SCALE,
+    CONF_SEND_ON_START,
+    CONF_VALUE_MAP,
+    SUBENTRY_EXPOSE,
+)
+from .conversion import InvalidPairs, scaled
+from .models import PlcBridgeConfigEntry
+from .plc import PlcClient, PlcValueError, Point, Value, ValueKind
+
+type StateMap = tuple[tuple[str, int | float], ...]
+"""States (as typed) and the PLC value each is written as."""
+UNSET = frozenset({STATE_UNAVAILABLE, STATE_UNKNOWN})
+SWITCHED = {"on": 1, "off": 0, "true": 1, "false": 0}
+"""What the states of a switch or binary sensor write where no value map is given."""
+DEFAULT_COOLDOWN = 1.0
+"""Seconds between two writes of one expose unless the user sets otherwise."""
+SENDABLE = frozenset({ValueKind.BOOL, ValueKind.INTEGER, ValueKind.FLOAT, ValueKind.TEXT})
+"""Kinds of PLC value an expose can write (not times, durations or raw bytes)."""
+
+
+def _number(text: str) -> int | float | None:
+    """Return the number a text spells (`1`, `0x10`, `2.5`), None for any other text."""
+    text = text.strip()
+    try:
+        return int(text, 0)
+    except ValueError:
+        pass
+    try:
+        number = float(text)
+    except ValueError:
+        return None
+    return number if math.isfinite(number) else None
+
+
+def parse_state_map(text: str) -> StateMap:
+    """Return `on=1;off=0` as pairs (`1=on` is taken too); raise InvalidPairs where it fails."""
+    pairs: list[tuple[str, int | float]] = []
+    for part in text.replace("\n", ";").split(";"):
+        if not part.strip():
+            continue
+        state, sep, value = (side.strip() for side in part.partition("="))
+        number = _number(value)
+        if number is None and _number(state) is not None:
+            state, number = value, _number(state)
+        if not sep or not state or number is None:
+            raise InvalidPairs("map_not_a_pair", part.strip())
+        if any(state.casefold() == known.casefold() for known, _ in pairs):
+            raise InvalidPairs("map_repeated", part.strip())
+        pairs.append((state, number))
+    if not pairs:
+        raise InvalidPairs("map_empty")
+    return tuple(pairs)
+
+
+def format_state_map(pairs: StateMap) -> str:
+    """Return pairs in their stored form, `on=1;off=0`."""
+    return ";".join(f"{state}={value}" for state, value in pairs)
+
+
+@dataclass(frozen=True, slots=True, kw_only=True)
+class ExposeConfig:
+    """One expose as its subentry stores it."""
+
+    subentry_id: str
+    title: str
+    entity_id: str
+    attribute: str | None
+    point: Point
+    scale: float = 1.0
+    offset: float = 0.0
+    value_map: StateMap = ()
+    cooldown: float = DEFAULT_COOLDOWN
+    resend: float = 0.0
+    send_on_start: bool = True
+    default: str | None = None
+
+    def source(self, state: State | None) -> Any:
+        """Return the state or attribute to send; the default (or None) while there is none."""
+        value: Any = None
+        if state is not None and state.state not in UNSET:
+            value = state.attributes.get(self.attribute) if self.attribute else state.state
+        if value is None or (isinstance(value, str) and value in UNSET):
+            return self.default
+        return value
+
+    def plc_value(self, client: type[PlcClient] | PlcClient, source: Any) -> Value:
+        """Return the value to write for a state; raise PlcValueError for one that cannot be."""
+        kind = client.value_kind(self.point)
+        if kind is ValueKind.TEXT and not self.value_map:
+            return client.validate_value(self.point, str(source))
+        number: int | float | None
+        if isinstance(source, bool):
+            number = int(source)
+        elif isinstance(source, int | float):
+            number = source if math.isfinite(source) else None
+        else:
+            text = str(source).strip()
+            mapped = dict((state.casefold(), value) for state, value in self.value_map)
+            if text.casefold() in mapped:
+                return self._checked(client, kind, mapped[text.casefold()])
+            number = _number(text)
+            if number is None and not self.value_map:
+                number = SWITCHED.get(text.casefold())
+        if number is None:
+            raise PlcValueError(f"{source!r} is neither a number nor a state of the value map")
+        return self._checked(client, kind, scaled(number, self.scale, self.offset))
+
+    def _checked(
+        self, client: type[PlcClient] | PlcClient, kind: ValueKind | None, number: int | float
+    ) -> Value:
+        """Return a number as the point's kind takes it, checked by the vendor."""
+        value: Value = number
+        if kind is ValueKind.INTEGER or (kind is ValueKind.BOOL and float(number).is_integer()):
+            value = round(number)
+        elif kind is ValueKind.FLOAT:
+            value = float(number)
+        return client.validate_value(self.point, value)
+
+
+def expose_config(subentry_id: str, title: str, data: Mapping[str, Any]) -> ExposeConfig:
+    """Return the expose a subentry's data describes (the form checked it)."""
+    try:
+        value_map = parse_state_map(str(data.get(CONF_VALUE_MAP) or ""))
+    except InvalidPairs:
+        value_map = ()
+    default = data.get(CONF_DEFAULT)
+    return ExposeConfig(
+        subentry_id=subentry_id,
+        title=title,
+        entity_id=str(data[CONF_ENTITY_ID]),
+        attribute=str(data[CONF_ATTRIBUTE]) if data.get(CONF_ATTRIBUTE) else None,
+        point=Point(data[CONF_ADDRESS], data[CONF_DATA_TYPE]),
+        scale=float(data.get(CONF_SCALE, 1.0)),
+        offset=float(data.get(CONF_OFFSET, 0.0)),
+        value_map=value_map,
+        cooldown=max(0.0, float(data.get(CONF_COOLDOWN, DEFAULT_COOLDOWN))),
+        resend=max(0.0, float(data.get(CONF_RESEND, 0.0))),
+        send_on_start=bool(data.get(CONF_SEND_ON_START, True)),
+        default=None if default in (None, "") else str(default),
+    )
+
+
+def entry_exposes(entry: PlcBridgeConfigEntry) -> dict[str, ExposeConfig]:
+    """Return every expose of the entry, by subentry id."""
+    return {
+        subentry.subentry_id: expose_config(subentry.subentry_id, subentry.title, subentry.data)
+        for subentry in entry.subentries.values()
+        if subentry.subentry_type == SUBENTRY_EXPOSE
+    }
