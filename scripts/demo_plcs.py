@@ -234,11 +234,15 @@ def number_of(ws: Socket, entry_id: str, domain: str = "number") -> str | None:
 
 
 def plc_value(hass: Hass, entry_id: str, drive: Drive) -> Any:
-    """Return what the PLC holds at the drive's address, read through plc_bridge.read."""
+    """Return what the PLC holds at the drive's address, read through plc_bridge.read.
+
+    The answer names the address as the PLC family spells it (a PLCnext path with its
+    component, `Arp.Plc.Eclr/...`): the one value asked for is taken whatever its name.
+    """
     point = {"address": drive.address, "data_type": drive.data_type}
     body = {"config_entry_id": entry_id, "points": [point]}
     answer = hass.call("POST", "/api/services/plc_bridge/read?return_response", body)
-    return answer["service_response"]["values"].get(drive.address)
+    return next(iter(answer["service_response"]["values"].values()), None)
 
 
 def drive_kinds(hass: Hass, ws: Socket, entry_id: str, vendor: str) -> list[str]:
