@@ -11,7 +11,9 @@ from typing import Any
 
 from freezegun.api import FrozenDateTimeFactory
 from homeassistant.components.cover import ATTR_CURRENT_POSITION
+from homeassistant.components.switch import DOMAIN as SWITCH_DOMAIN
 from homeassistant.config_entries import SOURCE_RECONFIGURE
+from homeassistant.const import ATTR_ENTITY_ID, SERVICE_TURN_OFF
 from homeassistant.core import HomeAssistant
 from homeassistant.data_entry_flow import FlowResultType
 from homeassistant.helpers import entity_registry as er
@@ -19,9 +21,11 @@ from pytest_homeassistant_custom_component.common import MockConfigEntry
 
 from custom_components.plc_bridge.const import CONF_POINTS, SUBENTRY_DEVICE
 from simulators.s7_smart import S7SmartSimulator
+from simulators.tecomat import TecomatSimulator
 
 from .flow_fixtures import MACHINE, error_message, step, suggested
 from .ha_fixtures import DEVICE_ID, make_entry, point, poll, read_edits
+from .tecomat_ha_fixtures import make_tecomat_entry
 
 RANGE = {"raw_min": 0, "raw_max": 27648, "shown_min": 0, "shown_max": 100}
 KEY = {"entity": "s0"}  # the entity's key: the id of a first part removed long ago
@@ -162,3 +166,38 @@ async def test_removing_parts(hass: HomeAssistant, s7_smart_sim: S7SmartSimulato
     assert menu["type"] is FlowResultType.MENU
     await step(hass, menu, {"next_step_id": "save"})
     assert set(stored(entry)) == {"b1"}
+
+
+async def test_move_a_command_on_a_tecomat(
+    hass: HomeAssistant, freezer: FrozenDateTimeFactory, tecomat_sim: TecomatSimulator
+) -> None:
+    """On a Tecomat the pump's command moves to another public variable, checked by TecoApi's
+    parser; the switch keeps its id and writes the new variable."""
+    pump = [
+        point("p1", "Pump", "switch", "plcData.varBool1", "BOOL", role="state", read_only=True),
+        point("p2", "Pump", "switch", "Main.pump.value", "BOOL", role="command"),
+    ]
+    entry = make_tecomat_entry(hass, tecomat_sim, pump)
+    assert await hass.config_entries.async_setup(entry.entry_id)
+    await hass.async_block_till_done()
+    (switch,) = [
+        e.entity_id
+        for e in er.async_entries_for_config_entry(er.async_get(hass), entry.entry_id)
+        if e.domain == SWITCH_DOMAIN
+    ]
+    before = registered(hass, switch)
+    result = await edit(hass, entry, "p2")
+    result = await step(hass, result, {"address": "plcData.var Bool0", "data_type": "BOOL"})
+    assert result["errors"] == {"address": "invalid_address"}
+    result = await step(hass, result, {"address": "plcData.varBool0", "data_type": "BOOL"})
+    menu = await step(hass, result, {"read_only": False})
+    await step(hass, menu, {"next_step_id": "save"})
+    await read_edits(hass, freezer)
+    assert registered(hass, switch) == before
+    tecomat_sim.set("Main.pump.value", True)
+    tecomat_sim.set("plcData.varBool0", True)
+    await hass.services.async_call(
+        SWITCH_DOMAIN, SERVICE_TURN_OFF, {ATTR_ENTITY_ID: switch}, blocking=True
+    )
+    assert tecomat_sim.get("plcData.varBool0") is False
+    assert tecomat_sim.get("Main.pump.value") is True  # the old variable is left alone
