@@ -170,7 +170,8 @@ def leftovers() -> list[int]:
 
 def stop(develop: subprocess.Popen[bytes]) -> None:
     """Stop scripts/develop as Ctrl-C does, then anything of the demo that lingers."""
-    os.killpg(develop.pid, signal.SIGINT)
+    with contextlib.suppress(ProcessLookupError):  # it may have ended on its own, with its group
+        os.killpg(develop.pid, signal.SIGINT)
     try:
         develop.wait(timeout=90)
     except subprocess.TimeoutExpired:

@@ -3,8 +3,8 @@
 For every PLC family `scripts/develop` starts: add the PLC in the config flow (pinning its
 certificate where it has one), add a device with points (picked from the PLC's variables
 where it publishes them, else pasted as a table), wait until its entity shows the simulator's
-value, write a new value through the entity's action and see it come back. Where the simulator
-holds the demo's machines (S7-200 SMART, S7, SoftPLC: a boiler, a shutter, a pump), import them
+value, write a new value through the entity's action and see it come back. Every simulator
+holds the demo's machines (a boiler, a shutter, a pump; simulators/machines.py): import them
 too, drive each entity through the action the frontend sends and read the address back from the
 PLC (plc_bridge.read), and see the alarm word's Overheat sensor go on. Standard library only, as
 scripts/demo_check.py that calls it.
@@ -108,8 +108,27 @@ KIND_ADDRESSES = {
         "BOOL",
         "N7:50 N7:52 N7:54 N7:30 N7:70 B3:4/0 B3:4/1 B3:6/0 B3:6/1 B3:7/0 B3:5/1 B3:5/2",
     ),
+    "tecomat": (
+        "INT",
+        "BOOL",
+        "Boiler.water Boiler.target Boiler.hvac Boiler.mode Boiler.alarms Shutter.open"
+        " Shutter.close Shutter.opened Shutter.closed Pump.running Pump.run Pump.start",
+    ),
+    "plcnext": (
+        "INT",
+        "BOOL",
+        " ".join(
+            f"HomeInstance.{name}"
+            for name in (
+                *("Boiler.Water", "Boiler.Target", "Boiler.Hvac", "Boiler.Mode", "Boiler.Alarms"),
+                *("Shutter.Open", "Shutter.Close", "Shutter.Opened", "Shutter.Closed"),
+                *("Pump.Running", "Pump.Run", "Pump.Start"),
+            )
+        ),
+    ),
 }
-"""Where each address-based simulator keeps the demo's machines (named, in ROLES' order)."""
+"""Where each simulator keeps the demo's machines (named, in ROLES' order): addresses, or the
+public variables (TecoApi) and instance variables (PLCnext) of its demo program."""
 ROLES = (
     *("water", "target", "hvac", "mode", "alarms"),
     *("open", "close", "opened", "closed", "running", "run", "start"),
@@ -127,8 +146,8 @@ def kinds(vendor: str) -> dict[str, Any]:
 
 JOURNEYS = {
     "s7_smart": Journey(table=HEADER + "Setpoint,VD104,float,number,0,100", **kinds("s7_smart")),
-    "tecomat": Journey(pick="Main.myObject3"),
-    "plcnext": Journey(pick="MainInstance.Setpoint"),
+    "tecomat": Journey(pick="Main.myObject3", **kinds("tecomat")),
+    "plcnext": Journey(pick="MainInstance.Setpoint", **kinds("plcnext")),
     "softplc": Journey(table=HEADER + "Preset,T4:0.PRE,INT,number,0,30000", **kinds("softplc")),
     "s7": Journey(table=HEADER + "Setpoint,DB1.DBW6,INT,number,0,1000", **kinds("s7")),
 }
@@ -215,11 +234,15 @@ def number_of(ws: Socket, entry_id: str, domain: str = "number") -> str | None:
 
 
 def plc_value(hass: Hass, entry_id: str, drive: Drive) -> Any:
-    """Return what the PLC holds at the drive's address, read through plc_bridge.read."""
+    """Return what the PLC holds at the drive's address, read through plc_bridge.read.
+
+    The answer names the address as the PLC family spells it (a PLCnext path with its
+    component, `Arp.Plc.Eclr/...`): the one value asked for is taken whatever its name.
+    """
     point = {"address": drive.address, "data_type": drive.data_type}
     body = {"config_entry_id": entry_id, "points": [point]}
     answer = hass.call("POST", "/api/services/plc_bridge/read?return_response", body)
-    return answer["service_response"]["values"].get(drive.address)
+    return next(iter(answer["service_response"]["values"].values()), None)
 
 
 def drive_kinds(hass: Hass, ws: Socket, entry_id: str, vendor: str) -> list[str]:

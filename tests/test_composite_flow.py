@@ -89,7 +89,7 @@ async def test_climate_needs_a_part_that_shows(hass: HomeAssistant, entry: MockC
 
 
 async def test_edit_a_part(hass: HomeAssistant, entry: MockConfigEntry) -> None:
-    """Editing a part asks its settings again and keeps its role; saving keys the entity."""
+    """Editing a part asks its address and settings again, keeps its role and its entity."""
     result = await start(hass, entry, "switch", "Hall")
     result = await step(hass, result, {"state": "Q0.3", "command": "M1.1"})
     result = await step(hass, result, {"invert": False, "read_only": True})
@@ -102,6 +102,8 @@ async def test_edit_a_part(hass: HomeAssistant, entry: MockConfigEntry) -> None:
     )
     result = await step(hass, menu, {"next_step_id": "edit"})
     result = await step(hass, result, {"point": command})
+    assert result["step_id"] == "composite_edit"
+    result = await step(hass, result, {"address": "M1.1"})  # its own address is not taken
     assert result["step_id"] == "composite_part"
     menu = await step(hass, result, {"read_only": False})
     points = await saved(hass, entry, menu)

@@ -4,6 +4,8 @@ The kind and the name first; then an address (and a data type) for each part the
 has, every one optional; then, part by part, the settings of the single-address kind the
 part resembles (a command's pulse, a position's range, a mode's map). The parts join the
 machine's points only when every part and the whole entity pass the checks of the import.
+Editing a part asks its address and data type again, checked the same way, then its settings;
+it keeps its point id and its entity's key, so the entity keeps its unique id and entity id.
 """
 
 from __future__ import annotations
@@ -23,7 +25,14 @@ from homeassistant.helpers.selector import (
 import voluptuous as vol
 
 from .composite import INVERTIBLE, ROLES, as_platform, group_errors, part_data
-from .const import CONF_ADDRESS, CONF_DATA_TYPE, CONF_INVERT, CONF_PLATFORM, CONF_ROLE
+from .const import (
+    CONF_ADDRESS,
+    CONF_DATA_TYPE,
+    CONF_ENTITY,
+    CONF_INVERT,
+    CONF_PLATFORM,
+    CONF_ROLE,
+)
 from .plc import PlcAddressError, PlcClient, Point
 from .point_form import BASE_FIELDS, check_point, details_schema, point_key
 from .point_table import first_type
@@ -40,6 +49,7 @@ class CompositeSteps(ConfigSubentryFlow):
     _parts: list[dict[str, Any]]
     _made: list[dict[str, Any]]
     _part_ids: list[str]
+    _editing: str | None
 
     @property
     def _client(self) -> type[PlcClient]:
@@ -138,26 +148,37 @@ class CompositeSteps(ConfigSubentryFlow):
             address = str(user_input.get(role) or "").strip()
             if not address:
                 continue
-            data_type = str(user_input.get(f"{role}{TYPE_SUFFIX}") or "").strip()
-            data_type = data_type or first_type(self._client, address)
-            values = {
-                **self._composite,
-                CONF_ROLE: role,
-                CONF_ADDRESS: address,
-                CONF_DATA_TYPE: data_type,
-            }
-            point, _, found, details = check_point(
-                self._client, {**values, CONF_PLATFORM: as_platform(platform, role)}
-            )
-            if point is not None and point in taken | {point_key(part) for part in parts}:
-                found[CONF_ADDRESS] = "already_configured"
-            if found:
+            data_type = str(user_input.get(f"{role}{TYPE_SUFFIX}") or "")
+            given = taken | {point_key(part) for part in parts}
+            part, found, details = self._part_at(role, address, data_type, given)
+            if part is None:
                 errors[role] = next(iter(found.values()))
                 placeholders |= details
                 continue
-            assert point is not None
-            parts.append({**values, CONF_ADDRESS: point.address, CONF_DATA_TYPE: point.data_type})
+            parts.append(part)
         return parts
+
+    def _part_at(
+        self, role: str, address: str, data_type: str, taken: set[Point]
+    ) -> tuple[dict[str, Any] | None, dict[str, str], dict[str, str]]:
+        """Check a part's address and data type (empty: the first that fits) as its role's kind.
+
+        Returns the part (None when refused), the errors by field and their placeholders.
+        """
+        fitting = first_type(self._client, address.strip())
+        values = {**self._composite, CONF_ROLE: role, CONF_ADDRESS: address.strip()}
+        values[CONF_DATA_TYPE] = data_type.strip() or fitting
+        shown = as_platform(self._composite[CONF_PLATFORM], role)
+        point, _, found, details = check_point(self._client, {**values, CONF_PLATFORM: shown})
+        if point is None and check_point(self._client, {**values, CONF_DATA_TYPE: fitting})[0]:
+            found = {CONF_DATA_TYPE: "invalid_data_type"}  # the address is good, not its type
+        if point is not None and point in taken:
+            found[CONF_ADDRESS] = "already_configured"
+        if error := found.pop(CONF_PLATFORM, None):  # the kind a part needs: its type's fault
+            found[CONF_ADDRESS if error == "address_not_writable" else CONF_DATA_TYPE] = error
+        if found or point is None:
+            return None, found, details
+        return {**values, CONF_ADDRESS: point.address, CONF_DATA_TYPE: point.data_type}, {}, {}
 
     async def async_step_composite_part(
         self, user_input: dict[str, Any] | None = None
@@ -173,12 +194,15 @@ class CompositeSteps(ConfigSubentryFlow):
             data, errors, found = part_data(self._client, base | user_input)
             placeholders |= found
             if not errors:
+                if values.get(CONF_ENTITY):  # an edited part stays a part of its entity
+                    data[CONF_ENTITY] = values[CONF_ENTITY]
                 self._made.append(data)
                 if len(self._made) < len(self._parts):
                     return await self.async_step_composite_part()
                 ids = self._part_ids or [secrets.token_hex(6) for _ in self._made]
                 self._points |= dict(zip(ids, self._made, strict=True))
                 self._parts, self._made, self._part_ids = [], [], []
+                self._editing = None
                 return await self.async_step_menu()
         shown = as_platform(platform, role)
         try:
@@ -196,8 +220,79 @@ class CompositeSteps(ConfigSubentryFlow):
         )
 
     async def async_edit_part(self, point_id: str) -> SubentryFlowResult:
-        """Edit the settings of one part (its address: remove it and add it again)."""
+        """Edit one part: its address and data type, then its settings; its entity stays."""
         data = self._points[point_id]
         self._composite = {CONF_NAME: data[CONF_NAME], CONF_PLATFORM: data[CONF_PLATFORM]}
         self._parts, self._made, self._part_ids = [dict(data)], [], [point_id]
-        return await self.async_step_composite_part()
+        self._editing = point_id  # its own address is not taken
+        return await self.async_step_composite_edit()
+
+    async def async_step_composite_edit(
+        self, user_input: dict[str, Any] | None = None
+    ) -> SubentryFlowResult:
+        """A part's address and data type, checked as the import checks them."""
+        values = self._parts[0]
+        errors: dict[str, str] = {}
+        placeholders = {key: str(values[key]) for key in (CONF_NAME, CONF_ROLE, CONF_ADDRESS)}
+        placeholders |= {CONF_DATA_TYPE: str(values[CONF_DATA_TYPE]), "error": "", "roles": ""}
+        if user_input is not None:
+            address = str(user_input.get(CONF_ADDRESS) or "")
+            data_type = str(user_input.get(CONF_DATA_TYPE) or "")
+            part, errors, found = self._part_at(
+                values[CONF_ROLE], address, data_type, self._taken()
+            )
+            placeholders |= found
+            if part is not None:
+                rows = [*self._entity_rows(self._part_ids[0]), part]
+                if problems := group_errors(rows):
+                    errors["base"] = problems[0][1]
+                    placeholders |= problems[0][2]
+            if not errors and part is not None:
+                self._parts = [{**values, **part}]
+                return await self.async_step_composite_part()
+        schema = vol.Schema(
+            {
+                vol.Required(CONF_ADDRESS): TextSelector(),
+                vol.Optional(CONF_DATA_TYPE): SelectSelector(
+                    SelectSelectorConfig(
+                        options=list(self._client.data_types),
+                        translation_key=CONF_DATA_TYPE,
+                        mode=SelectSelectorMode.DROPDOWN,
+                        custom_value=True,
+                    )
+                ),
+            }
+        )
+        return self.async_show_form(
+            step_id="composite_edit",
+            data_schema=self.add_suggested_values_to_schema(schema, user_input or values),
+            errors=errors,
+            description_placeholders=placeholders,
+        )
+
+    def removal_errors(self, chosen: list[str]) -> tuple[dict[str, str], dict[str, str]]:
+        """Refuse to remove parts of an entity that leave it none that shows (all may go)."""
+        entities = {entity_of(self._points[point_id]) for point_id in chosen}
+        left = [
+            data
+            for point_id, data in self._points.items()
+            if point_id not in chosen and entity_of(data) in entities
+        ]
+        for _name, error, placeholders in group_errors(left):
+            if error == "role_missing":
+                return {"base": "role_left_missing"}, placeholders
+        return {}, {}
+
+    def _entity_rows(self, point_id: str) -> list[dict[str, Any]]:
+        """Return the other parts of the entity a part belongs to."""
+        entity = entity_of(self._points[point_id])
+        return [
+            data
+            for other, data in self._points.items()
+            if other != point_id and entity_of(data) == entity
+        ]
+
+
+def entity_of(data: dict[str, Any]) -> tuple[str, str]:
+    """Return what the rows of one entity share in a machine: its platform and name."""
+    return str(data.get(CONF_PLATFORM, "")), str(data.get(CONF_NAME, ""))

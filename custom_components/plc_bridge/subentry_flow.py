@@ -12,16 +12,11 @@ import secrets
 from typing import Any
 
 from homeassistant.config_entries import ConfigEntryState, SubentryFlowResult
-from homeassistant.const import CONF_DEVICE_CLASS, CONF_NAME
-from homeassistant.helpers.selector import AreaSelector, TextSelector, TextSelectorConfig
+from homeassistant.const import CONF_DEVICE_CLASS
+from homeassistant.helpers.selector import TextSelector, TextSelectorConfig
 import voluptuous as vol
 
-from .availability import (
-    AVAILABILITY_FIELDS,
-    availability_fields,
-    check_availability,
-    shown_availability,
-)
+from .availability import AVAILABILITY_FIELDS
 from .composite import assign_entities
 from .composite_flow import CompositeSteps
 from .const import (
@@ -45,6 +40,7 @@ from .flow_lists import (
     picked_points,
     point_choice,
 )
+from .machine_flow import MachineStep
 from .plc import BrowseItem, PlcClient, PlcError, Point
 from .plc.vendors import client_class
 from .point_form import (
@@ -62,7 +58,7 @@ CONF_POINT = "point"
 CONF_TABLE = "table"
 
 
-class DeviceSubentryFlowHandler(CompositeSteps):
+class DeviceSubentryFlowHandler(CompositeSteps, MachineStep):
     """Add or edit a device of the PLC and its points."""
 
     def __init__(self) -> None:
@@ -119,37 +115,6 @@ class DeviceSubentryFlowHandler(CompositeSteps):
         }
         self._points = {pid: dict(data) for pid, data in subentry.data.get(CONF_POINTS, {}).items()}
         return await self.async_step_menu()
-
-    async def async_step_device(
-        self, user_input: dict[str, Any] | None = None
-    ) -> SubentryFlowResult:
-        """Name the device (a machine or part of the plant) and suggest its area."""
-        errors: dict[str, str] = {}
-        detail = ""
-        if user_input is not None:
-            name = str(user_input.get(CONF_NAME, "")).strip()
-            availability, errors, detail = check_availability(self._client, user_input)
-            if not name:
-                errors[CONF_NAME] = "device_name_required"
-            if not errors:
-                self._name, self._area = name, user_input.get(CONF_AREA) or None
-                self._availability = availability
-                return await self.async_step_menu()
-        schema = vol.Schema(
-            {
-                vol.Required(CONF_NAME): TextSelector(),
-                vol.Optional(CONF_AREA): AreaSelector(),
-                **availability_fields(self._client),
-            }
-        )
-        shown = {CONF_NAME: self._name, CONF_AREA: self._area}
-        shown |= shown_availability(self._availability) | dict(user_input or {})
-        return self.async_show_form(
-            step_id="device",
-            data_schema=self.add_suggested_values_to_schema(schema, shown),
-            errors=errors,
-            description_placeholders={"error": detail},
-        )
 
     async def async_step_menu(self, user_input: dict[str, Any] | None = None) -> SubentryFlowResult:
         """Show what can be done next, and the points so far."""
@@ -248,16 +213,18 @@ class DeviceSubentryFlowHandler(CompositeSteps):
     async def async_step_remove(
         self, user_input: dict[str, Any] | None = None
     ) -> SubentryFlowResult:
-        """Choose the points to remove."""
-        if user_input is not None:
-            for point_id in user_input.get(CONF_POINT, []):
-                self._points.pop(point_id, None)
+        """Choose the points to remove; an entity keeps a part that shows it, or goes whole."""
+        chosen = list((user_input or {}).get(CONF_POINT, []))
+        errors, placeholders = self.removal_errors(chosen)
+        if user_input is not None and not errors:
+            self._points = {k: v for k, v in self._points.items() if k not in chosen}
             return await self.async_step_menu()
+        schema = vol.Schema({vol.Optional(CONF_POINT): point_choice(self._points, multiple=True)})
         return self.async_show_form(
             step_id="remove",
-            data_schema=vol.Schema(
-                {vol.Optional(CONF_POINT): point_choice(self._points, multiple=True)}
-            ),
+            data_schema=self.add_suggested_values_to_schema(schema, {CONF_POINT: chosen}),
+            errors=errors,
+            description_placeholders={"name": "", "roles": "", **placeholders},
         )
 
     async def async_step_browse(

@@ -6,9 +6,28 @@ from typing import Any
 
 from .program import PREFIX, Array, Leaf, Node, Program, Variable
 
+MACHINES = {
+    "water": "HomeInstance.Boiler.Water",
+    "target": "HomeInstance.Boiler.Target",
+    "hvac": "HomeInstance.Boiler.Hvac",
+    "mode": "HomeInstance.Boiler.Mode",
+    "alarms": "HomeInstance.Boiler.Alarms",
+    "open": "HomeInstance.Shutter.Open",
+    "close": "HomeInstance.Shutter.Close",
+    "opened": "HomeInstance.Shutter.Opened",
+    "closed": "HomeInstance.Shutter.Closed",
+    "running": "HomeInstance.Pump.Running",
+    "run": "HomeInstance.Pump.Run",
+    "start": "HomeInstance.Pump.Start",
+}
+"""The demo machines' members by role, a structure each (simulators/machines.py moves them)."""
+
 
 def default_program(bench: int = 0) -> Program:
-    """Return the demo project: every elementary type, a structure, an array, bench values."""
+    """Return the demo project: every elementary type, a structure, an array, bench values.
+
+    A second program instance, `HomeInstance`, holds the demo's machines (`MACHINES`).
+    """
     main = PREFIX + "MainInstance."
     leaves: dict[str, tuple[str, Any, bool]] = {
         "Temperature": ("REAL", 21.5, True),
@@ -65,6 +84,20 @@ def default_program(bench: int = 0) -> Program:
         "GridArray", Array("GridArray", "INT", ((0, 2), (1, 2)), grid)
     )
     variables[PREFIX + "GlobalFlag"] = Variable("BOOL", Leaf("BOOL", True))
+    variables |= _machines()
     for index in range(bench):
         variables[f"{PREFIX}Bench.Value{index}"] = Variable("DINT", Leaf("DINT", index), True)
     return Program(variables)
+
+
+def _machines() -> dict[str, Variable]:
+    """Return the demo machines' structures: the boiler's words (INT), the others' bits."""
+    members: dict[str, dict[str, Node]] = {}
+    for role, path in MACHINES.items():
+        machine, member = path.rsplit(".", 1)
+        leaf = Leaf("INT", 550 if role == "water" else 0) if "Boiler" in machine else None
+        members.setdefault(machine, {})[member] = leaf or Leaf("BOOL", False)
+    return {
+        PREFIX + machine: Variable(machine.split(".")[1] + "Type", node)
+        for machine, node in members.items()
+    }

@@ -21,8 +21,9 @@ from typing import Any
 from aiohttp import web
 
 from ..base import HttpSimulator
+from ..machines import run_machines
 from .access import Access
-from .demo import default_program
+from .demo import MACHINES, default_program
 from .groups import Groups
 from .parameters import Fault, body_fields, paths_of, query_fields
 from .program import (
@@ -109,7 +110,8 @@ class PlcnextSimulator(AccessRoutes, HttpSimulator):
             self.groups.clear()
 
     def animate(self, elapsed: float) -> None:
-        """Let the temperature drift and the counter count, as a running program would."""
+        """Let the temperature drift, the counter count and the demo's machines run."""
+        run_machines(elapsed, self.get, self.set, MACHINES)
         self.set("MainInstance.Temperature", round(21.5 + 1.5 * math.sin(elapsed / 300), 1))
         self.set("MainInstance.Counter", (self.get("MainInstance.Counter") + 1) % 2**31)
 

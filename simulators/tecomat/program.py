@@ -19,6 +19,21 @@ MAX_VALUE = 255  # 3.6: a value is at most 255 characters
 _PATH = re.compile(r"[A-Za-z_]\w*(?:\.[A-Za-z_]\w*|\[\d+(?:,\d+)*\])*", re.ASCII)
 _PART = re.compile(r"([A-Za-z_]\w*)|\[([\d,]+)\]", re.ASCII)
 CLOCK = datetime(2018, 1, 31, 16, 50, 39, 949000)
+MACHINES = {
+    "water": "Boiler.water",
+    "target": "Boiler.target",
+    "hvac": "Boiler.hvac",
+    "mode": "Boiler.mode",
+    "alarms": "Boiler.alarms",
+    "open": "Shutter.open",
+    "close": "Shutter.close",
+    "opened": "Shutter.opened",
+    "closed": "Shutter.closed",
+    "running": "Pump.running",
+    "run": "Pump.run",
+    "start": "Pump.start",
+}
+"""The demo machines' public variables by role (simulators/machines.py moves them)."""
 
 
 def _f32(value: float) -> float:
@@ -51,7 +66,8 @@ def default_program(bench: int = 1000) -> dict[str, Node]:
     """Return the variables of the spec's example programs (chapters 2 to 5).
 
     `Main` is the instance of prgMain (5.3); `setTime` is a DT the program copies into its
-    clock; `BENCH` holds `bench` INTs V0, V1, ... for the benchmarks.
+    clock; `Boiler`, `Shutter` and `Pump` are the demo's machines (`MACHINES`); `BENCH` holds
+    `bench` INTs V0, V1, ... for the benchmarks.
     """
     program: dict[str, Node] = {
         "plcName": _text("myFoxtrot", 10),
@@ -109,9 +125,20 @@ def default_program(bench: int = 1000) -> dict[str, Node]:
             "pump": _api_object(Var("BOOL", False), "circulation pump", False, 0, 0),
         },
     }
+    program |= _machines()
     if bench:
         program["BENCH"] = {f"V{index}": Var("INT", index % 1000) for index in range(bench)}
     return program
+
+
+def _machines() -> dict[str, Node]:
+    """Return the demo machines' structures: the boiler's words (INT), the other's bits."""
+    machines: dict[str, dict[str, Node]] = {}
+    for role, path in MACHINES.items():
+        machine, member = path.split(".")
+        value = Var("INT", 550 if role == "water" else 0) if machine == "Boiler" else None
+        machines.setdefault(machine, {})[member] = value or Var("BOOL", False)
+    return dict(machines)
 
 
 def parse(text: str) -> list[Segment] | None:

@@ -18,10 +18,12 @@ from urllib.parse import unquote
 from aiohttp import web
 
 from ..base import HttpSimulator
+from ..machines import run_machines
 from .answers import read
 from .auth import Authenticator
 from .program import (
     CLOCK,
+    MACHINES,
     Node,
     Pairs,
     assignments,
@@ -106,7 +108,11 @@ class TecomatSimulator(HttpSimulator):
         self.auth.stale_nonce(times)
 
     def animate(self, elapsed: float) -> None:
-        """Let the outside and inside temperatures of 5.3 drift: slow waves, in 0.1 steps."""
+        """Let the outside and inside temperatures of 5.3 drift: slow waves, in 0.1 steps.
+
+        The demo's machines (`program.MACHINES`) run too: simulators/machines.py.
+        """
+        run_machines(elapsed, self.get, self.set, MACHINES)
         outside = -0.5 + 4.0 * math.sin(2 * math.pi * elapsed / 1800)
         inside = 22.1 + 0.6 * math.sin(2 * math.pi * elapsed / 1200)
         for path, value in (("Main.myObject1.value", outside), ("Main.myObject2.value", inside)):

@@ -6,8 +6,14 @@ import asyncio
 from pathlib import Path
 from typing import Any
 
+import pytest
+
 from simulators.__main__ import SIMULATORS, _animate, _count, keep_certificate
+from simulators.plcnext import PlcnextSimulator
+from simulators.plcnext.demo import MACHINES as PLCNEXT_MACHINES
 from simulators.s7_smart import S7SmartSimulator
+from simulators.tecomat import TecomatSimulator
+from simulators.tecomat.program import MACHINES as TECOMAT_MACHINES
 
 
 class Recorder:
@@ -66,3 +72,26 @@ def test_control_counters() -> None:
     assert _count(sim, "requests") == 7
     assert _count(sim, "connections") == 2
     assert _count(object(), "connections") is None
+
+
+@pytest.mark.parametrize(
+    ("simulator", "machines"),
+    [(TecomatSimulator, TECOMAT_MACHINES), (PlcnextSimulator, PLCNEXT_MACHINES)],
+)
+def test_demo_machines_run(simulator: Any, machines: dict[str, str]) -> None:
+    """The boiler's water drifts and raises Overheat above a set point only; the pump's
+    contactor follows its command; the shutter's commands reach its limit switches."""
+    sim = simulator()
+    sim.animate(450.0)
+    assert (sim.get(machines["water"]), sim.get(machines["alarms"])) == (500, 0)  # no set point
+    sim.set(machines["alarms"], 8)
+    sim.set(machines["target"], 225)
+    sim.set(machines["run"], True)
+    sim.set(machines["open"], True)
+    sim.animate(450.0)
+    assert sim.get(machines["alarms"]) == 9  # bit 0 raised, the others kept
+    assert sim.get(machines["running"]) is True
+    assert (sim.get(machines["opened"]), sim.get(machines["closed"])) == (True, False)
+    sim.set(machines["target"], 600)
+    sim.animate(450.0)
+    assert sim.get(machines["alarms"]) == 8
