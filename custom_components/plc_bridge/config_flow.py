@@ -9,7 +9,6 @@ from homeassistant.config_entries import (
     SOURCE_RECONFIGURE,
     ConfigEntry,
     ConfigEntryState,
-    ConfigFlow,
     ConfigFlowResult,
     ConfigSubentryFlow,
 )
@@ -45,6 +44,7 @@ from .const import (
     LOGGER,
     SUBENTRY_DEVICE,
 )
+from .discovery import DiscoveryFlow
 from .options_flow import PlcBridgeOptionsFlow
 from .plc import DeviceInfo, PlcError, PlcOptionError, PlcValueError, TlsMode
 from .plc.http import fetch_fingerprint, format_fingerprint
@@ -66,8 +66,8 @@ def device_unique_id(device: DeviceInfo, data: Mapping[str, Any]) -> str:
 
 
 @with_vendor_steps
-class PlcBridgeConfigFlow(ConfigFlow, domain=DOMAIN):
-    """Add a PLC: vendor, connection, certificate; reauth and reconfigure reuse the checks.
+class PlcBridgeConfigFlow(DiscoveryFlow, domain=DOMAIN):
+    """Add a PLC: vendor (or a DHCP discovery), connection, certificate; reauth and reconfigure.
 
     Each vendor's connection pages have step ids of their own, worded for its PLC family in
     strings.json; `with_vendor_steps` binds them to the shared steps below (the same checks).

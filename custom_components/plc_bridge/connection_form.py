@@ -132,9 +132,16 @@ CREDENTIALS_SCHEMA = vol.Schema(
 )
 
 
-def vendor_schema() -> vol.Schema:
-    """Return the first page: the PLC family, among those PLC Bridge implements."""
-    return vol.Schema({vol.Required(CONF_VENDOR): _choice(CONF_VENDOR, implemented())})
+def vendor_schema(vendors: list[str] | None = None) -> vol.Schema:
+    """Return the first page: the PLC family, among those PLC Bridge implements (or `vendors`).
+
+    Given `vendors` (those a discovered PLC answers), the first is preselected.
+    """
+    if vendors is None:
+        return vol.Schema({vol.Required(CONF_VENDOR): _choice(CONF_VENDOR, implemented())})
+    return vol.Schema(
+        {vol.Required(CONF_VENDOR, default=vendors[0]): _choice(CONF_VENDOR, vendors)}
+    )
 
 
 def connection_step(vendor: str, *, reconfigure: bool) -> str:
