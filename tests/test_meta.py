@@ -139,6 +139,20 @@ def pinned(value: str) -> str:
     raise vol.Invalid(f"{value!r} is not pinned with == (nor a lower bound of {SHARED_WITH_CORE})")
 
 
+def mac_pattern(value: str) -> str:
+    """Accept a DHCP matcher's MAC pattern as hassfest does: upper case, with a wildcard."""
+    if value != value.upper() or "*" not in value:
+        raise vol.Invalid(f"{value!r} is not an upper-case pattern with a wildcard")
+    return value
+
+
+def host_pattern(value: str) -> str:
+    """Accept a DHCP matcher's host name pattern as hassfest does: lower case."""
+    if value != value.lower():
+        raise vol.Invalid(f"{value!r} is not lower case")
+    return value
+
+
 def codeowner(value: str) -> str:
     """Accept a GitHub user or team."""
     if not value.startswith("@"):
@@ -153,6 +167,15 @@ MANIFEST_SCHEMA = vol.Schema(
         vol.Required("codeowners"): [codeowner],
         vol.Optional("config_flow"): bool,
         vol.Optional("dependencies"): [str],
+        vol.Optional("dhcp"): [
+            vol.Schema(
+                {
+                    vol.Optional("macaddress"): vol.All(str, mac_pattern),
+                    vol.Optional("hostname"): vol.All(str, host_pattern),
+                    vol.Optional("registered_devices"): bool,
+                }
+            )
+        ],
         vol.Optional("after_dependencies"): [str],
         vol.Required("documentation"): vol.Url(),
         vol.Optional("import_executor"): bool,

@@ -46,6 +46,7 @@ from .const import (
     SUBENTRY_DEVICE,
     SUBENTRY_EXPOSE,
 )
+from .discovery import DiscoveryFlow
 from .expose_flow import ExposeSubentryFlowHandler
 from .options_flow import PlcBridgeOptionsFlow
 from .plc import DeviceInfo, PlcError, PlcOptionError, PlcValueError, TlsMode
@@ -68,8 +69,8 @@ def device_unique_id(device: DeviceInfo, data: Mapping[str, Any]) -> str:
 
 
 @with_vendor_steps
-class PlcBridgeConfigFlow(ConfigFileSteps, domain=DOMAIN):
-    """Add a PLC: vendor, connection, certificate; reauth and reconfigure reuse the checks.
+class PlcBridgeConfigFlow(ConfigFileSteps, DiscoveryFlow, domain=DOMAIN):
+    """Add a PLC: vendor (or a DHCP discovery, or a pasted file), connection, certificate.
 
     Each vendor's connection pages have step ids of their own, worded for its PLC family in
     strings.json; `with_vendor_steps` binds them to the shared steps below (the same checks).

@@ -128,9 +128,18 @@ CREDENTIALS_SCHEMA = vol.Schema(
 )
 
 
-def vendor_schema(*others: str) -> vol.Schema:
-    """Return the first page: the PLC family, among those PLC Bridge implements, or `others`."""
-    return vol.Schema({vol.Required(CONF_VENDOR): _choice(CONF_VENDOR, [*implemented(), *others])})
+def vendor_schema(*others: str, vendors: list[str] | None = None) -> vol.Schema:
+    """Return the first page: the PLC family, among those PLC Bridge implements, or `others`.
+
+    Given `vendors` (those a discovered PLC answers), only those, the first preselected.
+    """
+    if vendors is None:
+        return vol.Schema(
+            {vol.Required(CONF_VENDOR): _choice(CONF_VENDOR, [*implemented(), *others])}
+        )
+    return vol.Schema(
+        {vol.Required(CONF_VENDOR, default=vendors[0]): _choice(CONF_VENDOR, vendors)}
+    )
 
 
 def connection_step(vendor: str, *, reconfigure: bool) -> str:

@@ -14,6 +14,8 @@ CONF_VENDOR: Final = "vendor"
 CONF_TLS: Final = "tls"
 CONF_FINGERPRINT: Final = "fingerprint"
 CONF_OPTIONS: Final = "vendor_options"
+CONF_MAC: Final = "mac"
+"""Entry data of a PLC added from a DHCP discovery: its MAC, to find it again at a new address."""
 
 SUBENTRY_POINT: Final = "point"
 """The subentry type of config entry version 1: one point per subentry (migrated to devices)."""

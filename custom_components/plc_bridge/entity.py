@@ -14,7 +14,7 @@ from homeassistant.helpers.entity import EntityDescription
 from homeassistant.helpers.update_coordinator import CoordinatorEntity
 from yarl import URL
 
-from .const import CONF_OFFSET, CONF_SCALE, CONF_TLS, DOMAIN
+from .const import CONF_MAC, CONF_OFFSET, CONF_SCALE, CONF_TLS, DOMAIN
 from .conversion import Conversion, conversion_of
 from .coordinator import PlcBridgeConfigEntry, PlcCoordinator
 from .plc import PlcError, Point, PointResult, TlsMode, Value, ValueKind
@@ -130,7 +130,8 @@ def web_page(entry: PlcBridgeConfigEntry) -> str | None:
 def device_info(entry: PlcBridgeConfigEntry) -> DeviceInfo:
     """Return the device of a PLC, from what it said when it connected."""
     device = entry.runtime_data.device
-    connections = {(CONNECTION_NETWORK_MAC, format_mac(device.mac))} if device.mac else set()
+    mac = device.mac or entry.data.get(CONF_MAC)  # else the one its discovery saw
+    connections = {(CONNECTION_NETWORK_MAC, format_mac(mac))} if mac else set()
     return DeviceInfo(
         identifiers={(DOMAIN, device_key(entry))},
         name=entry.title,

@@ -5,18 +5,22 @@ from __future__ import annotations
 import importlib
 
 from ..client import PlcClient
+from ..probe import Probe
 
 VENDORS: tuple[str, ...] = ("s7_smart", "tecomat", "plcnext", "softplc", "s7")
 """Every vendor key, in the order the config flow lists them."""
 
 
-def _load() -> dict[str, type[PlcClient]]:
+def _load() -> tuple[dict[str, type[PlcClient]], dict[str, Probe]]:
     """Import every vendor module that exists, once, when this package is imported.
+
+    Returns each vendor's client class, and its probe where it has one.
 
     Done at import time so that Home Assistant imports them in its executor with the
     integration, never inside the event loop when a flow first asks for a vendor.
     """
     clients: dict[str, type[PlcClient]] = {}
+    probes: dict[str, Probe] = {}
     for vendor in VENDORS:
         try:
             module = importlib.import_module(f"{__name__}.{vendor}")
@@ -25,10 +29,12 @@ def _load() -> dict[str, type[PlcClient]]:
                 raise
             continue
         clients[vendor] = module.CLIENT
-    return clients
+        if hasattr(module, "PROBE"):
+            probes[vendor] = module.PROBE
+    return clients, probes
 
 
-_CLIENTS = _load()
+_CLIENTS, _PROBES = _load()
 
 
 def client_class(vendor: str) -> type[PlcClient]:
@@ -39,3 +45,8 @@ def client_class(vendor: str) -> type[PlcClient]:
 def implemented() -> list[str]:
     """Return the vendor keys that have a client module."""
     return list(_CLIENTS)
+
+
+def probe_of(vendor: str) -> Probe | None:
+    """Return the probe telling whether a vendor's interface answers at a host, if it has one."""
+    return _PROBES.get(vendor)
