@@ -17,6 +17,7 @@ from homeassistant.helpers.update_coordinator import DataUpdateCoordinator
 from .const import LOGGER
 from .models import PlcBridgeConfigEntry
 from .plc import PlcClient, PlcError, Point, PointResult, ReadResult
+from .poll_classes import PollSchedule
 
 FIRST_POLL_PACING = 1.0
 """Seconds of vendor pacing a setup waits for: a PLC paced slower shows its first points then.
@@ -62,6 +63,8 @@ class PollingCoordinator(DataUpdateCoordinator[ReadResult]):
         self.client = client
         super().__init__(hass, LOGGER, config_entry=entry, name=entry.title)
         self._poll: list[Point] = []
+        self._schedule = PollSchedule()  # which of `_poll` each poll reads (poll classes)
+        self._asked: set[Point] = set()  # points the next poll reads whatever their class
         self._started: float | None = None  # loop time the last poll started
         self._base: float | None = None  # loop time the next poll is an interval after
         self._due: float | None = None  # loop time the scheduled poll is due
@@ -90,21 +93,25 @@ class PollingCoordinator(DataUpdateCoordinator[ReadResult]):
             self._poll = every
 
     async def _read_poll(self) -> ReadResult:
-        """Read every polled point (the poll's one read); note what changed since the last."""
+        """Read the polled points due (the poll's one read); note what changed since the last."""
         now = self.hass.loop.time()
         if self._started is not None:
             self.cycle = now - self._started
         self._started, self._partial, self._changed = now, False, None
         # A scheduled poll keeps the grid (its lateness never adds up); another starts one,
         # staggered within its second as Home Assistant staggers coordinators.
-        self._base = self._grid if self._grid is not None else int(now) + self._microsecond
-        self._grid = None
-        points = self._poll
+        at = self._grid if self._grid is not None else int(now) + self._microsecond
+        self._base, self._grid = at, None
+        read = self.data.values if self.data is not None else {}
+        points, classes = self._schedule.due(self._poll, at, read, self._asked)
         self._reading = True
         try:
             result = await self.client.read(points)
         finally:
             self._reading = False
+        self._schedule.done(at, classes)
+        if self._asked:
+            self._asked.difference_update(points)
         if self.data is not None:
             if points is not self._poll:
                 result = self._carry_over(result)
@@ -115,7 +122,7 @@ class PollingCoordinator(DataUpdateCoordinator[ReadResult]):
         return result
 
     def _carry_over(self, result: ReadResult) -> ReadResult:
-        """Keep the values of points that edits added while this poll read (read since)."""
+        """Keep the results of the points this poll did not read (not due, or added since)."""
         old = self.data.values
         extra = {p: old[p] for p in self._poll if p not in result.values and p in old}
         return replace(result, values=result.values | extra) if extra else result
