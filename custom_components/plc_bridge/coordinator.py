@@ -31,8 +31,8 @@ from .plc import (
     TlsMode,
     Value,
 )
-from .poll_classes import class_intervals
 from .points import point_classes
+from .poll_classes import class_intervals
 from .polling import PollingCoordinator
 from .repairs import (
     CERTIFICATE_CHANGED,
