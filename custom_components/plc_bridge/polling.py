@@ -77,6 +77,16 @@ class PollingCoordinator(DataUpdateCoordinator[ReadResult]):
         self._edited: set[Point] = set()  # points edits added, not read yet
         self._unsub_edit: CALLBACK_TYPE | None = None
 
+    @property
+    def poll_intervals(self) -> dict[str, float]:
+        """Seconds between reads of each poll class that has points."""
+        return dict(self._schedule.intervals)
+
+    @property
+    def poll_counts(self) -> dict[str, int]:
+        """How many points each poll class has."""
+        return self._schedule.counts()
+
     async def async_first_poll(self) -> None:
         """Poll before the entities are added, waiting for FIRST_POLL_PACING of pacing at most.
 
