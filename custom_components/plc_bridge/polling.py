@@ -2,7 +2,8 @@
 
 Polls start an interval after the previous one started (at once when a slow one ran past it),
 a setup waits for a bounded first poll, points added by edits are read once the edits pause,
-and after a poll only the entities whose point changed (and the PLC's own) are updated.
+and after a poll only the entities whose point changed (and the PLC's own) are updated. A poll
+reads the points whose poll class is due (poll_classes.py); the others keep their results.
 """
 
 from __future__ import annotations
