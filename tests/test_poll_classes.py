@@ -12,6 +12,7 @@ from homeassistant.config_entries import SOURCE_USER
 from homeassistant.const import ATTR_ENTITY_ID, CONF_SCAN_INTERVAL
 from homeassistant.core import HomeAssistant
 from homeassistant.data_entry_flow import FlowResultType
+from homeassistant.setup import async_setup_component
 from homeassistant.util import dt as dt_util
 import pytest
 from pytest_homeassistant_custom_component.common import MockConfigEntry, async_fire_time_changed
@@ -427,3 +428,34 @@ async def saved(hass: HomeAssistant, entry: MockConfigEntry, menu: Any) -> dict[
     await step(hass, menu, {"next_step_id": "save"})
     (machine,) = entry.subentries.values()
     return dict(machine.data[CONF_POINTS])
+
+
+async def test_update_entity_reads_its_point(
+    hass: HomeAssistant,
+    s7_smart_sim: S7SmartSimulator,
+    freezer: FrozenDateTimeFactory,
+    reads: list[list[Point]],
+) -> None:
+    """`homeassistant.update_entity` on a slow sensor reads it now, not its whole class."""
+    await async_setup_component(hass, "homeassistant", {})
+    points = [
+        point("fast", "Fast", "sensor", "VW0", "signed", poll="fast"),
+        point("outdoor", "Outdoor", "sensor", "VW2", "signed", poll="slow"),
+        point("other", "Other", "sensor", "VW4", "signed", poll="slow"),
+    ]
+    entry = make_entry(hass, s7_smart_sim, points)
+    await set_up_classes(hass, freezer, entry)
+    await tick(hass, freezer, 3)
+    s7_smart_sim.set("VW2", 12)
+    count = len(reads)
+    await hass.services.async_call(
+        "homeassistant",
+        "update_entity",
+        {ATTR_ENTITY_ID: "sensor.s7_200_smart_outdoor"},
+        blocking=True,
+    )
+    await hass.async_block_till_done()
+    assert len(reads) == count + 1
+    assert Point("VW2", "signed") in reads[-1]
+    assert Point("VW4", "signed") not in reads[-1]
+    assert hass.states.get("sensor.s7_200_smart_outdoor").state == "12"

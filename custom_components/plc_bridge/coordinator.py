@@ -221,7 +221,7 @@ class PlcCoordinator(PollingCoordinator):
         check_can_write(self.config_entry)
         with translated_errors(self.hass, self.config_entry):
             await self.client.set_clock(when)
-        self._asked.update(self._poll)  # whatever their class: clock points may be slow
+        self.ask_back(self._poll)  # whatever their class: clock points may be slow
         await self.async_request_refresh()
 
     async def async_write(self, values: Mapping[Point, Value]) -> None:
@@ -242,8 +242,7 @@ class PlcCoordinator(PollingCoordinator):
         }
         if taken:
             self._show(taken)
-        # Read back by the refresh, whatever their class.
-        self._asked.update(point for point in values if point in self.data.values)
+        self.ask_back(values)  # read back by the refresh, whatever their class
         await self.async_request_refresh()
         failed = [named(point, res.error) for point, res in results.items() if res.error]
         if failed:

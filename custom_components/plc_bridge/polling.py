@@ -9,7 +9,7 @@ reads the points whose poll class is due (poll_classes.py); the others keep thei
 from __future__ import annotations
 
 import asyncio
-from collections.abc import Callable, Mapping
+from collections.abc import Callable, Iterable, Mapping
 from dataclasses import replace
 
 from homeassistant.core import CALLBACK_TYPE, HassJob, HassJobType, HomeAssistant, callback
@@ -87,6 +87,12 @@ class PollingCoordinator(DataUpdateCoordinator[ReadResult]):
     def poll_counts(self) -> dict[str, int]:
         """How many points each poll class has."""
         return self._schedule.counts()
+
+    @callback
+    def ask_back(self, points: Iterable[Point]) -> None:
+        """Have the next poll read these polled points, whatever their poll class."""
+        read = self.data.values if self.data is not None else {}
+        self._asked.update(point for point in points if point in read)
 
     async def async_first_poll(self) -> None:
         """Poll before the entities are added, waiting for FIRST_POLL_PACING of pacing at most.
