@@ -273,10 +273,12 @@ def main() -> int:
     args = parser.parse_args()
     time_transports()
     rows = asyncio.run(run(args.points, args.polls))
-    # Imported here: bench.keepalive builds on this module's simulator driver and points.
+    # Imported here: bench.keepalive and bench.poll_classes build on this module's driver.
     from .keepalive import keepalive_rows, keepalive_text  # noqa: PLC0415
+    from .poll_classes import poll_class_rows, poll_class_text  # noqa: PLC0415
 
     keepalive = asyncio.run(keepalive_rows(ready_vendors()))
+    classes = asyncio.run(poll_class_rows(ready_vendors(), [100]))
     checks = ha_checks() if args.ha is not False else None
     if isinstance(checks, str):
         print(f"Home Assistant checks could not run:\n{checks}")
@@ -286,12 +288,14 @@ def main() -> int:
             extra = ("cpu_ms_per_poll", "cpu_ms_per_1000_points", "protocol_cpu_ms_per_poll")
             extra += ("data_items",)
             print(json.dumps({key: row[key] for key in (*keys, *extra) if key in row}))
-        for result in [*keepalive, *(checks if isinstance(checks, list) else [])]:
+        for result in [*keepalive, *classes, *(checks if isinstance(checks, list) else [])]:
             print(json.dumps(result))
     else:
         print(table(rows, shlex.join(["scripts/bench", *sys.argv[1:]])))
         for result in keepalive:
             print(keepalive_text(result))
+        for result in classes:
+            print(poll_class_text(result))
         for result in checks if isinstance(checks, list) else []:
             print(check_text(result))
     checks_ok = checks is None or (isinstance(checks, list) and all(c["passed"] for c in checks))

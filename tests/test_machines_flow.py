@@ -46,7 +46,7 @@ async def test_select_button_and_alarm_word(hass: HomeAssistant, entry: MockConf
     result = await step(hass, menu, {"next_step_id": "point"})
     base = {"name": "Mode", "platform": "select", "address": "VW30", "data_type": "signed"}
     result = await step(hass, result, base)
-    assert fields(result) == {"value_map", "read_only"}
+    assert fields(result) == {"value_map", "read_only", "poll"}
     result = await step(hass, result, {"value_map": "0=Off;Auto", "read_only": False})
     assert result["errors"] == {"value_map": "map_not_a_pair"}
     assert result["description_placeholders"]["pair"] == "Auto"
@@ -56,13 +56,13 @@ async def test_select_button_and_alarm_word(hass: HomeAssistant, entry: MockConf
     result = await step(hass, menu, {"next_step_id": "point"})
     base = {"name": "Start", "platform": "button", "address": "Q0.2", "data_type": "signed"}
     result = await step(hass, result, base)
-    assert fields(result) == {"pulse", "read_only"}
+    assert fields(result) == {"pulse", "read_only", "poll"}
     menu = await step(hass, result, {"pulse": 0.5, "read_only": False})
 
     result = await step(hass, menu, {"next_step_id": "point"})
     base = {"name": "Alarms", "platform": "event", "address": "VW70", "data_type": "unsigned"}
     result = await step(hass, result, base)
-    assert fields(result) == {"bits", "read_only"}
+    assert fields(result) == {"bits", "read_only", "poll"}
     menu = await step(hass, result, {"bits": "0=Overheat;3=Low water", "read_only": True})
 
     result = await step(hass, menu, {"next_step_id": "save"})

@@ -43,6 +43,7 @@ async def test_minimum_follows_the_points(hass: HomeAssistant, flow_sim: S7Smart
     assert suggested(result, CONF_SCAN_INTERVAL) == 10.0
     assert result["description_placeholders"] == {
         "minimum": "4",
+        "fast_minimum": "1",
         "points": "100",
         "requests": "4",
         "cycle": "10",

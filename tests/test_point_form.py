@@ -61,13 +61,14 @@ def test_every_offered_class_has_home_assistants_name(platform: str) -> None:
 
 
 def test_details_fit_the_entity_type() -> None:
-    """Each entity type gets only its own settings; a device class's units are offered."""
+    """Each entity type gets only its own settings (and a poll class); a class's units too."""
     assert set(fields(details_schema("binary_sensor", ValueKind.BOOL))) == {
         "device_class",
         "invert",
         "read_only",
+        "poll",
     }
-    assert set(fields(details_schema("text", ValueKind.TEXT))) == {"read_only"}
+    assert set(fields(details_schema("text", ValueKind.TEXT))) == {"read_only", "poll"}
     number = fields(details_schema("number", ValueKind.INTEGER))
     assert {"min", "max", "step", "scale", "offset", "unit_of_measurement"} <= set(number)
     assert "state_class" not in number

@@ -16,8 +16,8 @@ TECOMAT = client_class("tecomat")
 
 
 def fields(platform: str, kind: ValueKind | None) -> set[str]:
-    """Return the names of the details form's fields."""
-    return {str(marker) for marker in details_schema(platform, kind).schema}
+    """Return the names of the details form's fields, besides the poll class every point has."""
+    return {str(marker) for marker in details_schema(platform, kind).schema} - {"poll"}
 
 
 def test_each_platform_asks_for_its_own() -> None:

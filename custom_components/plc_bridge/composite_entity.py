@@ -97,6 +97,10 @@ class PlcCompositeEntity(PlcEntity):
         self._key = group.key
         self._pulses: dict[str, Pulse] = {}
 
+    def read_points(self) -> list[Point]:
+        """The points of the entity's parts."""
+        return [part.point for part in self.parts.values()]
+
     def result(self, role: str) -> PointResult | None:
         """The outcome of a part's point in the last poll, None without that part."""
         part = self.parts.get(role)

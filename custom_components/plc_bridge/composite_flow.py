@@ -36,6 +36,7 @@ from .const import (
 from .plc import PlcAddressError, PlcClient, Point
 from .point_form import BASE_FIELDS, check_point, details_schema, point_key
 from .point_table import first_type
+from .poll_classes import CONF_POLL, NORMAL, poll_field
 
 TYPE_SUFFIX = "_data_type"
 """A part's data type field: its role's name and this."""
@@ -82,6 +83,7 @@ class CompositeSteps(ConfigSubentryFlow):
                 errors[CONF_NAME] = "composite_name_taken"
             else:
                 self._composite = {CONF_NAME: name, CONF_PLATFORM: platform}
+                self._composite[CONF_POLL] = user_input.get(CONF_POLL, NORMAL)
                 return await self.async_step_composite_parts()
         schema = vol.Schema(
             {
@@ -89,6 +91,7 @@ class CompositeSteps(ConfigSubentryFlow):
                     SelectSelectorConfig(options=list(ROLES), translation_key="composite_platform")
                 ),
                 vol.Required(CONF_NAME): TextSelector(),
+                **poll_field(),
             }
         )
         return self.async_show_form(
@@ -190,7 +193,9 @@ class CompositeSteps(ConfigSubentryFlow):
         placeholders = {"role": role, "units": "", "pair": "", "error": "", "platform": platform}
         placeholders |= {key: values[key] for key in (CONF_ADDRESS, CONF_DATA_TYPE, CONF_NAME)}
         if user_input is not None:
-            base = {key: values[key] for key in (*BASE_FIELDS, CONF_ROLE)}
+            base = {
+                key: values[key] for key in (*BASE_FIELDS, CONF_ROLE, CONF_POLL) if key in values
+            }
             data, errors, found = part_data(self._client, base | user_input)
             placeholders |= found
             if not errors:
@@ -201,6 +206,8 @@ class CompositeSteps(ConfigSubentryFlow):
                     return await self.async_step_composite_part()
                 ids = self._part_ids or [secrets.token_hex(6) for _ in self._made]
                 self._points |= dict(zip(ids, self._made, strict=True))
+                if self._part_ids:  # an edited part's poll class is its whole entity's
+                    self._share_class(self._made[0])
                 self._parts, self._made, self._part_ids = [], [], []
                 self._editing = None
                 return await self.async_step_menu()
@@ -210,6 +217,8 @@ class CompositeSteps(ConfigSubentryFlow):
         except PlcAddressError:
             kind = None
         schema = details_schema(shown, kind)
+        if not self._part_ids:  # a new entity's parts take the class its first step set
+            schema = vol.Schema({k: v for k, v in schema.schema.items() if k != CONF_POLL})
         if role in INVERTIBLE:
             schema = schema.extend({vol.Required(CONF_INVERT, default=False): BooleanSelector()})
         return self.async_show_form(
@@ -218,6 +227,14 @@ class CompositeSteps(ConfigSubentryFlow):
             errors=errors,
             description_placeholders=placeholders,
         )
+
+    def _share_class(self, part: dict[str, Any]) -> None:
+        """Give every part of the edited part's entity the part's poll class."""
+        polled = {CONF_POLL: part[CONF_POLL]} if CONF_POLL in part else {}
+        for point_id, data in self._points.items():
+            if (data[CONF_NAME], data[CONF_PLATFORM]) == (part[CONF_NAME], part[CONF_PLATFORM]):
+                kept = {key: value for key, value in data.items() if key != CONF_POLL}
+                self._points[point_id] = kept | polled
 
     async def async_edit_part(self, point_id: str) -> SubentryFlowResult:
         """Edit one part: its address and data type, then its settings; its entity stays."""

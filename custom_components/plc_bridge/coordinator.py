@@ -1,4 +1,4 @@
-"""One coordinator per PLC: every point in one planned read per poll, errors mapped once."""
+"""One coordinator per PLC: the points due in one planned read per poll, errors mapped once."""
 
 from __future__ import annotations
 
@@ -7,7 +7,6 @@ from collections.abc import Mapping
 from datetime import datetime, timedelta
 from typing import TYPE_CHECKING
 
-from homeassistant.const import CONF_SCAN_INTERVAL
 from homeassistant.core import HomeAssistant, callback
 from homeassistant.exceptions import (
     ConfigEntryAuthFailed,
@@ -32,6 +31,8 @@ from .plc import (
     TlsMode,
     Value,
 )
+from .points import point_classes
+from .poll_classes import class_intervals
 from .polling import PollingCoordinator
 from .repairs import (
     CERTIFICATE_CHANGED,
@@ -119,21 +120,22 @@ class PlcCoordinator(PollingCoordinator):
         self._poll = list(
             dict.fromkeys([*self.availability.points.values(), *self.points.values()])
         )
-        interval = max(
-            float(
-                self.config_entry.options.get(CONF_SCAN_INTERVAL, self.client.default_scan_interval)
-            ),
-            self.client.min_scan_interval(self._poll),
+        classes = point_classes(points)
+        options = self.config_entry.options
+        self._schedule.configure(
+            classes, class_intervals(type(self.client), options, classes, self._poll)
         )
-        self.update_interval = timedelta(seconds=interval)
+        self.update_interval = timedelta(seconds=self._schedule.tick)
         # A removed point's issue goes with it.
         async_clear_point_issues(self.hass, self.config_entry, keep=self.points)
 
     @callback
     def async_set_points(self, points: Mapping[str, PointConfig]) -> None:
         """Follow edited points; the new ones are read together once the edits pause."""
-        invalid = set(self.availability.invalid)
+        invalid, tick = set(self.availability.invalid), self.update_interval
         self._set_points(points)
+        if self.update_interval != tick and self._unsub_refresh is not None:
+            self._schedule_refresh()  # a first fast point: the next poll comes sooner
         if invalid - self.availability.invalid:  # a machine no longer names its address
             self._changed = None
             self.async_update_listeners()
@@ -219,6 +221,7 @@ class PlcCoordinator(PollingCoordinator):
         check_can_write(self.config_entry)
         with translated_errors(self.hass, self.config_entry):
             await self.client.set_clock(when)
+        self.ask_back(self._poll)  # whatever their class: clock points may be slow
         await self.async_request_refresh()
 
     async def async_write_values(self, values: Mapping[Point, Value]) -> dict[Point, PointResult]:
@@ -248,6 +251,7 @@ class PlcCoordinator(PollingCoordinator):
         back by the debouncer after a burst of writes) reads back what the PLC really holds.
         """
         results = await self.async_write_values(values)
+        self.ask_back(values)  # read back by the refresh, whatever their class
         await self.async_request_refresh()
         failed = [named(point, res.error) for point, res in results.items() if res.error]
         if failed:

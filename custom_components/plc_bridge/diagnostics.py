@@ -78,6 +78,11 @@ async def async_get_config_entry_diagnostics(
             # Start to start of the last two polls: longer than the interval where pacing is.
             "last_cycle_s": round(coordinator.cycle, 3) if coordinator.cycle is not None else None,
             "planned_requests": runtime.client.planned_requests(list(data.values)),
+            # Each poll class with points: its interval and how many points it has.
+            "classes": {
+                name: {"interval_s": coordinator.poll_intervals[name], "points": count}
+                for name, count in coordinator.poll_counts.items()
+            },
             "last_update_success": coordinator.last_update_success,
         },
         "metrics": runtime.client.metrics.as_dict(),

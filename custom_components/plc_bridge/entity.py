@@ -172,6 +172,15 @@ class PlcEntity(CoordinatorEntity[PlcCoordinator]):
         """What this entity shows of the last poll; its state is written only when this changes."""
         raise NotImplementedError
 
+    def read_points(self) -> list[Point]:
+        """The points this entity shows."""
+        return [self.coordinator_context] if self.coordinator_context is not None else []
+
+    async def async_update(self) -> None:
+        """Poll now (`homeassistant.update_entity`), reading this entity's points whatever class."""
+        self.coordinator.ask_back(self.read_points())
+        await super().async_update()
+
     async def async_added_to_hass(self) -> None:
         """Remember what the first state shows, then follow the coordinator."""
         await super().async_added_to_hass()

@@ -53,6 +53,7 @@ from .const import (
 from .duration_units import UNITS as DURATION_UNITS
 from .plc import BrowseItem, PlcAddressError, PlcClient, Point, ValueKind
 from .point_kinds import KIND_CONTROLS, KIND_PLATFORMS, kind_data, kind_fields
+from .poll_classes import poll_data, poll_field
 
 NUMERIC = frozenset({ValueKind.INTEGER, ValueKind.FLOAT})
 COUNTED = NUMERIC | {ValueKind.BOOL}
@@ -197,7 +198,7 @@ def details_schema(
         )
     fields |= kind_fields(platform, kind)
     fields[vol.Required(CONF_READ_ONLY, default=platform not in CONTROLS)] = BooleanSelector()
-    return vol.Schema(fields)
+    return vol.Schema(fields | poll_field())
 
 
 def check_point(
@@ -296,7 +297,8 @@ def point_data(
         if values.get(key) is not None and platform == "number":
             data[key] = float(values[key])
     extra, found, details = kind_data(platform, kind, values)
-    return data | extra, errors | found, placeholders | details
+    polled, wrong = poll_data(values)
+    return data | extra | polled, errors | found | wrong, placeholders | details
 
 
 def browse_values(client: type[PlcClient], item: BrowseItem) -> dict[str, Any]:

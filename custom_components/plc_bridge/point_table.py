@@ -38,6 +38,7 @@ from .const import (
 from .plc import PlcAddressError, PlcClient, Point, ValueKind
 from .point_form import CONTROLS, point_data, point_key, suggested_platform
 from .point_kinds import KIND_COLUMNS, NUMBER_FIELDS, PAIRS_FIELDS
+from .poll_classes import CONF_POLL
 
 COLUMNS = (
     CONF_NAME,
@@ -55,9 +56,10 @@ COLUMNS = (
     CONF_READ_ONLY,
     *KIND_COLUMNS,
     CONF_ROLE,
+    CONF_POLL,
 )
 """The columns of the format, in the order export writes them (rows of one entity of several
-addresses share its name and platform, and each names its role)."""
+addresses share its name and platform, and each names its role); an empty poll is normal."""
 COMMENT = "comment"
 HEADERS: dict[str, str] = {
     **{column: column for column in COLUMNS},
@@ -216,7 +218,7 @@ def _values(
     read_only = read_only or flags.get(WRITABLE) is False
     values[CONF_READ_ONLY] = read_only
     values[CONF_INVERT] = bool(flags.get(CONF_INVERT))
-    for key in PAIRS_FIELDS:
+    for key in (*PAIRS_FIELDS, CONF_POLL):
         if cells.get(key, "").strip():
             values[key] = cells[key].strip()
     for key, column in (

@@ -18,7 +18,7 @@ from homeassistant.helpers import device_registry as dr, entity_registry as er
 from homeassistant.helpers.entity import Entity
 from homeassistant.helpers.entity_platform import AddConfigEntryEntitiesCallback
 
-from .composite import touched
+from .composite import composites, touched
 from .const import (
     CONF_ADDRESS,
     CONF_AREA,
@@ -30,6 +30,7 @@ from .const import (
     SUBENTRY_DEVICE,
 )
 from .plc import Point
+from .poll_classes import POLL_CLASSES, point_class
 
 if TYPE_CHECKING:
     from .coordinator import PlcBridgeConfigEntry
@@ -64,9 +65,27 @@ class PointConfig:
         return str(self.data[CONF_NAME])
 
     @property
+    def poll(self) -> str:
+        """The point's poll class: fast, normal or slow."""
+        return point_class(self.data)
+
+    @property
     def read_only(self) -> bool:
         """True when Home Assistant must never write the point."""
         return bool(self.data.get(CONF_READ_ONLY, False))
+
+
+def point_classes(configs: Mapping[str, PointConfig]) -> dict[Point, str]:
+    """Return each point's poll class; the parts of one entity share their fastest one."""
+    classes: dict[Point, str] = {}
+    for config in configs.values():
+        known = classes.get(config.point, config.poll)
+        classes[config.point] = min(known, config.poll, key=POLL_CLASSES.index)
+    for composite in composites(configs).values():
+        parts = [config.point for config in composite.parts.values()]
+        shared = min((classes[point] for point in parts), key=POLL_CLASSES.index)
+        classes |= dict.fromkeys(parts, shared)
+    return classes
 
 
 def entry_points(entry: PlcBridgeConfigEntry) -> dict[str, PointConfig]:

@@ -2,13 +2,14 @@
 
 Polls start an interval after the previous one started (at once when a slow one ran past it),
 a setup waits for a bounded first poll, points added by edits are read once the edits pause,
-and after a poll only the entities whose point changed (and the PLC's own) are updated.
+and after a poll only the entities whose point changed (and the PLC's own) are updated. A poll
+reads the points whose poll class is due (poll_classes.py); the others keep their results.
 """
 
 from __future__ import annotations
 
 import asyncio
-from collections.abc import Callable, Mapping
+from collections.abc import Callable, Iterable, Mapping
 from dataclasses import replace
 
 from homeassistant.core import CALLBACK_TYPE, HassJob, HassJobType, HomeAssistant, callback
@@ -17,6 +18,7 @@ from homeassistant.helpers.update_coordinator import DataUpdateCoordinator
 from .const import LOGGER
 from .models import PlcBridgeConfigEntry
 from .plc import PlcClient, PlcError, Point, PointResult, ReadResult
+from .poll_classes import PollSchedule
 
 FIRST_POLL_PACING = 1.0
 """Seconds of vendor pacing a setup waits for: a PLC paced slower shows its first points then.
@@ -62,6 +64,8 @@ class PollingCoordinator(DataUpdateCoordinator[ReadResult]):
         self.client = client
         super().__init__(hass, LOGGER, config_entry=entry, name=entry.title)
         self._poll: list[Point] = []
+        self._schedule = PollSchedule()  # which of `_poll` each poll reads (poll classes)
+        self._asked: set[Point] = set()  # points the next poll reads whatever their class
         self._started: float | None = None  # loop time the last poll started
         self._base: float | None = None  # loop time the next poll is an interval after
         self._due: float | None = None  # loop time the scheduled poll is due
@@ -73,6 +77,22 @@ class PollingCoordinator(DataUpdateCoordinator[ReadResult]):
         self._changed: set[Point] | None = None  # what the last poll changed (None: all)
         self._edited: set[Point] = set()  # points edits added, not read yet
         self._unsub_edit: CALLBACK_TYPE | None = None
+
+    @property
+    def poll_intervals(self) -> dict[str, float]:
+        """Seconds between reads of each poll class that has points."""
+        return dict(self._schedule.intervals)
+
+    @property
+    def poll_counts(self) -> dict[str, int]:
+        """How many points each poll class has."""
+        return self._schedule.counts()
+
+    @callback
+    def ask_back(self, points: Iterable[Point]) -> None:
+        """Have the next poll read these polled points, whatever their poll class."""
+        read = self.data.values if self.data is not None else {}
+        self._asked.update(point for point in points if point in read)
 
     async def async_first_poll(self) -> None:
         """Poll before the entities are added, waiting for FIRST_POLL_PACING of pacing at most.
@@ -90,21 +110,25 @@ class PollingCoordinator(DataUpdateCoordinator[ReadResult]):
             self._poll = every
 
     async def _read_poll(self) -> ReadResult:
-        """Read every polled point (the poll's one read); note what changed since the last."""
+        """Read the polled points due (the poll's one read); note what changed since the last."""
         now = self.hass.loop.time()
         if self._started is not None:
             self.cycle = now - self._started
         self._started, self._partial, self._changed = now, False, None
         # A scheduled poll keeps the grid (its lateness never adds up); another starts one,
         # staggered within its second as Home Assistant staggers coordinators.
-        self._base = self._grid if self._grid is not None else int(now) + self._microsecond
-        self._grid = None
-        points = self._poll
+        at = self._grid if self._grid is not None else int(now) + self._microsecond
+        self._base, self._grid = at, None
+        read = self.data.values if self.data is not None else {}
+        points, classes = self._schedule.due(self._poll, at, read, self._asked)
         self._reading = True
         try:
             result = await self.client.read(points)
         finally:
             self._reading = False
+        self._schedule.done(at, classes)
+        if self._asked:
+            self._asked.difference_update(points)
         if self.data is not None:
             if points is not self._poll:
                 result = self._carry_over(result)
@@ -115,7 +139,7 @@ class PollingCoordinator(DataUpdateCoordinator[ReadResult]):
         return result
 
     def _carry_over(self, result: ReadResult) -> ReadResult:
-        """Keep the values of points that edits added while this poll read (read since)."""
+        """Keep the results of the points this poll did not read (not due, or added since)."""
         old = self.data.values
         extra = {p: old[p] for p in self._poll if p not in result.values and p in old}
         return replace(result, values=result.values | extra) if extra else result

@@ -11,6 +11,7 @@ import pytest
 
 from custom_components.plc_bridge.plc import PlcConnectionError, PlcError, PlcProtocolError, Point
 from custom_components.plc_bridge.plc.vendors.plcnext import PlcnextClient
+from custom_components.plc_bridge.plc.vendors.plcnext.groups import GROUPS_KEPT
 from simulators.plcnext import PlcnextSimulator
 from simulators.plcnext.demo import default_program
 
@@ -74,14 +75,25 @@ async def test_unknown_names_among_many(
     assert plcnext_client.metrics.last_poll_requests == 1
 
 
-async def test_changed_points_unregister_the_old_group(
+async def test_changed_points_unregister_the_oldest_group(
     plcnext_sim: PlcnextSimulator, plcnext_client: PlcnextClient
 ) -> None:
-    """A poll of other points registers their group and unregisters the one it replaces."""
-    await plcnext_client.read(POINTS)
+    """Polls of other points keep GROUPS_KEPT groups (poll classes alternate); no more.
+
+    A poll of a kept group's points is one group read again; a fifth set of points
+    unregisters the group read longest ago.
+    """
+    sets = [POINTS, POINTS[:2], POINTS[1:], POINTS[:1], POINTS[2:]]
+    for points in sets[:GROUPS_KEPT]:
+        await plcnext_client.read(points)
+    assert len(plcnext_sim.groups) == GROUPS_KEPT
     await plcnext_client.read(POINTS[:2])
-    await plcnext_client.read(POINTS[1:])
-    assert len(plcnext_sim.groups) == 1
+    assert plcnext_client.metrics.last_poll_requests == 1
+    await plcnext_client.read(sets[GROUPS_KEPT])
+    assert len(plcnext_sim.groups) == GROUPS_KEPT
+    await plcnext_client.read(POINTS)  # unregistered: registered again
+    assert plcnext_client.metrics.last_poll_requests > 1
+    assert len(plcnext_sim.groups) == GROUPS_KEPT
 
 
 @pytest.mark.parametrize("status", [200, 500])

@@ -1,5 +1,7 @@
 """PLCnext reads: one registered group per poll, variable reads where groups cannot serve.
 
+Polls that alternate between point sets (poll classes) keep a group for each (GROUPS_KEPT).
+
 Unknown names are found by reading halves (a register or read naming one answers 404 as a
 whole, PyREST's real-device log: `invalidNames`) and left out of the group; they are tried
 again when the program changes (`projectCRC`) or the points do. Where every name is unknown, a
@@ -9,7 +11,6 @@ groups report (one request that carries `projectCRC`) watches the program instea
 from __future__ import annotations
 
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass, field
 import json
 from typing import Any
 from urllib.parse import quote, urlencode
@@ -17,6 +18,7 @@ from urllib.parse import quote, urlencode
 from ...errors import PlcAddressError, PlcError, PlcProtocolError
 from .api import PlcnextApi, Request
 from .errors import ApiError, request_error
+from .groups import GROUPS_KEPT, Group, registered
 from .paths import MAX_URI, VariablePath, path_list, same_path, variables_uri
 from .placing import Reading, isolate, place
 
@@ -26,38 +28,9 @@ REFUSED_BODY = (400, 415)  # a register body the PLC does not parse: try the oth
 NO_GROUPS = (400, 405, 415, 501)  # groups cannot serve: read variables instead
 
 
-@dataclass(frozen=True, slots=True)
-class Group:
-    """A group the PLC registered: its id, the paths in its order, the program it was made for.
-
-    `created`: registered by this client (201), not an identical one reused (200), which
-    another client may be reading: only a created group is unregistered.
-    """
-
-    id: str
-    paths: tuple[VariablePath, ...]
-    crc: Any
-    created: bool = False
-    names: list[str] = field(default_factory=list)  # as registered: what its answers name
-
-
-GROUP_IDLE = 120.0
-"""Seconds a group may sit unused before the PLC unregisters it (Groups page: "a timeout
-period (e.g. 120 seconds) where it will automatically unregister the group")."""
 GROUP_POLLS_UP_TO = 90.0
 """The longest poll interval read through a group: a late poll still finds it. Beyond, every
 poll would find it gone and register it again (three requests): variable reads take one."""
-
-
-def registered(paths: Sequence[VariablePath]) -> tuple[str, list[str]]:
-    """Return the `pathPrefix` and the paths a group is registered with.
-
-    Paths of one component go relative to it (the Groups page's example): the PLC then
-    answers every read with the short paths.
-    """
-    components = {path.component for path in paths}
-    prefix = f"{components.pop()}/" if len(components) == 1 else ""
-    return prefix, [path.name if prefix else path.text for path in paths]
 
 
 class Reader:
@@ -67,7 +40,9 @@ class Reader:
         """Start with no group; groups are tried first, with a JSON body, where they last."""
         self._api = api
         self.use_groups = poll_interval <= GROUP_POLLS_UP_TO
-        self.group: Group | None = None
+        self.group: Group | None = None  # the last poll's
+        self._kept: dict[tuple[VariablePath, ...], Group] = {}  # others, oldest first
+        self._recent: dict[frozenset[str], None] = {}  # the last polls' path sets
         self.unknown: dict[str, PlcError] = {}
         self.groups_ok = True
         self.form_body = False  # the Groups page's form body instead of the clients' JSON
@@ -80,7 +55,13 @@ class Reader:
         A projectCRC other than the last one (a program downloaded again) drops the group and
         the unknown names, and reads once more with a group registered for the new program.
         """
-        self.unknown = {key: err for key, err in self.unknown.items() if key in paths}
+        self._recent.pop(asked := frozenset(paths), None)
+        self._recent[asked] = None
+        while len(self._recent) > GROUPS_KEPT:
+            del self._recent[next(iter(self._recent))]
+        if self.unknown:  # a name no recent poll asks is tried again once asked
+            recent = frozenset().union(*self._recent)
+            self.unknown = {key: err for key, err in self.unknown.items() if key in recent}
         unknown = self.unknown
         wanted = (
             [p for key, p in paths.items() if key not in unknown] if unknown else [*paths.values()]
@@ -106,7 +87,8 @@ class Reader:
         """Read the group of these paths, registering it where the PLC has none."""
         reading = Reading()
         if self.group is None or self.group.paths != tuple(wanted):
-            await self.unregister_group()
+            await self._switch(tuple(wanted))
+        if self.group is None:
             await self._register(wanted)
             if not self.groups_ok:
                 return await self.variables(wanted, self.unknown)
@@ -134,6 +116,20 @@ class Reader:
             raise PlcProtocolError(f"the PLC answered group {answer.get('id')!r}, not {group.id}")
         place(answer, group.paths, reading, group.names)
         return reading
+
+    async def _switch(self, wanted: tuple[VariablePath, ...]) -> None:
+        """Keep the last poll's group and take the one kept for these paths (None: none yet).
+
+        The oldest kept group is unregistered beyond GROUPS_KEPT.
+        """
+        if self.group is not None and self.group.paths:
+            self._kept.pop(self.group.paths, None)
+            self._kept[self.group.paths] = self.group
+        self.group = self._kept.pop(wanted, None)
+        while len(self._kept) >= GROUPS_KEPT:
+            oldest = self._kept.pop(next(iter(self._kept)))
+            if oldest.id and oldest.created:
+                await self.unregister(oldest.id)
 
     async def _project_crc(self) -> Any:
         """Return the projectCRC of a groups report (Groups page); None where it has none."""
@@ -202,10 +198,12 @@ class Reader:
         return [path for path in known if path.key not in self.unknown]
 
     async def unregister_group(self) -> None:
-        """Unregister the poll's group, when it has one (best effort: it expires on its own)."""
-        group, self.group = self.group, None
-        if group is not None and group.id and group.created:
-            await self.unregister(group.id)
+        """Unregister the poll's groups (best effort: they expire on their own)."""
+        groups = [self.group, *self._kept.values()]
+        self.group, self._kept = None, {}
+        for group in groups:
+            if group is not None and group.id and group.created:
+                await self.unregister(group.id)
 
     async def unregister(self, group_id: str) -> None:
         """DELETE a group (best effort: the PLC drops it after about 120 s unused)."""
