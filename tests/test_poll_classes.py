@@ -404,7 +404,11 @@ async def test_composite_form_sets_every_part(
         context={"source": "reconfigure", "subentry_id": next(iter(entry.subentries))},
     )
     result = await step(hass, menu, {"next_step_id": "edit"})
-    result = await step(hass, result, {"point": next(iter(points))})
+    part = next(iter(points))
+    result = await step(hass, result, {"point": part})
+    assert fields(result) == {"address", "data_type"}  # a part's address comes first
+    where = {key: points[part][key] for key in ("address", "data_type")}
+    result = await step(hass, result, where)
     assert "poll" in fields(result)
     values = {"scale": 1, "offset": 0} if "scale" in fields(result) else {}
     menu = await step(hass, result, {**values, "read_only": True, "poll": "slow"})
