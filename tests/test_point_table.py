@@ -197,3 +197,18 @@ def test_500_lines_at_once() -> None:
     assert errors == []
     assert len(points) == 500
     assert len(export_points(points).splitlines()) == 501
+
+
+def test_durations_shown_as_text_round_trip() -> None:
+    """A Tecomat TIME shown as text (as an upgrade keeps one) stays text through the table."""
+    tecomat = client_class("tecomat")
+    table = "name,address,data_type,platform,as_text\nRun time,plcData.runTime,TIME,sensor,yes\n"
+    points, errors = parse_points(tecomat, table)
+    assert errors == []
+    assert points[0]["as_text"] is True
+    again, errors = parse_points(tecomat, export_points(points))
+    assert errors == []
+    assert again == points
+    plain, errors = parse_points(tecomat, table.replace(",yes\n", ",\n"))
+    assert errors == []
+    assert "as_text" not in plain[0]

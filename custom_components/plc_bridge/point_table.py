@@ -22,6 +22,7 @@ from homeassistant.helpers.translation import async_get_translations
 from .composite import as_platform, group_errors, is_part, part_data, takes_roles
 from .const import (
     CONF_ADDRESS,
+    CONF_AS_TEXT,
     CONF_DATA_TYPE,
     CONF_INVERT,
     CONF_MAX,
@@ -57,9 +58,11 @@ COLUMNS = (
     *KIND_COLUMNS,
     CONF_ROLE,
     CONF_POLL,
+    CONF_AS_TEXT,
 )
 """The columns of the format, in the order export writes them (rows of one entity of several
-addresses share its name and platform, and each names its role); an empty poll is normal."""
+addresses share its name and platform, and each names its role); an empty poll is normal,
+and `as_text` shows a duration as hh:mm:ss.zzz."""
 COMMENT = "comment"
 HEADERS: dict[str, str] = {
     **{column: column for column in COLUMNS},
@@ -85,6 +88,8 @@ WRITABLE_HEADER = re.compile(
 )
 """An engineering tool's "may be written" column: TIA Portal's Hmi Writeable (in the export),
 Writable from HMI/OPC UA/Web API (in the editor), Schreibbar aus HMI/OPC UA/Web API."""
+SET_FLAGS = (CONF_INVERT, CONF_AS_TEXT)
+"""Yes/no columns stored only when yes (an empty cell is no)."""
 NUMBERS = (CONF_SCALE, CONF_OFFSET, CONF_MIN, CONF_MAX, CONF_STEP, *NUMBER_FIELDS)
 TRUE = {"1", "true", "yes", "y", "on", "x"}
 FALSE = {"", "0", "false", "no", "n", "off"}
@@ -204,7 +209,7 @@ def _values(
             except ValueError:
                 return {}, "import_not_a_number", {"column": key, "text": text}
     flags: dict[str, bool | None] = {}
-    for column in (CONF_READ_ONLY, WRITABLE, CONF_INVERT):
+    for column in (CONF_READ_ONLY, WRITABLE, *SET_FLAGS):
         if text := cells.get(column, "").strip():
             flags[column] = _flag(text)
             if flags[column] is None:
@@ -217,7 +222,8 @@ def _values(
         read_only = as_platform(platform, values.get(CONF_ROLE)) not in CONTROLS
     read_only = read_only or flags.get(WRITABLE) is False
     values[CONF_READ_ONLY] = read_only
-    values[CONF_INVERT] = bool(flags.get(CONF_INVERT))
+    for key in SET_FLAGS:
+        values[key] = bool(flags.get(key))
     for key in (*PAIRS_FIELDS, CONF_POLL):
         if cells.get(key, "").strip():
             values[key] = cells[key].strip()
@@ -302,7 +308,7 @@ def export_points(points: Iterable[Mapping[str, Any]]) -> str:
     for data in sorted(points, key=point_order):
         row = {**data, "unit": data.get(CONF_UNIT_OF_MEASUREMENT)}
         row[CONF_READ_ONLY] = "true" if data.get(CONF_READ_ONLY) else "false"
-        row[CONF_INVERT] = "true" if data.get(CONF_INVERT) else None
+        row |= {key: "true" if data.get(key) else None for key in SET_FLAGS}
         writer.writerow([_cell(row.get(column)) for column in COLUMNS])
     return out.getvalue()
 
