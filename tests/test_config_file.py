@@ -10,6 +10,7 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
 
+from freezegun.api import FrozenDateTimeFactory
 from homeassistant.config_entries import SOURCE_USER, ConfigEntry
 from homeassistant.const import (
     CONF_PASSWORD,
@@ -23,11 +24,17 @@ from pytest_homeassistant_custom_component.common import MockConfigEntry
 from custom_components.plc_bridge.config_file_flow import CONF_CONFIGURATION, PASTE
 from custom_components.plc_bridge.config_flow import device_unique_id
 from custom_components.plc_bridge.connection import create_client
-from custom_components.plc_bridge.const import CONF_VENDOR, DOMAIN
+from custom_components.plc_bridge.const import CONF_SEND_ON_START, CONF_VENDOR, DOMAIN
+from custom_components.plc_bridge.poll_classes import (
+    CONF_FAST_INTERVAL,
+    CONF_POLL,
+    CONF_SLOW_INTERVAL,
+)
 from simulators.plcnext import DEFAULT_PASSWORD as PLCNEXT_PASSWORD
 from simulators.s7_smart import DEFAULT_PASSWORD as SMART_PASSWORD
 from simulators.tecomat import DEFAULT_PASSWORD as TECOMAT_PASSWORD
 
+from .expose_fixtures import add_expose, settle
 from .flow_fixtures import translated
 from .ha_fixtures import POINTS, PointData, add_entry, device, sim_data
 from .plcnext_ha_fixtures import PLCNEXT_POINTS, plcnext_data
@@ -219,3 +226,45 @@ async def test_round_trip(hass: HomeAssistant, vendor_sim: tuple[Vendor, Any]) -
         before = {uid.replace(entry.entry_id, new.entry_id): eid for uid, eid in before.items()}
     assert after == before
     assert states(hass, list(after.values())) == shown
+
+
+async def test_round_trip_carries_exposes_and_poll_classes(
+    hass: HomeAssistant, s7_smart_sim: Any, freezer: FrozenDateTimeFactory
+) -> None:
+    """An expose, points of each poll class and the classes' intervals come back as they were."""
+    vendor = VENDORS["s7_smart"]
+    hass.states.async_set("sensor.outdoor", "21.5")
+    classes = {0: "fast", 1: "slow"}
+    classed = [
+        (point_id, {**data, CONF_POLL: classes[index]} if index in classes else data)
+        for index, (point_id, data) in enumerate(vendor.points)
+    ]
+    entry = add_entry(
+        hass,
+        title=vendor.title,
+        entry_id="01JPLCBR1DGE000000ORIGINAL",
+        unique_id=await flow_unique_id(hass, sim_data(s7_smart_sim)),
+        data=sim_data(s7_smart_sim),
+        subentries=[device(classed, subentry_id="plain", title=vendor.title)],
+    )
+    hass.config_entries.async_update_entry(
+        entry, options={**entry.options, CONF_FAST_INTERVAL: 2.0, CONF_SLOW_INTERVAL: 120.0}
+    )
+    add_expose(hass, entry, "sensor.outdoor", ("VD200", "float"), **{CONF_SEND_ON_START: True})
+    assert await hass.config_entries.async_setup(entry.entry_id)
+    await settle(hass, freezer)
+    assert s7_smart_sim.get("VD200", "float") == pytest.approx(21.5)
+    kept = contents(entry)
+    text = await export(hass, entry)
+    assert "sensor.outdoor" in text
+    assert await hass.config_entries.async_remove(entry.entry_id)
+    await hass.async_block_till_done()
+    s7_smart_sim.set("VD200", 0.0, "float")
+    result = await paste(hass, text)
+    result = await hass.config_entries.flow.async_configure(
+        result["flow_id"], vendor.secrets(s7_smart_sim)
+    )
+    assert result["type"] is FlowResultType.CREATE_ENTRY
+    await settle(hass, freezer)
+    assert contents(result["result"]) == kept
+    assert s7_smart_sim.get("VD200", "float") == pytest.approx(21.5)  # the expose runs again
