@@ -20,7 +20,6 @@ import voluptuous as vol
 from .config_file_flow import PASTE, ConfigFileSteps
 from .connection import create_client
 from .connection_form import (
-    CREDENTIALS_SCHEMA,
     SECOND_PAGES,
     VENDOR_FIELDS,
     connection_data,
@@ -52,6 +51,7 @@ from .options_flow import PlcBridgeOptionsFlow
 from .plc import DeviceInfo, PlcError, PlcOptionError, PlcValueError, TlsMode
 from .plc.http import fetch_fingerprint, format_fingerprint
 from .plc.vendors import client_class
+from .reauth_flow import ReauthSteps
 from .subentry_flow import DeviceSubentryFlowHandler
 from .vendor_steps import Input, with_vendor_steps
 
@@ -69,7 +69,7 @@ def device_unique_id(device: DeviceInfo, data: Mapping[str, Any]) -> str:
 
 
 @with_vendor_steps
-class PlcBridgeConfigFlow(ConfigFileSteps, DiscoveryFlow, domain=DOMAIN):
+class PlcBridgeConfigFlow(ConfigFileSteps, DiscoveryFlow, ReauthSteps, domain=DOMAIN):
     """Add a PLC: vendor (or a DHCP discovery, or a pasted file), connection, certificate.
 
     Each vendor's connection pages have step ids of their own, worded for its PLC family in
@@ -138,38 +138,6 @@ class PlcBridgeConfigFlow(ConfigFileSteps, DiscoveryFlow, domain=DOMAIN):
             },
         )
 
-    async def async_step_reauth(self, entry_data: Mapping[str, Any]) -> ConfigFlowResult:
-        """Start re-authentication after the PLC refused the stored credentials."""
-        if client_class(entry_data[CONF_VENDOR]).credential_option is not None:
-            return await self._reauth_options(None)
-        return await self.async_step_reauth_confirm()
-
-    async def _reauth_options(self, user_input: Input = None) -> ConfigFlowResult:
-        """Ask again for the vendor fields that authenticate (not a user); check, then store."""
-        entry = self._get_reauth_entry()
-        vendor = entry.data[CONF_VENDOR]
-        fields = [field for field in VENDOR_FIELDS[vendor] if field.credential]
-        schema = vol.Schema(fields_schema(fields))
-        errors: dict[str, str] = {}
-        if user_input is not None:
-            stored = entry.data.get(CONF_OPTIONS, {})
-            try:
-                submitted = await self._resolved(vendor, user_input, stored)
-                options = client_class(vendor).validate_options(stored | submitted)
-            except PlcOptionError as err:
-                self._problem, errors = str(err), option_error(err)
-            else:
-                data = {**entry.data, CONF_OPTIONS: options}
-                device, errors = await self._connect(data)
-                if device is not None:
-                    return self._store(entry, "reauth_successful", data)
-        return self.async_show_form(
-            step_id=f"reauth_{vendor}",
-            data_schema=schema,
-            errors=on_form(errors, schema),
-            description_placeholders={"name": entry.title, "problem": self._problem},
-        )
-
     async def _resolved(
         self, vendor: str, user_input: Mapping[str, Any], stored: Mapping[str, Any]
     ) -> dict[str, str]:
@@ -179,24 +147,6 @@ class PlcBridgeConfigFlow(ConfigFileSteps, DiscoveryFlow, domain=DOMAIN):
             self.hass.config.config_dir,
             user_input,
             stored,
-        )
-
-    async def async_step_reauth_confirm(self, user_input: Input = None) -> ConfigFlowResult:
-        """Ask for the credentials again and check them before storing."""
-        entry = self._get_reauth_entry()
-        errors: dict[str, str] = {}
-        if user_input is not None:
-            data = {**entry.data, **user_input}
-            device, errors = await self._connect(data)
-            if device is not None:
-                return self._store(entry, "reauth_successful", data)
-        return self.async_show_form(
-            step_id="reauth_confirm",
-            data_schema=self.add_suggested_values_to_schema(
-                CREDENTIALS_SCHEMA, {CONF_USERNAME: entry.data.get(CONF_USERNAME)}
-            ),
-            errors=on_form(errors, CREDENTIALS_SCHEMA),
-            description_placeholders={"name": entry.title, "problem": self._problem},
         )
 
     async def _connection_step(self, user_input: Input = None) -> ConfigFlowResult:
