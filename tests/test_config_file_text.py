@@ -144,6 +144,12 @@ def edited(**changes: Any) -> str:
 
 
 BAD_ADDRESS = dump_config(plc()).replace("address: VD100", "address: VX100")
+BAD_AVAILABILITY = dump_config(plc()).replace(
+    "  title: Annex\n  unique_id: null\n  data:\n",
+    "  title: Annex\n  unique_id: null\n  data:\n"
+    "    availability_address: VX1\n    availability_data_type: signed\n",
+    1,
+)
 
 
 @pytest.mark.parametrize(
@@ -156,8 +162,20 @@ BAD_ADDRESS = dump_config(plc()).replace("address: VD100", "address: VX100")
         (edited(plc_bridge=2), "config_newer", "newer release"),
         (edited(vendor="modbus"), "config_unknown_vendor", "family modbus"),
         (BAD_ADDRESS, "config_bad_address", "The point Temperature has an address"),
+        (BAD_AVAILABILITY, "config_bad_address", "The point Annex has an address"),
+        (dump_config(plc()).replace("type: device", "type: sensor"), "config_invalid", "type"),
     ],
-    ids=["yaml", "not ours", "port", "version", "format", "vendor", "address"],
+    ids=[
+        "yaml",
+        "not ours",
+        "port",
+        "version",
+        "format",
+        "vendor",
+        "address",
+        "availability",
+        "type",
+    ],
 )
 async def test_refused_on_the_field(hass: HomeAssistant, text: str, key: str, message: str) -> None:
     """A text that cannot become a PLC is refused on its field, said why; nothing is created."""

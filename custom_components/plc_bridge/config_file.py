@@ -18,7 +18,18 @@ import voluptuous as vol
 from voluptuous.humanize import humanize_error
 import yaml
 
-from .const import CONF_ADDRESS, CONF_DATA_TYPE, CONF_OPTIONS, CONF_POINTS, CONF_TLS, CONF_VENDOR
+from .availability import CONF_AVAILABILITY_ADDRESS, CONF_AVAILABILITY_DATA_TYPE
+from .const import (
+    CONF_ADDRESS,
+    CONF_DATA_TYPE,
+    CONF_OPTIONS,
+    CONF_POINTS,
+    CONF_TLS,
+    CONF_VENDOR,
+    SUBENTRY_DEVICE,
+    SUBENTRY_EXPOSE,
+    SUBENTRY_POINT,
+)
 from .plc import PlcClient, PlcError, Point, TlsMode
 from .plc.vendors import implemented
 from .point_table import point_order
@@ -38,9 +49,17 @@ HEADER = (
     "# exported from PLC Bridge; the secrets listed under `secrets` are asked for then.\n"
 )
 
+ADDRESS_KEYS = (
+    (CONF_ADDRESS, CONF_DATA_TYPE),
+    (CONF_AVAILABILITY_ADDRESS, CONF_AVAILABILITY_DATA_TYPE),
+)
+"""The keys of an address and its data type, wherever they stand in a subentry's data."""
+
 SUBENTRY_SCHEMA = vol.Schema(
     {
-        vol.Required("type"): vol.All(str, vol.Length(min=1)),
+        # A type this release neither handles nor migrates (a version 1 file's points) would be
+        # a subentry nobody can edit.
+        vol.Required("type"): vol.In([SUBENTRY_DEVICE, SUBENTRY_EXPOSE, SUBENTRY_POINT]),
         vol.Required("title"): str,
         vol.Optional("unique_id", default=None): vol.Any(None, str),
         vol.Optional("data", default={}): dict,
@@ -214,8 +233,7 @@ def check_addresses(client: type[PlcClient], pasted: ConfigFile) -> None:
     a device, the parts of an entity of several points, and whatever else names an address.
     """
     for subentry in pasted.subentries:
-        for name, values in _addressed(subentry["data"], subentry["title"]):
-            point = Point(str(values[CONF_ADDRESS]), str(values[CONF_DATA_TYPE]))
+        for name, point in _addressed(subentry["data"], subentry["title"]):
             try:
                 client.validate_point(point)
             except PlcError as err:
@@ -227,11 +245,16 @@ def check_addresses(client: type[PlcClient], pasted: ConfigFile) -> None:
                 ) from err
 
 
-def _addressed(value: Any, name: str) -> Iterator[tuple[str, Mapping[str, Any]]]:
-    """Yield every mapping within a value that names an address and a data type, named."""
+def _addressed(value: Any, name: str) -> Iterator[tuple[str, Point]]:
+    """Yield every point a value names, with the name of what it belongs to.
+
+    A point is an address and a data type, or a machine's availability address and its type.
+    """
     if isinstance(value, Mapping):
-        if CONF_ADDRESS in value and CONF_DATA_TYPE in value:
-            yield str(value.get(CONF_NAME) or name), value
+        for address, data_type in ADDRESS_KEYS:
+            if address in value and data_type in value:
+                point = Point(str(value[address]), str(value[data_type]))
+                yield str(value.get(CONF_NAME) or name), point
         for key, item in value.items():
             yield from _addressed(item, f"{name} {key}" if key != CONF_POINTS else name)
     elif isinstance(value, list):
