@@ -58,9 +58,47 @@ def async_clear_issue(hass: HomeAssistant, entry: PlcBridgeConfigEntry, key: str
     ir.async_delete_issue(hass, DOMAIN, issue_id(entry, key))
 
 
-def point_issue_id(entry: PlcBridgeConfigEntry, point_id: str) -> str:
+def point_issue_id(entry: ConfigEntry, point_id: str) -> str:
     """Return the id of a point's unknown-address issue."""
     return f"{UNKNOWN_ADDRESS}_{entry.entry_id}_{point_id}"
+
+
+def expose_issue_id(entry: ConfigEntry, subentry_id: str) -> str:
+    """Return the id of an expose's issue."""
+    return f"{EXPOSE_FAILED}_{entry.entry_id}_{subentry_id}"
+
+
+@callback
+def _async_raise_item_issue(
+    hass: HomeAssistant,
+    entry: ConfigEntry,
+    kind: str,
+    item: tuple[str, str],
+    placeholders: dict[str, str],
+) -> None:
+    """Create (or update) the issue `kind` of one item of the entry (a point, an expose)."""
+    key, item_id = item
+    ir.async_create_issue(
+        hass,
+        DOMAIN,
+        f"{kind}_{entry.entry_id}_{item_id}",
+        is_fixable=False,
+        severity=ir.IssueSeverity.WARNING,
+        translation_key=kind,
+        translation_placeholders={"title": entry.title, **placeholders},
+        data={"entry_id": entry.entry_id, key: item_id},
+    )
+
+
+@callback
+def _async_item_issues(hass: HomeAssistant, entry: ConfigEntry, kind: str) -> set[str]:
+    """Return the ids of the entry's items that have an issue `kind`."""
+    prefix = f"{kind}_{entry.entry_id}_"
+    return {
+        issue[len(prefix) :]
+        for domain, issue in ir.async_get(hass).issues
+        if domain == DOMAIN and issue.startswith(prefix)
+    }
 
 
 @callback
@@ -74,21 +112,8 @@ def async_raise_point_issue(
     error: str,
 ) -> None:
     """Create (or update) the issue of a point the PLC does not know."""
-    ir.async_create_issue(
-        hass,
-        DOMAIN,
-        point_issue_id(entry, point_id),
-        is_fixable=False,
-        severity=ir.IssueSeverity.WARNING,
-        translation_key=UNKNOWN_ADDRESS,
-        translation_placeholders={
-            "title": entry.title,
-            "point": name,
-            "address": address,
-            "error": error,
-        },
-        data={"entry_id": entry.entry_id, "point_id": point_id},
-    )
+    placeholders = {"point": name, "address": address, "error": error}
+    _async_raise_item_issue(hass, entry, UNKNOWN_ADDRESS, ("point_id", point_id), placeholders)
 
 
 @callback
@@ -102,26 +127,16 @@ def async_clear_point_issue(
 @callback
 def async_point_issues(hass: HomeAssistant, entry: PlcBridgeConfigEntry) -> set[str]:
     """Return the ids of the entry's points that have an unknown-address issue."""
-    prefix = point_issue_id(entry, "")
-    return {
-        issue[len(prefix) :]
-        for domain, issue in ir.async_get(hass).issues
-        if domain == DOMAIN and issue.startswith(prefix)
-    }
+    return _async_item_issues(hass, entry, UNKNOWN_ADDRESS)
 
 
 @callback
 def async_clear_point_issues(
-    hass: HomeAssistant, entry: PlcBridgeConfigEntry, keep: Collection[str] = ()
+    hass: HomeAssistant, entry: ConfigEntry, keep: Collection[str] = ()
 ) -> None:
     """Delete the point issues of an entry, except those of the point ids in `keep`."""
-    for point_id in async_point_issues(hass, entry) - set(keep):
-        async_clear_point_issue(hass, entry, point_id)
-
-
-def expose_issue_id(entry: PlcBridgeConfigEntry, subentry_id: str) -> str:
-    """Return the id of an expose's issue."""
-    return f"{EXPOSE_FAILED}_{entry.entry_id}_{subentry_id}"
+    for point_id in _async_item_issues(hass, entry, UNKNOWN_ADDRESS) - set(keep):
+        ir.async_delete_issue(hass, DOMAIN, point_issue_id(entry, point_id))
 
 
 @callback
@@ -135,21 +150,8 @@ def async_raise_expose_issue(
     error: str,
 ) -> None:
     """Create (or update) the issue of an expose whose writes keep failing."""
-    ir.async_create_issue(
-        hass,
-        DOMAIN,
-        expose_issue_id(entry, subentry_id),
-        is_fixable=False,
-        severity=ir.IssueSeverity.WARNING,
-        translation_key=EXPOSE_FAILED,
-        translation_placeholders={
-            "title": entry.title,
-            "expose": name,
-            "address": address,
-            "error": error,
-        },
-        data={"entry_id": entry.entry_id, "subentry_id": subentry_id},
-    )
+    placeholders = {"expose": name, "address": address, "error": error}
+    _async_raise_item_issue(hass, entry, EXPOSE_FAILED, ("subentry_id", subentry_id), placeholders)
 
 
 @callback
@@ -157,10 +159,8 @@ def async_clear_expose_issues(
     hass: HomeAssistant, entry: ConfigEntry, keep: Collection[str] = ()
 ) -> None:
     """Delete the expose issues of an entry, except those of the subentry ids in `keep`."""
-    prefix = expose_issue_id(entry, "")
-    for domain, issue in list(ir.async_get(hass).issues):
-        if domain == DOMAIN and issue.startswith(prefix) and issue[len(prefix) :] not in keep:
-            ir.async_delete_issue(hass, DOMAIN, issue)
+    for subentry_id in _async_item_issues(hass, entry, EXPOSE_FAILED) - set(keep):
+        ir.async_delete_issue(hass, DOMAIN, expose_issue_id(entry, subentry_id))
 
 
 @callback
