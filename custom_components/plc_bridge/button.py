@@ -59,7 +59,7 @@ class PlcButton(PlcPointEntity, ButtonEntity):
         self._pulse = Pulse(
             entry,
             description.key,
-            name=str(description.name),
+            name=config.name,
             address=description.point.address,
             write_off=lambda: self.async_write(self._level(on=False)),
         )

@@ -21,7 +21,7 @@ from .composite import Composite, composites, group_key
 from .const import DOMAIN
 from .conversion import Conversion
 from .coordinator import PlcBridgeConfigEntry
-from .entity import PlcEntity, point_fields
+from .entity import PlcEntity, entity_name, point_fields
 from .plc import Point, PointResult, Value, ValueKind
 from .points import PointConfig, PointFactory, entry_points
 from .pulse import Pulse, pulse_seconds
@@ -90,7 +90,8 @@ class PlcCompositeEntity(PlcEntity):
     ) -> None:
         """Bind the entity to its parts and to its device subentry's device."""
         super().__init__(entry, group.key)
-        self._attr_name = group.name
+        self._attr_name = entity_name(entry, group.subentry_id, group.name)
+        self._label = group.name  # what messages call it, whatever Home Assistant shows
         self._attr_device_info = DeviceInfo(identifiers={(DOMAIN, group.subentry_id)})
         self._machine = group.subentry_id
         self.parts = parts
@@ -153,7 +154,7 @@ class PlcCompositeEntity(PlcEntity):
             pulse = self._pulses[role] = Pulse(
                 self.coordinator.config_entry,
                 f"{self._key}_{role}",
-                name=f"{self.name} ({role})",
+                name=f"{self._label} ({role})",
                 address=part.point.address,
                 write_off=lambda: self.async_write_parts({role: part.level(on=False)}),
             )
@@ -188,7 +189,7 @@ class PlcCompositeEntity(PlcEntity):
             raise HomeAssistantError(
                 translation_domain=DOMAIN,
                 translation_key="state_unknown",
-                translation_placeholders={"name": str(self.name)},
+                translation_placeholders={"name": self._label},
             )
         if values:
             await self.async_write_parts(values)

@@ -61,6 +61,16 @@ class PlcPointDescription(EntityDescription):
         return self.convert.raw(value, integer=self.kind is ValueKind.INTEGER)
 
 
+def entity_name(entry: PlcBridgeConfigEntry, subentry_id: str, name: str) -> str | None:
+    """Return an entity's name; None where it is its machine's (the machine's main feature).
+
+    Home Assistant then names it after the device: "Pump", not "Pump Pump".
+    """
+    subentry = entry.subentries.get(subentry_id)
+    same = subentry is not None and subentry.title.strip().casefold() == name.strip().casefold()
+    return None if same else name
+
+
 def point_fields(entry: PlcBridgeConfigEntry, config: PointConfig) -> dict[str, Any]:
     """Return the PlcPointDescription fields of a configured point."""
     point = config.point
@@ -70,7 +80,7 @@ def point_fields(entry: PlcBridgeConfigEntry, config: PointConfig) -> dict[str, 
         kind = None  # the poll reports the address error on the entity
     return {
         "key": config.point_id,
-        "name": config.name,
+        "name": entity_name(entry, config.subentry_id, config.name),
         "point": point,
         "kind": kind,
         "scale": float(config.data.get(CONF_SCALE, 1.0)),
