@@ -125,6 +125,20 @@ async def test_a_lone_part_keeps_its_entity(
     assert hass.states.get(BLIND_ID).attributes[ATTR_CURRENT_POSITION] == 100
 
 
+async def test_a_part_edited_in_place(hass: HomeAssistant, s7_smart_sim: S7SmartSimulator) -> None:
+    """A part keeps its own address (its own, not one in use) while its settings change."""
+    entry = await set_up(hass, s7_smart_sim)
+    before = registered(hass, SHUTTER_ID)
+    result = await edit(hass, entry, "s4")
+    result = await step(hass, result, {"address": "Q0.6", "data_type": "signed"})
+    assert result["step_id"] == "composite_part"
+    assert suggested(result, "pulse") == 1.0
+    menu = await step(hass, result, {"pulse": 2.5, "read_only": False})
+    await step(hass, menu, {"next_step_id": "save"})
+    assert (stored(entry)["s4"]["address"], stored(entry)["s4"]["pulse"]) == ("Q0.6", 2.5)
+    assert registered(hass, SHUTTER_ID) == before
+
+
 async def test_bad_addresses_are_refused(
     hass: HomeAssistant, freezer: FrozenDateTimeFactory, s7_smart_sim: S7SmartSimulator
 ) -> None:

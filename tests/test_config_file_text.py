@@ -150,6 +150,14 @@ BAD_AVAILABILITY = dump_config(plc()).replace(
     "    availability_address: VX1\n    availability_data_type: signed\n",
     1,
 )
+ALIASES = dump_config(plc()).replace(
+    "  title: Annex\n  unique_id: null\n  data:\n",
+    "  title: Annex\n  unique_id: null\n  data:\n"
+    "    spare: &a [0, 0, 0, 0, 0, 0, 0, 0, 0, 0]\n"
+    "    more: &b [*a, *a, *a, *a, *a, *a, *a, *a, *a, *a]\n",
+    1,
+)
+"""A few lines of YAML aliases stand for a tree no memory holds (here only a hundred leaves)."""
 
 
 @pytest.mark.parametrize(
@@ -164,6 +172,7 @@ BAD_AVAILABILITY = dump_config(plc()).replace(
         (BAD_ADDRESS, "config_bad_address", "The point Temperature has an address"),
         (BAD_AVAILABILITY, "config_bad_address", "The point Annex has an address"),
         (dump_config(plc()).replace("type: device", "type: sensor"), "config_invalid", "type"),
+        (ALIASES, "config_alias", "line 25"),
     ],
     ids=[
         "yaml",
@@ -175,6 +184,7 @@ BAD_AVAILABILITY = dump_config(plc()).replace(
         "address",
         "availability",
         "type",
+        "aliases",
     ],
 )
 async def test_refused_on_the_field(hass: HomeAssistant, text: str, key: str, message: str) -> None:

@@ -78,3 +78,23 @@ def test_suggested_platforms() -> None:
     assert suggested_platform(S7Client, "DB1.DBD0", "TIME") == "number"
     assert suggested_platform(S7Client, "DB1.DBD0", "TIME", read_only=True) == "sensor"
     assert suggested_platform(S7Client, "IW0", "S5TIME") == "sensor"
+
+
+async def test_duration_as_text(hass: HomeAssistant, s7_ha_sims: SimFactory) -> None:
+    """A TIME as text shows hh:mm:ss.zzz and takes it back, as the write action does."""
+    sim: S7Simulator = await s7_ha_sims()
+    sim.set_db(1, 0, struct.pack(">i", 90_500))
+    entry = make_s7_entry(hass, sim, [point("timer", "Timer", "text", "DB1.DBD0", "TIME")])
+    assert await hass.config_entries.async_setup(entry.entry_id)
+    await hass.async_block_till_done()
+    assert hass.states.get("text.s7_300_timer").state == "00:01:30.500"
+    await hass.services.async_call(
+        "text",
+        "set_value",
+        {ATTR_ENTITY_ID: "text.s7_300_timer", ATTR_VALUE: "01:00:00.250"},
+        blocking=True,
+    )
+    assert sim.get_db(1, 0, 4) == struct.pack(">i", 3_600_250)
+    points = [{"address": "DB1.DBD8", "data_type": "TOD", "value": "06:30:00"}]
+    await call(hass, "write", entry, points=points)
+    assert sim.get_db(1, 8, 4) == struct.pack(">I", 23_400_000)

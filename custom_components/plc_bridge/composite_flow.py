@@ -119,17 +119,9 @@ class CompositeSteps(ConfigSubentryFlow):
                 self._parts, self._made = parts, []
                 return await self.async_step_composite_part()
         fields: dict[vol.Marker, Any] = {}
-        types = list(self._client.data_types)
         for role in ROLES[platform]:
             fields[vol.Optional(role)] = TextSelector()
-            fields[vol.Optional(f"{role}{TYPE_SUFFIX}")] = SelectSelector(
-                SelectSelectorConfig(
-                    options=types,
-                    translation_key=CONF_DATA_TYPE,
-                    mode=SelectSelectorMode.DROPDOWN,
-                    custom_value=True,
-                )
-            )
+            fields[vol.Optional(f"{role}{TYPE_SUFFIX}")] = data_types(self._client)
         return self.async_show_form(
             step_id="composite_parts",
             data_schema=self.add_suggested_values_to_schema(vol.Schema(fields), user_input or {}),
@@ -270,14 +262,7 @@ class CompositeSteps(ConfigSubentryFlow):
         schema = vol.Schema(
             {
                 vol.Required(CONF_ADDRESS): TextSelector(),
-                vol.Optional(CONF_DATA_TYPE): SelectSelector(
-                    SelectSelectorConfig(
-                        options=list(self._client.data_types),
-                        translation_key=CONF_DATA_TYPE,
-                        mode=SelectSelectorMode.DROPDOWN,
-                        custom_value=True,
-                    )
-                ),
+                vol.Optional(CONF_DATA_TYPE): data_types(self._client),
             }
         )
         return self.async_show_form(
@@ -308,6 +293,18 @@ class CompositeSteps(ConfigSubentryFlow):
             for other, data in self._points.items()
             if other != point_id and entity_of(data) == entity
         ]
+
+
+def data_types(client: type[PlcClient]) -> SelectSelector:
+    """Return a part's data type field: the vendor's types, or one typed (its parser checks it)."""
+    return SelectSelector(
+        SelectSelectorConfig(
+            options=list(client.data_types),
+            translation_key=CONF_DATA_TYPE,
+            mode=SelectSelectorMode.DROPDOWN,
+            custom_value=True,
+        )
+    )
 
 
 def entity_of(data: dict[str, Any]) -> tuple[str, str]:

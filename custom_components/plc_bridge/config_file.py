@@ -191,6 +191,8 @@ def load_config(text: str, version: int) -> ConfigFile:
     refused, an older one is created at its own version and migrated as stored entries are.
     """
     try:
+        if (alias := _first_alias(text)) is not None:
+            raise ConfigFileError("config_alias", line=str(alias))
         document = yaml.safe_load(text)
     except yaml.YAMLError as err:
         mark = getattr(err, "problem_mark", None)
@@ -224,6 +226,17 @@ def load_config(text: str, version: int) -> ConfigFile:
             for subentry in document["subentries"]
         ],
     )
+
+
+def _first_alias(text: str) -> int | None:
+    """Return the line of the text's first alias of an anchor, None when it has none.
+
+    An export never writes one; a few lines of them stand for a tree no memory holds.
+    """
+    for event in yaml.parse(text, Loader=yaml.SafeLoader):
+        if isinstance(event, yaml.AliasEvent):
+            return int(event.start_mark.line) + 1
+    return None
 
 
 def check_addresses(client: type[PlcClient], pasted: ConfigFile) -> None:

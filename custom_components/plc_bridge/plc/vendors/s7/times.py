@@ -14,6 +14,7 @@ from decimal import Decimal
 import math
 
 from ...codec import check_integer, local_time
+from ...durations import clock_duration
 from ...errors import PlcProtocolError, PlcValueError
 from ...types import Value
 
@@ -90,7 +91,12 @@ def _seconds(milliseconds: int) -> str:
 
 
 def _milliseconds(value: Value, what: str) -> int:
-    """Return a duration (timedelta, or seconds as a number or text) in whole milliseconds."""
+    """Return a duration (timedelta, seconds as a number or text, hh:mm:ss.zzz) in whole ms.
+
+    The clock text is what a duration on the text platform shows: it takes it back.
+    """
+    if isinstance(value, str) and (clock := clock_duration(value)) is not None:
+        value = clock
     if isinstance(value, timedelta):
         return round(value / timedelta(milliseconds=1))
     if isinstance(value, int) and not isinstance(value, bool) and abs(value) <= 10**12:
@@ -102,7 +108,7 @@ def _milliseconds(value: Value, what: str) -> int:
         with suppress(ValueError):
             seconds = float(value.strip()) * 1000
     if not math.isfinite(seconds):
-        raise PlcValueError(f"{what} takes a duration in seconds, not {value!r}")
+        raise PlcValueError(f"{what} takes a duration in seconds or as hh:mm:ss.zzz, not {value!r}")
     return round(seconds)
 
 
