@@ -6,15 +6,16 @@ from typing import Any
 
 from homeassistant.const import ATTR_DEVICE_CLASS, ATTR_UNIT_OF_MEASUREMENT
 from homeassistant.core import HomeAssistant
-from homeassistant.helpers import entity_registry as er
+from homeassistant.helpers import entity_registry as er, issue_registry as ir
 from pytest_homeassistant_custom_component.common import MockConfigEntry
 
 from custom_components.plc_bridge.const import DOMAIN
 from custom_components.plc_bridge.migration import kept_duration
 from simulators.plcnext import PlcnextSimulator
+from simulators.s7_smart import S7SmartSimulator
 from simulators.tecomat import TecomatSimulator
 
-from .ha_fixtures import DEVICE_ID, PointData, device, point, set_up
+from .ha_fixtures import DEVICE_ID, POINTS, PointData, device, point, set_up, sim_data
 from .plcnext_ha_fixtures import PLCNEXT_ENTRY_ID, plcnext_data
 from .tecomat_ha_fixtures import TECOMAT_ENTRY_ID, TECOMAT_SERIAL, tecomat_data
 
@@ -73,6 +74,31 @@ async def test_tecomat_times_keep_their_text(
     assert ATTR_DEVICE_CLASS not in time.attributes
     assert hass.states.get("text.old_tod").state == "07:30:00.000"
     assert registry.async_get_entity_id("text", DOMAIN, f"{TECOMAT_SERIAL}_tod") == "text.old_tod"
+    assert told_of_seconds(hass, entry)
+
+
+def told_of_seconds(hass: HomeAssistant, entry: MockConfigEntry) -> bool:
+    """True when the entry's issue says the actions now take seconds (kept across restarts)."""
+    issue = ir.async_get(hass).async_get_issue(DOMAIN, f"times_in_seconds_{entry.entry_id}")
+    return issue is not None and issue.is_persistent
+
+
+async def test_other_families_are_not_told(
+    hass: HomeAssistant, s7_smart_sim: S7SmartSimulator
+) -> None:
+    """An S7-200 SMART entry of 2.1 is migrated too, with nothing to tell about times."""
+    entry = MockConfigEntry(
+        domain=DOMAIN,
+        title="Old PLC",
+        data=sim_data(s7_smart_sim),
+        subentries_data=[device(POINTS, title="Old PLC")],
+        version=2,
+        minor_version=1,
+    )
+    entry.add_to_hass(hass)
+    await set_up(hass, entry)
+    assert entry.minor_version == 2
+    assert not told_of_seconds(hass, entry)
 
 
 async def test_plcnext_times_keep_their_counts(
@@ -115,6 +141,7 @@ async def test_plcnext_times_keep_their_counts(
     assert setting.attributes["max"] == 100_000
     assert hass.states.get("sensor.old_uptime").state == "5000000000"
     assert hass.states.get("sensor.old_shifted").state == "90005"
+    assert told_of_seconds(hass, entry)
 
 
 def test_kept_duration() -> None:

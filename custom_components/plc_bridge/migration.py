@@ -34,6 +34,7 @@ from .const import (
 )
 from .conversion import LINEAR_KEYS
 from .duration_units import UNITS
+from .repairs import TIMES_IN_SECONDS, async_raise_issue
 
 TECOMAT_TIMES = ("TIME", "TOD", "TIME_OF_DAY")
 PLCNEXT_COUNTS = {"TIME": ("DINT", 1e-3), "LTIME": ("LINT", 1e-9)}
@@ -100,6 +101,10 @@ def async_migrate_durations(hass: HomeAssistant, entry: ConfigEntry[Any]) -> Non
         if subentry.subentry_type == SUBENTRY_DEVICE and kept != points:
             data = {**subentry.data, CONF_POINTS: kept}
             hass.config_entries.async_update_subentry(entry, subentry, data=data)
+    if vendor in ("tecomat", "plcnext"):
+        # The read and write actions now take and give seconds where they took milliseconds
+        # (PLCnext) or text (TecoApi): automations are out of the migration's reach, so say so.
+        async_raise_issue(hass, entry, TIMES_IN_SECONDS)
     hass.config_entries.async_update_entry(entry, minor_version=2)
 
 

@@ -25,7 +25,9 @@ CERTIFICATE_CHANGED = "certificate_changed"
 SESSION_CONFLICT = "session_conflict"
 PLAIN_PASSWORD = "plain_password"
 """Basic authentication over plain HTTP: the password crosses the network readable."""
-ISSUES = (TLS_OFF, CERTIFICATE_CHANGED, SESSION_CONFLICT, PLAIN_PASSWORD)
+TIMES_IN_SECONDS = "times_in_seconds"
+"""Raised once by the migration to 2.2 (TecoApi, PLCnext): kept until the user dismisses it."""
+ISSUES = (TLS_OFF, CERTIFICATE_CHANGED, SESSION_CONFLICT, PLAIN_PASSWORD, TIMES_IN_SECONDS)
 UNKNOWN_ADDRESS = "unknown_address"
 """One issue per point whose address the PLC does not know (typically a renamed variable)."""
 EXPOSE_FAILED = "expose_failed"
@@ -46,6 +48,7 @@ def async_raise_issue(hass: HomeAssistant, entry: PlcBridgeConfigEntry, key: str
         issue_id(entry, key),
         is_fixable=key == CERTIFICATE_CHANGED,
         severity=ir.IssueSeverity.ERROR if key == CERTIFICATE_CHANGED else ir.IssueSeverity.WARNING,
+        is_persistent=key == TIMES_IN_SECONDS,  # the others are raised again by each setup
         translation_key=key,
         translation_placeholders={"title": entry.title, "host": str(entry.data[CONF_HOST])},
         data={"entry_id": entry.entry_id},
