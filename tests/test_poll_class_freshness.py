@@ -6,10 +6,14 @@ from freezegun.api import FrozenDateTimeFactory
 from homeassistant.const import STATE_UNAVAILABLE
 from homeassistant.core import HomeAssistant
 
+from custom_components.plc_bridge.availability import (
+    CONF_AVAILABILITY_ADDRESS,
+    CONF_AVAILABILITY_DATA_TYPE,
+)
 from custom_components.plc_bridge.plc import Point
 from simulators.s7_smart import S7SmartSimulator
 
-from .ha_fixtures import make_entry, point
+from .ha_fixtures import add_entry, device, make_entry, point, sim_data
 from .test_poll_classes import reads, set_up_classes, tick
 
 __all__ = ["reads"]  # the fixture, used by name
@@ -43,3 +47,49 @@ async def test_a_recovered_link_reads_every_class(
     assert SLOW in reads[count]
     assert hass.states.get("sensor.s7_200_smart_outdoor").state == "6"
     assert all(SLOW not in polled for polled in reads[count + 1 :])  # then at its own pace
+
+
+async def test_a_machine_valid_again_shows_values_read_with_its_bit(
+    hass: HomeAssistant,
+    s7_smart_sim: S7SmartSimulator,
+    freezer: FrozenDateTimeFactory,
+    reads: list[list[Point]],
+) -> None:
+    """The slow points of a machine whose data turns valid are read in the poll that says so."""
+    boiler = device(
+        [
+            point("fast", "Fast", "sensor", "VW0", "signed", poll="fast"),
+            point("outdoor", "Outdoor", "sensor", "VW2", "signed", poll="slow"),
+        ],
+        subentry_id="boiler",
+        title="Boiler",
+    )
+    boiler["data"] = {
+        **boiler["data"],
+        CONF_AVAILABILITY_ADDRESS: "M0.0",
+        CONF_AVAILABILITY_DATA_TYPE: "signed",
+    }
+    s7_smart_sim.set("M0.0", 1)
+    s7_smart_sim.set("VW2", 5)
+    entry = add_entry(
+        hass,
+        title="S7-200 SMART",
+        entry_id="01JPLCBR1DGE0000000000FRSH",
+        unique_id="plc-bridge-fresh",
+        data=sim_data(s7_smart_sim),
+        subentries=[boiler],
+    )
+    await set_up_classes(hass, freezer, entry)
+    await tick(hass, freezer, 3)
+    assert hass.states.get("sensor.boiler_outdoor").state == "5"
+    s7_smart_sim.set("M0.0", 0)  # the remote station drops out: its inputs read 0
+    s7_smart_sim.set("VW2", 0)
+    await tick(hass, freezer, 2)
+    assert hass.states.get("sensor.boiler_outdoor").state == STATE_UNAVAILABLE
+    s7_smart_sim.set("M0.0", 1)
+    s7_smart_sim.set("VW2", 7)
+    await tick(hass, freezer, 1)
+    assert hass.states.get("sensor.boiler_outdoor").state == "7"
+    count = len(reads)
+    await tick(hass, freezer, 3)
+    assert all(SLOW not in polled for polled in reads[count:])  # then at its own pace

@@ -116,6 +116,9 @@ class PlcCoordinator(PollingCoordinator):
         )
         self.write_guard = WriteGuard(self.client, self.read_only_points)
         self.availability.configure(self.config_entry.subentries.values())
+        self._machines: dict[str, set[Point]] = {}
+        for config in points.values():
+            self._machines.setdefault(config.subentry_id, set()).add(config.point)
         # Availability points first: a paced first poll reads them with the first points.
         self._poll = list(
             dict.fromkeys([*self.availability.points.values(), *self.points.values()])
@@ -156,6 +159,9 @@ class PlcCoordinator(PollingCoordinator):
         self._watch_addresses(result, self._failing)
         if self.availability.watch(result.values):
             self._changed = None  # a machine's entities changed availability: update them all
+        for machine in self.availability.invalid:
+            # Read whatever their class, so the poll that finds its data valid again reads them.
+            self._asked.update(self._machines.get(machine, set()) & result.values.keys())
         return result
 
     def _watch_points(self, result: ReadResult) -> None:
