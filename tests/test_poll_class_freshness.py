@@ -93,3 +93,37 @@ async def test_a_machine_valid_again_shows_values_read_with_its_bit(
     count = len(reads)
     await tick(hass, freezer, 3)
     assert all(SLOW not in polled for polled in reads[count:])  # then at its own pace
+
+
+async def test_a_data_valid_address_shown_slow_is_read_at_every_poll(
+    hass: HomeAssistant, s7_smart_sim: S7SmartSimulator, freezer: FrozenDateTimeFactory
+) -> None:
+    """A machine's data-valid bit is read at every poll, though a slow point of it shows it."""
+    boiler = device(
+        [
+            point("fast", "Fast", "sensor", "VW0", "signed", poll="fast"),
+            point("link", "Station", "binary_sensor", "M0.0", "signed", poll="slow"),
+        ],
+        subentry_id="boiler",
+        title="Boiler",
+    )
+    boiler["data"] = {
+        **boiler["data"],
+        CONF_AVAILABILITY_ADDRESS: "M0.0",
+        CONF_AVAILABILITY_DATA_TYPE: "signed",
+    }
+    s7_smart_sim.set("M0.0", 1)
+    entry = add_entry(
+        hass,
+        title="S7-200 SMART",
+        entry_id="01JPLCBR1DGE0000000000FRSH",
+        unique_id="plc-bridge-fresh",
+        data=sim_data(s7_smart_sim),
+        subentries=[boiler],
+    )
+    await set_up_classes(hass, freezer, entry)
+    await tick(hass, freezer, 3)
+    assert hass.states.get("sensor.boiler_fast").state == "0"
+    s7_smart_sim.set("M0.0", 0)
+    await tick(hass, freezer, 1)
+    assert hass.states.get("sensor.boiler_fast").state == STATE_UNAVAILABLE

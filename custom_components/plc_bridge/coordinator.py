@@ -123,7 +123,7 @@ class PlcCoordinator(PollingCoordinator):
         self._poll = list(
             dict.fromkeys([*self.availability.points.values(), *self.points.values()])
         )
-        classes = point_classes(points)
+        classes = point_classes(points, self.availability.points.values())
         options = self.config_entry.options
         self._schedule.configure(
             classes, class_intervals(type(self.client), options, classes, self._poll)
