@@ -15,6 +15,7 @@ from homeassistant.core import HomeAssistant, callback
 from homeassistant.helpers import device_registry as dr
 from homeassistant.helpers.aiohttp_client import async_get_clientsession
 from homeassistant.helpers.service_info.dhcp import DhcpServiceInfo
+from homeassistant.util.network import is_ip_address
 import voluptuous as vol
 
 from .connection_form import vendor_schema
@@ -78,6 +79,10 @@ class DiscoveryFlow(ConfigFlow):
         mac = dr.format_mac(discovery_info.macaddress)
         host = discovery_info.ip
         if (entry := entry_of_mac(self.hass, mac)) is not None and entry.unique_id is not None:
+            if not is_ip_address(str(entry.data.get(CONF_HOST, ""))):
+                # Set up by name: the name follows the PLC, and a certificate checked against
+                # it would fail for the address.
+                return self.async_abort(reason="already_configured")
             port = entry.data.get(CONF_PORT)
             if entry.unique_id == f"{entry.data.get(CONF_HOST)}:{port}":
                 # Known by its address (it reports no serial): the identity moves with it.
