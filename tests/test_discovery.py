@@ -306,3 +306,21 @@ async def test_known_plc_by_name_keeps_its_name(
     assert result["reason"] == "already_configured"
     assert entry.data[CONF_HOST] == "plc1.factory.lan"
     assert tecomat_sim.calls["GetInfo"] == 0
+
+
+async def test_retrying_plc_by_name_set_up_when_seen(
+    hass: HomeAssistant, ports: Ports, s7_ha_sims: SimFactory
+) -> None:
+    """A PLC set up by name and waiting to retry is set up again when seen; its name stays."""
+    sim = await s7_ha_sims(slot=5)  # refuses the entry's slot 1 until it is "repaired"
+    data = s7_data(sim) | {CONF_HOST: "localhost", CONF_MAC: SIEMENS_MAC}
+    entry = add_entry(hass, title="S7", entry_id="S7NAMED", unique_id=sim.serial, data=data)
+    await hass.config_entries.async_setup(entry.entry_id)
+    await hass.async_block_till_done()
+    assert entry.state is ConfigEntryState.SETUP_RETRY
+    sim.slot = 1
+    result = await dhcp(hass, SIEMENS_MAC)
+    await hass.async_block_till_done()
+    assert result["reason"] == "already_configured"
+    assert entry.state is ConfigEntryState.LOADED
+    assert entry.data[CONF_HOST] == "localhost"
