@@ -3,7 +3,13 @@
 from __future__ import annotations
 
 from freezegun.api import FrozenDateTimeFactory
-from homeassistant.const import STATE_UNAVAILABLE
+from homeassistant.const import (
+    ATTR_ENTITY_ID,
+    SERVICE_TURN_ON,
+    STATE_OFF,
+    STATE_ON,
+    STATE_UNAVAILABLE,
+)
 from homeassistant.core import HomeAssistant
 
 from custom_components.plc_bridge.availability import (
@@ -127,3 +133,28 @@ async def test_a_data_valid_address_shown_slow_is_read_at_every_poll(
     s7_smart_sim.set("M0.0", 0)
     await tick(hass, freezer, 1)
     assert hass.states.get("sensor.boiler_fast").state == STATE_UNAVAILABLE
+
+
+async def test_a_written_part_reads_back_its_whole_entity(
+    hass: HomeAssistant,
+    s7_smart_sim: S7SmartSimulator,
+    freezer: FrozenDateTimeFactory,
+    reads: list[list[Point]],
+) -> None:
+    """A slow switch's command written: the refresh reads its state part too, not in 60 s."""
+    points = [
+        point("fast", "Fast", "sensor", "VW0", "signed", poll="fast"),
+        point("p1", "Burner", "switch", "I0.3", "signed", role="state", poll="slow"),
+        point("p2", "Burner", "switch", "M1.0", "signed", role="command", poll="slow"),
+    ]
+    entry = make_entry(hass, s7_smart_sim, points)
+    await set_up_classes(hass, freezer, entry)
+    await tick(hass, freezer, 3)
+    assert hass.states.get("switch.s7_200_smart_burner").state == STATE_OFF
+    s7_smart_sim.set("I0.3", 1)  # the PLC follows the command
+    await hass.services.async_call(
+        "switch", SERVICE_TURN_ON, {ATTR_ENTITY_ID: "switch.s7_200_smart_burner"}, blocking=True
+    )
+    await hass.async_block_till_done()
+    assert Point("I0.3", "signed") in reads[-1]
+    assert hass.states.get("switch.s7_200_smart_burner").state == STATE_ON

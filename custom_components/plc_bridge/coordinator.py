@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from collections import deque
-from collections.abc import Mapping
+from collections.abc import Iterable, Mapping
 from datetime import datetime, timedelta
 from typing import TYPE_CHECKING
 
@@ -250,14 +250,17 @@ class PlcCoordinator(PollingCoordinator):
             self._show(taken)
         return results
 
-    async def async_write(self, values: Mapping[Point, Value]) -> None:
+    async def async_write(
+        self, values: Mapping[Point, Value], *, read_back: Iterable[Point] = ()
+    ) -> None:
         """Write the values in one call, then refresh; any point the PLC refused is an error.
 
         The points the PLC took show their new value at once; the refresh that follows (held
-        back by the debouncer after a burst of writes) reads back what the PLC really holds.
+        back by the debouncer after a burst of writes) reads back what the PLC really holds:
+        the written points and `read_back` (an entity's other parts), whatever their class.
         """
         results = await self.async_write_values(values)
-        self.ask_back(values)  # read back by the refresh, whatever their class
+        self.ask_back([*values, *read_back])
         await self.async_request_refresh()
         failed = [named(point, res.error) for point, res in results.items() if res.error]
         if failed:
