@@ -222,39 +222,44 @@ async def test_known_plc_moves(
     assert not hass.config_entries.flow.async_progress()
 
 
+@pytest.mark.filterwarnings("ignore:A test tried to use socket.socket.connect")  # 127.0.0.2
 @pytest.mark.parametrize("retrying", [False, True])
 async def test_set_up_plc_moves(
-    hass: HomeAssistant, ports: Ports, s7_ha_sims: SimFactory, retrying: bool
+    hass: HomeAssistant,
+    ports: Ports,
+    s7_ha_sims: SimFactory,
+    setups: list[str],
+    retrying: bool,
 ) -> None:
-    """A PLC set up (or waiting to retry) seen at a new address is reloaded there, once.
+    """A PLC set up (or waiting to retry) seen at a new address is set up there, once.
 
-    Loaded: by its update listener (the flow passes reload_on_update=False); waiting to retry
-    (its CPU refused the slot at setup): by Home Assistant, as for any discovery. Its device
-    carries the MAC noted at discovery.
+    Loaded: reloaded by its update listener (the flow passes reload_on_update=False); waiting
+    to retry (nothing answered at its old address): by Home Assistant, as for any discovery.
+    Its device carries the MAC noted at discovery. Tests reach 127.0.0.1 only: the loaded PLC
+    moves away from it, the retrying one to it.
     """
     sim = await s7_ha_sims()
-    data = s7_data(sim) | {CONF_HOST: "localhost", CONF_MAC: SIEMENS_MAC}
+    old, new = ("127.0.0.2", "127.0.0.1") if retrying else ("127.0.0.1", "127.0.0.2")
+    data = s7_data(sim) | {CONF_HOST: old, CONF_MAC: SIEMENS_MAC}
     entry = add_entry(hass, title="S7", entry_id="S7MOVES", unique_id=sim.serial, data=data)
-    sim.slot = 5 if retrying else 1
     await hass.config_entries.async_setup(entry.entry_id)
     await hass.async_block_till_done()
-    if retrying:
-        assert entry.state is ConfigEntryState.SETUP_RETRY
-        sim.slot, before = 1, sim.connections
-        await dhcp(hass, SIEMENS_MAC)
-        await hass.async_block_till_done()
-        assert entry.state is ConfigEntryState.LOADED
-        assert sim.connections == before + 1
-        return
-    devices = dr.async_entries_for_config_entry(dr.async_get(hass), entry.entry_id)
-    assert [(dr.CONNECTION_NETWORK_MAC, SIEMENS_MAC)] in [list(d.connections) for d in devices]
+    assert entry.state is (ConfigEntryState.SETUP_RETRY if retrying else ConfigEntryState.LOADED)
+    if not retrying:
+        devices = dr.async_entries_for_config_entry(dr.async_get(hass), entry.entry_id)
+        connections = [list(device.connections) for device in devices]
+        assert [(dr.CONNECTION_NETWORK_MAC, SIEMENS_MAC)] in connections
     before = sim.connections
-    result = await dhcp(hass, SIEMENS_MAC)
+    result = await dhcp(hass, SIEMENS_MAC, new)
     await hass.async_block_till_done()
     assert result["reason"] == "already_configured"
-    assert entry.data[CONF_HOST] == "127.0.0.1"
-    assert entry.state is ConfigEntryState.LOADED
-    assert sim.connections == before + 1  # the reload's connection; no probe's
+    assert entry.data[CONF_HOST] == new
+    assert setups == [entry.entry_id] * 2
+    if retrying:
+        assert entry.state is ConfigEntryState.LOADED
+        assert sim.connections == before + 1  # the setup's connection; no probe's
+    else:
+        assert sim.connections == before  # no probe
 
 
 async def test_configured_address_not_probed(
@@ -286,3 +291,36 @@ async def test_seen_twice(
     result = await dhcp(hass, TECO_MAC)
     assert result["reason"] == "already_in_progress"
     assert len(hass.config_entries.flow.async_progress()) == 1
+
+
+async def test_known_plc_by_name_keeps_its_name(
+    hass: HomeAssistant, ports: Ports, tecomat_sim: TecomatSimulator
+) -> None:
+    """A PLC set up by host name is not moved to the address seen: the name follows it.
+
+    An address in place of the name would break a certificate checked against the name.
+    """
+    ports(tecomat=tecomat_sim.port)
+    entry = known(hass, **{CONF_MAC: TECO_MAC, CONF_HOST: "plc1.factory.lan"})
+    result = await dhcp(hass, TECO_MAC)
+    assert result["reason"] == "already_configured"
+    assert entry.data[CONF_HOST] == "plc1.factory.lan"
+    assert tecomat_sim.calls["GetInfo"] == 0
+
+
+async def test_retrying_plc_by_name_set_up_when_seen(
+    hass: HomeAssistant, ports: Ports, s7_ha_sims: SimFactory
+) -> None:
+    """A PLC set up by name and waiting to retry is set up again when seen; its name stays."""
+    sim = await s7_ha_sims(slot=5)  # refuses the entry's slot 1 until it is "repaired"
+    data = s7_data(sim) | {CONF_HOST: "localhost", CONF_MAC: SIEMENS_MAC}
+    entry = add_entry(hass, title="S7", entry_id="S7NAMED", unique_id=sim.serial, data=data)
+    await hass.config_entries.async_setup(entry.entry_id)
+    await hass.async_block_till_done()
+    assert entry.state is ConfigEntryState.SETUP_RETRY
+    sim.slot = 1
+    result = await dhcp(hass, SIEMENS_MAC)
+    await hass.async_block_till_done()
+    assert result["reason"] == "already_configured"
+    assert entry.state is ConfigEntryState.LOADED
+    assert entry.data[CONF_HOST] == "localhost"

@@ -14,9 +14,13 @@ from homeassistant.helpers.entity import Entity
 import pytest
 from pytest_homeassistant_custom_component.common import MockConfigEntry
 
+from custom_components.plc_bridge.plc import Point
 from simulators.s7_smart import S7SmartSimulator
 
-from .ha_fixtures import poll
+from .ha_fixtures import make_entry, point, poll
+from .test_poll_classes import reads, set_up_classes, tick
+
+__all__ = ["reads"]  # the fixture, used by name
 
 CONNECTIVITY = "binary_sensor.s7_200_smart_connectivity"
 DURATION = "sensor.s7_200_smart_poll_duration"
@@ -155,3 +159,43 @@ async def test_poll_duration_ignores_noise(
         with state_writes() as writes:
             await poll(hass, freezer)
         assert DURATION not in writes
+
+
+class ClassClock:
+    """A perf_counter for the client: a poll of one point takes 0.05 s, of more 3 s (paced)."""
+
+    def __init__(self, reads: list[list[Point]]) -> None:
+        """Time each poll by the points it reads (the last in `reads`)."""
+        self.reads = reads
+        self.now = 0.0
+        self.started = False
+
+    def perf_counter(self) -> float:
+        """Return the start of a read, then its end."""
+        if self.started:
+            self.now += 3.0 if len(self.reads[-1]) > 1 else 0.05
+        self.started = not self.started
+        return self.now
+
+
+@pytest.mark.usefixtures("entity_registry_enabled_by_default")
+async def test_poll_duration_quiet_over_poll_classes(
+    hass: HomeAssistant,
+    s7_smart_sim: S7SmartSimulator,
+    freezer: FrozenDateTimeFactory,
+    reads: list[list[Point]],
+) -> None:
+    """Quick polls of the fast points between long ones of every class write no duration."""
+    points = [
+        point("fast", "Fast", "sensor", "VW0", "signed", poll="fast"),
+        point("other", "Other", "sensor", "VW2", "signed"),
+    ]
+    entry = make_entry(hass, s7_smart_sim, points)
+    await set_up_classes(hass, freezer, entry)  # fast every second, normal every 10 s
+    with patch("custom_components.plc_bridge.plc.client.time", ClassClock(reads)):
+        await tick(hass, freezer, 12)
+        assert hass.states.get(DURATION).state == "3.0"
+        with state_writes() as writes:
+            await tick(hass, freezer, 25)
+    assert DURATION not in writes
+    assert hass.states.get(DURATION).state == "3.0"

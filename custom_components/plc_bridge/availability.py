@@ -1,9 +1,10 @@
 """Availability per machine: an address whose value says whether the machine's data is valid.
 
-A machine (device subentry) may name one point, read in the same poll as its other points:
-its data is valid while that point reads true or non-zero, or, where a list of values is
-given, one of them. While it reads "not valid" or fails, every entity of the machine is
-unavailable; the log says so once on each change.
+A machine (device subentry) may name one point, read at every poll (and, while it says not
+valid, the machine's points with it, whatever their poll class: coordinator.py). Its data is
+valid while that point reads true or non-zero, or, where a list of values is given, one of
+them. While it reads "not valid" or fails, every entity of the machine is unavailable; the log
+says so once on each change.
 """
 
 from __future__ import annotations

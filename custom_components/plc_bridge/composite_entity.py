@@ -141,9 +141,9 @@ class PlcCompositeEntity(PlcEntity):
         return tuple(self.result(role) for role in sorted(self.parts))
 
     async def async_write_parts(self, values: dict[str, Value]) -> None:
-        """Write parts by role in one request (the coordinator's write guard checks each)."""
+        """Write parts by role in one request (the write guard checks each); read all parts back."""
         await self.coordinator.async_write(
-            {self.parts[role].point: values[role] for role in values}
+            {self.parts[role].point: values[role] for role in values}, read_back=self.read_points()
         )
 
     async def async_command(self, role: str) -> None:

@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from collections import deque
-from collections.abc import Mapping
+from collections.abc import Iterable, Mapping
 from datetime import datetime, timedelta
 from typing import TYPE_CHECKING
 
@@ -116,11 +116,14 @@ class PlcCoordinator(PollingCoordinator):
         )
         self.write_guard = WriteGuard(self.client, self.read_only_points)
         self.availability.configure(self.config_entry.subentries.values())
+        self._machines: dict[str, set[Point]] = {}
+        for config in points.values():
+            self._machines.setdefault(config.subentry_id, set()).add(config.point)
         # Availability points first: a paced first poll reads them with the first points.
         self._poll = list(
             dict.fromkeys([*self.availability.points.values(), *self.points.values()])
         )
-        classes = point_classes(points)
+        classes = point_classes(points, self.availability.points.values())
         options = self.config_entry.options
         self._schedule.configure(
             classes, class_intervals(type(self.client), options, classes, self._poll)
@@ -156,6 +159,9 @@ class PlcCoordinator(PollingCoordinator):
         self._watch_addresses(result, self._failing)
         if self.availability.watch(result.values):
             self._changed = None  # a machine's entities changed availability: update them all
+        for machine in self.availability.invalid:
+            # Read whatever their class, so the poll that finds its data valid again reads them.
+            self._asked.update(self._machines.get(machine, set()) & result.values.keys())
         return result
 
     def _watch_points(self, result: ReadResult) -> None:
@@ -244,14 +250,17 @@ class PlcCoordinator(PollingCoordinator):
             self._show(taken)
         return results
 
-    async def async_write(self, values: Mapping[Point, Value]) -> None:
+    async def async_write(
+        self, values: Mapping[Point, Value], *, read_back: Iterable[Point] = ()
+    ) -> None:
         """Write the values in one call, then refresh; any point the PLC refused is an error.
 
         The points the PLC took show their new value at once; the refresh that follows (held
-        back by the debouncer after a burst of writes) reads back what the PLC really holds.
+        back by the debouncer after a burst of writes) reads back what the PLC really holds:
+        the written points and `read_back` (an entity's other parts), whatever their class.
         """
         results = await self.async_write_values(values)
-        self.ask_back(values)  # read back by the refresh, whatever their class
+        self.ask_back([*values, *read_back])
         await self.async_request_refresh()
         failed = [named(point, res.error) for point, res in results.items() if res.error]
         if failed:

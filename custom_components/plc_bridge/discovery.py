@@ -15,6 +15,7 @@ from homeassistant.core import HomeAssistant, callback
 from homeassistant.helpers import device_registry as dr
 from homeassistant.helpers.aiohttp_client import async_get_clientsession
 from homeassistant.helpers.service_info.dhcp import DhcpServiceInfo
+from homeassistant.util.network import is_ip_address
 import voluptuous as vol
 
 from .connection_form import vendor_schema
@@ -78,11 +79,16 @@ class DiscoveryFlow(ConfigFlow):
         mac = dr.format_mac(discovery_info.macaddress)
         host = discovery_info.ip
         if (entry := entry_of_mac(self.hass, mac)) is not None and entry.unique_id is not None:
+            await self.async_set_unique_id(entry.unique_id, raise_on_progress=False)
+            if not is_ip_address(str(entry.data.get(CONF_HOST, ""))):
+                # Set up by name: the name follows the PLC, and a certificate checked against
+                # it would fail for the address. One waiting to retry is reloaded.
+                self._abort_if_unique_id_configured()
             port = entry.data.get(CONF_PORT)
             if entry.unique_id == f"{entry.data.get(CONF_HOST)}:{port}":
                 # Known by its address (it reports no serial): the identity moves with it.
                 self.hass.config_entries.async_update_entry(entry, unique_id=f"{host}:{port}")
-            await self.async_set_unique_id(entry.unique_id, raise_on_progress=False)
+                await self.async_set_unique_id(entry.unique_id, raise_on_progress=False)
             # A flow reloading an entry that has an update listener is logged (2026.10) and an
             # error from Home Assistant 2026.12: ours (`async_update_entry`) reloads a loaded
             # entry for its new host, so reload_on_update=False. One waiting to retry its setup

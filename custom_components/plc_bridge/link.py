@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from collections import deque
 from collections.abc import Callable
 from dataclasses import dataclass
 from datetime import datetime
@@ -134,33 +135,50 @@ class PlcLinkCount(PlcEntity, SensorEntity):
         return self.native_value
 
 
-class PlcPollRequests(PlcEntity, SensorEntity):
-    """The most requests a successful poll took within the last REQUEST_WINDOW.
+class RecentPeak:
+    """The largest value successful polls gave within the last REQUEST_WINDOW seconds.
 
-    Some vendors read the PLC's status at their own pace (the S7: once a minute), so one poll
-    in several takes more requests: the peak stays shown, and the state is written only when
-    the plan of the read changes, not twice at every status read.
+    Polls differ by design: a status read at the vendor's own pace (the S7: once a minute),
+    or poll classes (a poll of every class takes longer than one of the fast points): the
+    peak stays shown, so a state is written when the polls change, not at every such switch.
     """
+
+    def __init__(self, coordinator: PlcCoordinator) -> None:
+        """Follow the coordinator's client's polls."""
+        self._coordinator = coordinator
+        self._polls = -1
+        self._seen: deque[tuple[float, float]] = deque()  # (loop time, value), values falling
+
+    def take(self, value: float) -> float | None:
+        """Take the value of a successful poll newer than the last; return the peak (None: none)."""
+        metrics = self._coordinator.client.metrics
+        if metrics.polls != self._polls and self._coordinator.last_update_success:
+            self._polls = metrics.polls
+            now = self._coordinator.hass.loop.time()
+            while self._seen and self._seen[-1][1] <= value:
+                self._seen.pop()
+            self._seen.append((now, value))
+            while self._seen[0][0] < now - REQUEST_WINDOW:
+                self._seen.popleft()
+        return self._seen[0][1] if self._seen else None
+
+
+class PlcPollRequests(PlcEntity, SensorEntity):
+    """The most requests a successful poll took within the last REQUEST_WINDOW (RecentPeak)."""
 
     entity_description = POLL_REQUESTS
 
     def __init__(self, entry: PlcBridgeConfigEntry) -> None:
         """Bind the sensor to the client's poll metrics (the setup's poll just succeeded)."""
         super().__init__(entry, POLL_REQUESTS.key)
-        self._polls = -1
+        self._recent = RecentPeak(self.coordinator)
         self._peak = 0
-        self._since = 0.0
         self._measure()
 
     def _measure(self) -> None:
         """Take the request count of a successful poll newer than the last one seen."""
-        metrics = self.coordinator.client.metrics
-        if metrics.polls == self._polls or not self.coordinator.last_update_success:
-            return
-        self._polls = metrics.polls
-        now = self.coordinator.hass.loop.time()
-        if metrics.last_poll_requests >= self._peak or now - self._since > REQUEST_WINDOW:
-            self._peak, self._since = metrics.last_poll_requests, now
+        requests = self.coordinator.client.metrics.last_poll_requests
+        self._peak = int(self._recent.take(requests) or 0)
 
     @property
     def native_value(self) -> int:
@@ -174,7 +192,7 @@ class PlcPollRequests(PlcEntity, SensorEntity):
 
 
 class PlcPollDuration(PlcEntity, SensorEntity):
-    """How long the last poll took, in seconds.
+    """The longest a successful poll took within the last REQUEST_WINDOW (RecentPeak), in s.
 
     Shown anew only when it moves by POLL_STEP or POLL_SHARE of itself, whichever is more:
     a duration varies by milliseconds from poll to poll (the network, the PLC's own cycle),
@@ -186,13 +204,16 @@ class PlcPollDuration(PlcEntity, SensorEntity):
     def __init__(self, entry: PlcBridgeConfigEntry) -> None:
         """Bind the sensor to the client's poll metrics."""
         super().__init__(entry, POLL_DURATION.key)
+        self._recent = RecentPeak(self.coordinator)
         self._duration: float | None = None
         self._measure()
 
     def _measure(self) -> None:
-        """Take the duration of the last poll if it moved past the threshold."""
-        duration = self.coordinator.client.metrics.last_poll_ms / 1000
+        """Take the longest recent poll's duration if it moved past the threshold."""
+        duration = self._recent.take(self.coordinator.client.metrics.last_poll_ms / 1000)
         shown = self._duration
+        if duration is None:
+            return
         if shown is None or abs(duration - shown) >= max(POLL_STEP, POLL_SHARE * shown):
             self._duration = round(duration, 2)
 

@@ -84,7 +84,8 @@ class PlcBridgeOptionsFlow(OptionsFlow):
         availability.configure(self.config_entry.subentries.values())
         points = list(dict.fromkeys(c.point for c in configs.values()))
         polled = list(dict.fromkeys([*availability.points.values(), *points]))
-        minimums = class_minimums(client, point_classes(configs), polled)
+        classes = point_classes(configs, availability.points.values())
+        minimums = class_minimums(client, classes, polled)
         options = self.config_entry.options
         current = {key: float(options[key]) for key in INTERVALS if key in options}
         errors: dict[str, str] = {}

@@ -8,7 +8,7 @@ entities of those points: the others keep their state, and the entry is not relo
 from __future__ import annotations
 
 import asyncio
-from collections.abc import Callable, Mapping
+from collections.abc import Callable, Iterable, Mapping
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
@@ -75,8 +75,14 @@ class PointConfig:
         return bool(self.data.get(CONF_READ_ONLY, False))
 
 
-def point_classes(configs: Mapping[str, PointConfig]) -> dict[Point, str]:
-    """Return each point's poll class; the parts of one entity share their fastest one."""
+def point_classes(
+    configs: Mapping[str, PointConfig], every_poll: Iterable[Point] = ()
+) -> dict[Point, str]:
+    """Return each point's poll class; the parts of one entity share their fastest one.
+
+    The points `every_poll` names (machines' data-valid addresses) get none: every poll reads
+    them, whatever class a point showing the same address has.
+    """
     classes: dict[Point, str] = {}
     for config in configs.values():
         known = classes.get(config.point, config.poll)
@@ -85,6 +91,8 @@ def point_classes(configs: Mapping[str, PointConfig]) -> dict[Point, str]:
         parts = [config.point for config in composite.parts.values()]
         shared = min((classes[point] for point in parts), key=POLL_CLASSES.index)
         classes |= dict.fromkeys(parts, shared)
+    for point in every_poll:
+        classes.pop(point, None)
     return classes
 
 

@@ -5,7 +5,7 @@ reads, in one planned read, the points of the classes due then, the points never
 those a write asks back. A class is due at the tick nearest its interval since it was last
 read. Points without a class (a machine's availability point) are read at every poll. Where
 every point has one class, every poll reads every point: a PLC without fast or slow points is
-polled as before poll classes existed.
+polled as before poll classes existed. The first poll after a failed one reads every point.
 """
 
 from __future__ import annotations

@@ -3,7 +3,8 @@
 Polls start an interval after the previous one started (at once when a slow one ran past it),
 a setup waits for a bounded first poll, points added by edits are read once the edits pause,
 and after a poll only the entities whose point changed (and the PLC's own) are updated. A poll
-reads the points whose poll class is due (poll_classes.py); the others keep their results.
+reads the points whose poll class is due (poll_classes.py); the others keep their results,
+except after a failed poll: the first good one reads every point.
 """
 
 from __future__ import annotations
@@ -120,7 +121,10 @@ class PollingCoordinator(DataUpdateCoordinator[ReadResult]):
         at = self._grid if self._grid is not None else int(now) + self._microsecond
         self._base, self._grid = at, None
         read = self.data.values if self.data is not None else {}
-        points, classes = self._schedule.due(self._poll, at, read, self._asked)
+        if self.last_update_success:
+            points, classes = self._schedule.due(self._poll, at, read, self._asked)
+        else:  # a recovery reads every point: any may have changed while the link was down
+            points, classes = self._poll, set(self._schedule.intervals)
         self._reading = True
         try:
             result = await self.client.read(points)
