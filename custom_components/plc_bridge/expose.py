@@ -109,6 +109,9 @@ class PlcExposes:
     def _start(self, config: ExposeConfig) -> Expose:
         """Follow one expose's entity (and resend its value periodically, if it asks)."""
         expose = self._exposes[config.subentry_id] = Expose(config)
+        # An issue raised before a reload or an edit goes at this expose's first write that works.
+        issue = expose_issue_id(self._entry, config.subentry_id)
+        expose.issue = ir.async_get(self._hass).async_get_issue(DOMAIN, issue) is not None
         expose.unsubscribe.append(
             async_track_state_change_event(
                 self._hass, [config.entity_id], partial(self._state_changed, expose)
@@ -280,7 +283,7 @@ class PlcExposes:
                 expose.config.point.address,
                 error,
             )
-        if expose.failures >= FAILURE_LIMIT and not expose.issue:
+        if expose.failures == FAILURE_LIMIT:  # an issue from before takes today's words
             expose.issue = True
             async_raise_expose_issue(
                 self._hass,

@@ -1,0 +1,73 @@
+"""Exposes whose writes fail, on the S7-200 SMART: issues across reloads and edits, retries."""
+
+from __future__ import annotations
+
+from freezegun.api import FrozenDateTimeFactory
+from homeassistant.core import HomeAssistant
+from homeassistant.helpers import issue_registry as ir
+import pytest
+from pytest_homeassistant_custom_component.common import MockConfigEntry
+
+from custom_components.plc_bridge.const import DOMAIN
+from custom_components.plc_bridge.expose import FAILURE_LIMIT
+from custom_components.plc_bridge.repairs import expose_issue_id
+from simulators.s7_smart import S7SmartSimulator
+from tests.ha_fixtures import make_entry, point, set_up
+
+from .expose_fixtures import add_expose, settle
+
+LEVEL = "input_number.level"
+WORD = ("VW120", "signed")
+
+
+@pytest.fixture
+def entry(hass: HomeAssistant, s7_smart_sim: S7SmartSimulator) -> MockConfigEntry:
+    """An S7-200 SMART entry with one polled point (not set up), and the level exposed."""
+    hass.states.async_set(LEVEL, "10")
+    return make_entry(hass, s7_smart_sim, [point("level", "Level", "sensor", "VW50", "signed")])
+
+
+async def fail_until_issue(
+    hass: HomeAssistant,
+    freezer: FrozenDateTimeFactory,
+    sim: S7SmartSimulator,
+    issues: ir.IssueRegistry,
+    issue: str,
+) -> None:
+    """Put the CPU in STOP and change the level until the expose's issue is raised."""
+    sim.mode = "STOP"
+    for value in range(FAILURE_LIMIT):
+        hass.states.async_set(LEVEL, str(20 + value))
+        await settle(hass, freezer, 2.0)
+    assert issues.async_get_issue(DOMAIN, issue) is not None
+
+
+@pytest.mark.parametrize("change", ["reload", "edit"])
+async def test_issue_from_before_a_reload_or_edit_cleared_on_success(  # noqa: PLR0917
+    hass: HomeAssistant,
+    freezer: FrozenDateTimeFactory,
+    entry: MockConfigEntry,
+    s7_smart_sim: S7SmartSimulator,
+    issue_registry: ir.IssueRegistry,
+    change: str,
+) -> None:
+    """An issue raised before the entry reloads (or the expose is edited) goes at the next write
+    that works: the expose running now knows of it."""
+    subentry_id = add_expose(hass, entry, LEVEL, WORD)
+    await set_up(hass, entry)
+    issue = expose_issue_id(entry, subentry_id)
+    await fail_until_issue(hass, freezer, s7_smart_sim, issue_registry, issue)
+    if change == "reload":
+        assert await hass.config_entries.async_reload(entry.entry_id)
+    else:
+        subentry = entry.subentries[subentry_id]
+        hass.config_entries.async_update_subentry(
+            entry, subentry, data={**subentry.data, "cooldown": 2.0}
+        )
+    await settle(hass, freezer, 5.0)
+    assert issue_registry.async_get_issue(DOMAIN, issue) is not None  # still failing
+    s7_smart_sim.mode = "RUN"
+    hass.states.async_set(LEVEL, "30")
+    await settle(hass, freezer, 5.0)
+    assert s7_smart_sim.get(*WORD) == 30
+    assert issue_registry.async_get_issue(DOMAIN, issue) is None
