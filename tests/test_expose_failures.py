@@ -9,7 +9,7 @@ import pytest
 from pytest_homeassistant_custom_component.common import MockConfigEntry
 
 from custom_components.plc_bridge.const import DOMAIN
-from custom_components.plc_bridge.expose import FAILURE_LIMIT
+from custom_components.plc_bridge.expose import FAILURE_LIMIT, RETRY_INTERVAL
 from custom_components.plc_bridge.repairs import expose_issue_id
 from simulators.s7_smart import S7SmartSimulator
 from tests.ha_fixtures import make_entry, point, set_up
@@ -71,3 +71,33 @@ async def test_issue_from_before_a_reload_or_edit_cleared_on_success(  # noqa: P
     await settle(hass, freezer, 5.0)
     assert s7_smart_sim.get(*WORD) == 30
     assert issue_registry.async_get_issue(DOMAIN, issue) is None
+
+
+async def test_failed_value_written_again_until_it_lands(
+    hass: HomeAssistant,
+    freezer: FrozenDateTimeFactory,
+    entry: MockConfigEntry,
+    s7_smart_sim: S7SmartSimulator,
+    issue_registry: ir.IssueRegistry,
+) -> None:
+    """A value the PLC did not take is not lost: with no further change of the entity it is
+    written again every RETRY_INTERVAL (one request), raising the issue if that keeps failing,
+    until the PLC takes it; then nothing more is sent."""
+    subentry_id = add_expose(hass, entry, LEVEL, WORD)
+    await set_up(hass, entry)
+    s7_smart_sim.mode = "STOP"
+    hass.states.async_set(LEVEL, "25")
+    await settle(hass, freezer)
+    for _ in range(FAILURE_LIMIT - 1):
+        writes = s7_smart_sim.calls["write"]
+        await settle(hass, freezer, RETRY_INTERVAL)
+        assert s7_smart_sim.calls["write"] == writes + 1
+    assert issue_registry.async_get_issue(DOMAIN, expose_issue_id(entry, subentry_id))
+    s7_smart_sim.mode = "RUN"
+    await settle(hass, freezer, RETRY_INTERVAL)
+    assert s7_smart_sim.get(*WORD) == 25
+    assert issue_registry.async_get_issue(DOMAIN, expose_issue_id(entry, subentry_id)) is None
+    writes = s7_smart_sim.calls["write"]
+    for _ in range(3):
+        await settle(hass, freezer, RETRY_INTERVAL)
+    assert s7_smart_sim.calls["write"] == writes

@@ -7,7 +7,8 @@ write passes), which the vendor packs into its fewest requests. A periodic resen
 last value again; send-on-start writes the current states once Home Assistant has started,
 after every setup of the entry. A value that cannot be written is logged once and not sent; a
 failing write is logged once (and once when it works again), and after FAILURE_LIMIT failures
-in a row raises a repair issue naming the expose, cleared by its next write that works.
+in a row raises a repair issue naming the expose, cleared by its next write that works. A value
+that failed is not lost: every RETRY_INTERVAL the values that failed go out again, in one write.
 """
 
 from __future__ import annotations
@@ -44,6 +45,8 @@ BATCH_WINDOW = 0.1
 """Seconds over which the values that become due are gathered into one write."""
 FAILURE_LIMIT = 3
 """Failed writes in a row of one expose that raise its repair issue."""
+RETRY_INTERVAL = 30.0
+"""Seconds after a failed write before the values that failed are written again."""
 
 
 class Expose:
@@ -85,6 +88,7 @@ class PlcExposes:
         self._exposes: dict[str, Expose] = {}
         self._batch: dict[str, Expose] = {}
         self._flush: CALLBACK_TYPE | None = None
+        self._retry: CALLBACK_TYPE | None = None
 
     @callback
     def async_start(self) -> None:
@@ -102,9 +106,10 @@ class PlcExposes:
         for expose in self._exposes.values():
             expose.stop()
         self._exposes, self._batch = {}, {}
-        if self._flush is not None:
-            self._flush()
-            self._flush = None
+        for timer in (self._flush, self._retry):
+            if timer is not None:
+                timer()
+        self._flush = self._retry = None
 
     def _start(self, config: ExposeConfig) -> Expose:
         """Follow one expose's entity (and resend its value periodically, if it asks)."""
@@ -160,6 +165,14 @@ class PlcExposes:
         """Write the last value again (none yet: nothing)."""
         if expose.value is not None:
             self._queue(expose, again=True)
+
+    @callback
+    def _retry_failed(self, _now: datetime) -> None:
+        """Write again the values whose write failed (unless the entity has none now)."""
+        self._retry = None
+        for expose in self._exposes.values():
+            if expose.failures and expose.value is not None:
+                self._queue(expose, again=False)
 
     @callback
     def _follow(self, expose: Expose, state: State | None, *, again: bool = False) -> None:
@@ -273,8 +286,12 @@ class PlcExposes:
 
     def _failed(self, expose: Expose, error: str) -> None:
         """Note a failed write: logged at the first, an issue after FAILURE_LIMIT in a row."""
-        expose.sent = None  # the same value is written again at the next change or resend
+        expose.sent = None  # the same value is written again by the retry or the next change
         expose.failures += 1
+        if self._retry is None:
+            self._retry = async_call_later(
+                self._hass, RETRY_INTERVAL, HassJob(self._retry_failed, cancel_on_shutdown=True)
+            )
         if expose.failures == 1:
             LOGGER.warning(
                 "%s: %s cannot be written to %s: %s",
