@@ -1,4 +1,4 @@
-"""Exposes whose writes fail, on the S7-200 SMART: issues across reloads and edits, retries."""
+"""Exposes whose values or writes fail, on the S7-200 SMART: issues kept across reloads, retries."""
 
 from __future__ import annotations
 
@@ -101,3 +101,28 @@ async def test_failed_value_written_again_until_it_lands(
     for _ in range(3):
         await settle(hass, freezer, RETRY_INTERVAL)
     assert s7_smart_sim.calls["write"] == writes
+
+
+async def test_refused_value_leaves_no_older_one_to_write(
+    hass: HomeAssistant,
+    freezer: FrozenDateTimeFactory,
+    entry: MockConfigEntry,
+    s7_smart_sim: S7SmartSimulator,
+) -> None:
+    """After a state the address cannot hold, the value before it is neither written when the
+    cooldown ends nor resent: the PLC never gets a value the entity no longer has."""
+    add_expose(hass, entry, LEVEL, WORD, scale=1000.0, cooldown=5.0, resend=30.0)
+    await set_up(hass, entry)
+    hass.states.async_set(LEVEL, "11")
+    await settle(hass, freezer)
+    assert s7_smart_sim.get(*WORD) == 11000
+    hass.states.async_set(LEVEL, "12")  # within the cooldown: waits for its end
+    hass.states.async_set(LEVEL, "40")  # 40000: refused
+    await settle(hass, freezer, 5.0)
+    assert s7_smart_sim.get(*WORD) == 11000
+    s7_smart_sim.set(WORD[0], 99)
+    await settle(hass, freezer, 30.0)
+    assert s7_smart_sim.get(*WORD) == 99
+    hass.states.async_set(LEVEL, "13")
+    await settle(hass, freezer, 5.0)
+    assert s7_smart_sim.get(*WORD) == 13000

@@ -185,6 +185,7 @@ class PlcExposes:
         try:
             value = config.plc_value(self._entry.runtime_data.client, source)
         except PlcValueError as err:
+            expose.value = None  # an older value pending or resent would not be the entity's
             if not expose.refused:
                 expose.refused = True
                 LOGGER.warning(
