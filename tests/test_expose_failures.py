@@ -3,7 +3,8 @@
 from __future__ import annotations
 
 from freezegun.api import FrozenDateTimeFactory
-from homeassistant.core import HomeAssistant
+from homeassistant.const import STATE_UNAVAILABLE
+from homeassistant.core import CoreState, HomeAssistant
 from homeassistant.helpers import issue_registry as ir
 import pytest
 from pytest_homeassistant_custom_component.common import MockConfigEntry
@@ -126,3 +127,24 @@ async def test_refused_value_leaves_no_older_one_to_write(
     hass.states.async_set(LEVEL, "13")
     await settle(hass, freezer, 5.0)
     assert s7_smart_sim.get(*WORD) == 13000
+
+
+async def test_nothing_written_while_home_assistant_stops(
+    hass: HomeAssistant,
+    freezer: FrozenDateTimeFactory,
+    entry: MockConfigEntry,
+    s7_smart_sim: S7SmartSimulator,
+) -> None:
+    """An entity its integration marks unavailable as Home Assistant stops does not write the
+    expose's default: pending writes are dropped at the stop, and so are those it brings."""
+    add_expose(hass, entry, LEVEL, WORD, default="7", cooldown=0.0)
+    await set_up(hass, entry)
+    writes = s7_smart_sim.calls["write"]
+    hass.set_state(CoreState.stopping)
+    try:
+        hass.states.async_set(LEVEL, STATE_UNAVAILABLE)
+        await settle(hass, freezer, 1.0)
+    finally:
+        hass.set_state(CoreState.running)
+    assert s7_smart_sim.calls["write"] == writes
+    assert s7_smart_sim.get(*WORD) == 0

@@ -227,6 +227,8 @@ class PlcExposes:
         """Put the expose into the batch (unless the PLC holds its value and none is asked)."""
         if expose.value == expose.sent and not expose.again:
             return
+        if self._hass.is_stopping:  # what is pending is dropped at the stop: so is what follows
+            return
         self._batch[expose.config.subentry_id] = expose
         if self._flush is None:
             self._flush = async_call_later(
