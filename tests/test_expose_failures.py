@@ -148,3 +148,26 @@ async def test_nothing_written_while_home_assistant_stops(
         hass.set_state(CoreState.running)
     assert s7_smart_sim.calls["write"] == writes
     assert s7_smart_sim.get(*WORD) == 0
+
+
+async def test_expose_to_a_point_made_read_only_fails_alone(
+    hass: HomeAssistant,
+    freezer: FrozenDateTimeFactory,
+    s7_smart_sim: S7SmartSimulator,
+    caplog: pytest.LogCaptureFixture,
+) -> None:
+    """A point marked read only after an expose to its address was set up: that expose is
+    refused before sending, logged; the other exposes of the same batch are written."""
+    hass.states.async_set(LEVEL, "10")
+    hass.states.async_set("input_number.other", "10")
+    guarded = point("guarded", "Guarded", "sensor", WORD[0], WORD[1], read_only=True)
+    entry = make_entry(hass, s7_smart_sim, [guarded])
+    add_expose(hass, entry, LEVEL, WORD)
+    add_expose(hass, entry, "input_number.other", ("VW122", "signed"))
+    await set_up(hass, entry)
+    hass.states.async_set(LEVEL, "11")
+    hass.states.async_set("input_number.other", "12")
+    await settle(hass, freezer)
+    assert s7_smart_sim.get("VW122") == 12
+    assert s7_smart_sim.get(*WORD) == 0
+    assert any("cannot be written to VW120" in r.message for r in caplog.records)
