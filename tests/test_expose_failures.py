@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from freezegun.api import FrozenDateTimeFactory
+from homeassistant.config_entries import ConfigEntryState
 from homeassistant.const import STATE_UNAVAILABLE
 from homeassistant.core import CoreState, HomeAssistant
 from homeassistant.helpers import issue_registry as ir
@@ -171,3 +172,30 @@ async def test_expose_to_a_point_made_read_only_fails_alone(
     assert s7_smart_sim.get("VW122") == 12
     assert s7_smart_sim.get(*WORD) == 0
     assert any("cannot be written to VW120" in r.message for r in caplog.records)
+
+
+async def test_expose_with_unreadable_settings_skipped(
+    hass: HomeAssistant,
+    freezer: FrozenDateTimeFactory,
+    entry: MockConfigEntry,
+    s7_smart_sim: S7SmartSimulator,
+    caplog: pytest.LogCaptureFixture,
+) -> None:
+    """An expose whose stored settings cannot be read (a hand-edited file pasted: a cooldown
+    that is no number, an address the parser refuses) is left out or sends nothing, logged once;
+    the PLC and its other exposes work."""
+    add_expose(hass, entry, "input_number.other", ("VW122", "signed"), cooldown="soon")
+    add_expose(hass, entry, "input_number.third", ("VX1", "signed"))
+    add_expose(hass, entry, LEVEL, WORD)
+    await set_up(hass, entry)
+    assert entry.state is ConfigEntryState.LOADED
+    for value in ("11", "12"):
+        for entity_id in (LEVEL, "input_number.other", "input_number.third"):
+            hass.states.async_set(entity_id, value)
+        await settle(hass, freezer, 2.0)
+    assert s7_smart_sim.get(*WORD) == 12
+    assert s7_smart_sim.get("VW122") == 0
+    assert [r.levelname for r in caplog.records if "input_number.other → VW122" in r.message] == [
+        "WARNING"
+    ]
+    assert [r.levelname for r in caplog.records if "VX1" in r.message] == ["WARNING"]

@@ -38,7 +38,7 @@ from homeassistant.helpers.start import async_at_started
 from .const import DOMAIN, LOGGER
 from .expose_config import ExposeConfig, entry_exposes
 from .models import PlcBridgeConfigEntry
-from .plc import PlcValueError, Point, Value
+from .plc import PlcError, Point, Value
 from .repairs import async_clear_expose_issues, async_raise_expose_issue, expose_issue_id
 
 BATCH_WINDOW = 0.1
@@ -93,8 +93,11 @@ class PlcExposes:
     @callback
     def async_start(self) -> None:
         """Follow every expose; send the current states once Home Assistant has started."""
-        for config in entry_exposes(self._entry).values():
+        unreadable: list[str] = []
+        for config in entry_exposes(self._entry, unreadable).values():
             self._start(config)
+        for why in unreadable:
+            LOGGER.warning("%s: an expose is left out: %s", self._entry.title, why)
         async_clear_expose_issues(self._hass, self._entry, keep=self._exposes)
         self._entry.async_on_unload(async_at_started(self._hass, self._send_on_start))
         self._entry.async_on_unload(self._entry.add_update_listener(self._async_entry_updated))
@@ -184,7 +187,7 @@ class PlcExposes:
             return
         try:
             value = config.plc_value(self._entry.runtime_data.client, source)
-        except PlcValueError as err:
+        except PlcError as err:  # a value the address cannot hold, or an address from a file
             expose.value = None  # an older value pending or resent would not be the entity's
             if not expose.refused:
                 expose.refused = True

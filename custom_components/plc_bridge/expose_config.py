@@ -143,32 +143,44 @@ class ExposeConfig:
 
 
 def expose_config(subentry_id: str, title: str, data: Mapping[str, Any]) -> ExposeConfig:
-    """Return the expose a subentry's data describes (the form checked it)."""
-    try:
-        value_map = parse_state_map(str(data.get(CONF_VALUE_MAP) or ""))
-    except InvalidPairs:
-        value_map = ()
+    """Return the expose a subentry's data describes; raise ValueError where it cannot be read.
+
+    The form checked what it stored; a pasted file may hold anything (a cooldown `soon`).
+    """
     default = data.get(CONF_DEFAULT)
-    return ExposeConfig(
-        subentry_id=subentry_id,
-        title=title,
-        entity_id=str(data[CONF_ENTITY_ID]),
-        attribute=str(data[CONF_ATTRIBUTE]) if data.get(CONF_ATTRIBUTE) else None,
-        point=Point(data[CONF_ADDRESS], data[CONF_DATA_TYPE]),
-        scale=float(data.get(CONF_SCALE, 1.0)),
-        offset=float(data.get(CONF_OFFSET, 0.0)),
-        value_map=value_map,
-        cooldown=max(0.0, float(data.get(CONF_COOLDOWN, DEFAULT_COOLDOWN))),
-        resend=max(0.0, float(data.get(CONF_RESEND, 0.0))),
-        send_on_start=bool(data.get(CONF_SEND_ON_START, True)),
-        default=None if default in (None, "") else str(default),
-    )
+    value_map = str(data.get(CONF_VALUE_MAP) or "")
+    try:
+        return ExposeConfig(
+            subentry_id=subentry_id,
+            title=title,
+            entity_id=str(data[CONF_ENTITY_ID]),
+            attribute=str(data[CONF_ATTRIBUTE]) if data.get(CONF_ATTRIBUTE) else None,
+            point=Point(str(data[CONF_ADDRESS]), str(data[CONF_DATA_TYPE])),
+            scale=float(data.get(CONF_SCALE, 1.0)),
+            offset=float(data.get(CONF_OFFSET, 0.0)),
+            value_map=parse_state_map(value_map) if value_map.strip() else (),
+            cooldown=max(0.0, float(data.get(CONF_COOLDOWN, DEFAULT_COOLDOWN))),
+            resend=max(0.0, float(data.get(CONF_RESEND, 0.0))),
+            send_on_start=bool(data.get(CONF_SEND_ON_START, True)),
+            default=None if default in (None, "") else str(default),
+        )
+    except (InvalidPairs, KeyError, TypeError, ValueError) as err:
+        raise ValueError(f"{title}: its settings cannot be read ({err!r})") from err
 
 
-def entry_exposes(entry: PlcBridgeConfigEntry) -> dict[str, ExposeConfig]:
-    """Return every expose of the entry, by subentry id."""
-    return {
-        subentry.subentry_id: expose_config(subentry.subentry_id, subentry.title, subentry.data)
-        for subentry in entry.subentries.values()
-        if subentry.subentry_type == SUBENTRY_EXPOSE
-    }
+def entry_exposes(
+    entry: PlcBridgeConfigEntry, unreadable: list[str] | None = None
+) -> dict[str, ExposeConfig]:
+    """Return the entry's readable exposes by subentry id; why the others are not: `unreadable`."""
+    exposes: dict[str, ExposeConfig] = {}
+    for subentry in entry.subentries.values():
+        if subentry.subentry_type != SUBENTRY_EXPOSE:
+            continue
+        try:
+            exposes[subentry.subentry_id] = expose_config(
+                subentry.subentry_id, subentry.title, subentry.data
+            )
+        except ValueError as err:
+            if unreadable is not None:
+                unreadable.append(str(err))
+    return exposes
