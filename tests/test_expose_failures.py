@@ -2,16 +2,18 @@
 
 from __future__ import annotations
 
+from datetime import timedelta
+
 from freezegun.api import FrozenDateTimeFactory
 from homeassistant.config_entries import ConfigEntryState
 from homeassistant.const import STATE_UNAVAILABLE
 from homeassistant.core import CoreState, HomeAssistant
 from homeassistant.helpers import issue_registry as ir
 import pytest
-from pytest_homeassistant_custom_component.common import MockConfigEntry
+from pytest_homeassistant_custom_component.common import MockConfigEntry, async_fire_time_changed
 
 from custom_components.plc_bridge.const import DOMAIN
-from custom_components.plc_bridge.expose import FAILURE_LIMIT, RETRY_INTERVAL
+from custom_components.plc_bridge.expose import BATCH_WINDOW, FAILURE_LIMIT, RETRY_INTERVAL
 from custom_components.plc_bridge.repairs import expose_issue_id
 from simulators.s7_smart import S7SmartSimulator
 from tests.ha_fixtures import make_entry, point, set_up
@@ -199,3 +201,28 @@ async def test_expose_with_unreadable_settings_skipped(
         "WARNING"
     ]
     assert [r.levelname for r in caplog.records if "VX1" in r.message] == ["WARNING"]
+
+
+async def test_expose_removed_while_its_write_fails_raises_no_issue(
+    hass: HomeAssistant,
+    freezer: FrozenDateTimeFactory,
+    entry: MockConfigEntry,
+    s7_smart_sim: S7SmartSimulator,
+    issue_registry: ir.IssueRegistry,
+) -> None:
+    """An expose deleted while its last write is on the way: the write's failure raises no
+    issue for it (nothing could ever clear that one)."""
+    subentry_id = add_expose(hass, entry, LEVEL, WORD, cooldown=0.0)
+    await set_up(hass, entry)
+    s7_smart_sim.mode = "STOP"
+    for value in range(FAILURE_LIMIT - 1):
+        hass.states.async_set(LEVEL, str(20 + value))
+        await settle(hass, freezer)
+    hass.states.async_set(LEVEL, "30")
+    await hass.async_block_till_done()
+    freezer.tick(timedelta(seconds=BATCH_WINDOW))
+    async_fire_time_changed(hass)  # the batch is written: its request is on the way
+    hass.config_entries.async_remove_subentry(entry, subentry_id)
+    await hass.async_block_till_done(wait_background_tasks=True)
+    assert s7_smart_sim.calls["write"] == FAILURE_LIMIT
+    assert issue_registry.async_get_issue(DOMAIN, expose_issue_id(entry, subentry_id)) is None

@@ -270,14 +270,21 @@ class PlcExposes:
             results = await coordinator.async_write_values(values)
         except HomeAssistantError as err:
             for expose in sending.values():
-                self._failed(expose, str(err))
+                if self._running(expose):
+                    self._failed(expose, str(err))
             return
         for point, expose in sending.items():
+            if not self._running(expose):
+                continue
             result = results.get(point)
             if result is None or result.error is not None:
                 self._failed(expose, str(result.error if result else "no answer for the address"))
             else:
                 self._written(expose, values[point])
+
+    def _running(self, expose: Expose) -> bool:
+        """False for an expose removed or edited while its write was on the way (no issue then)."""
+        return self._exposes.get(expose.config.subentry_id) is expose
 
     def _written(self, expose: Expose, value: Value) -> None:
         """Note a write the PLC took; say so once after failures, and clear the issue."""
