@@ -226,3 +226,24 @@ async def test_expose_removed_while_its_write_fails_raises_no_issue(
     await hass.async_block_till_done(wait_background_tasks=True)
     assert s7_smart_sim.calls["write"] == FAILURE_LIMIT
     assert issue_registry.async_get_issue(DOMAIN, expose_issue_id(entry, subentry_id)) is None
+
+
+async def test_user_without_write_permission_sends_nothing(
+    hass: HomeAssistant,
+    freezer: FrozenDateTimeFactory,
+    entry: MockConfigEntry,
+    s7_smart_sim: S7SmartSimulator,
+    caplog: pytest.LogCaptureFixture,
+) -> None:
+    """A PLC user that may not write: an expose's writes (and their retries) are refused before
+    any request, once in the log, in the words an entity's write gets."""
+    s7_smart_sim.write_permission = False
+    add_expose(hass, entry, LEVEL, WORD)
+    await set_up(hass, entry)
+    hass.states.async_set(LEVEL, "11")
+    await settle(hass, freezer)
+    await settle(hass, freezer, 3 * RETRY_INTERVAL)
+    assert s7_smart_sim.calls.get("write", 0) == 0
+    refused = [r.message for r in caplog.records if "cannot be written to VW120:" in r.message]
+    assert len(refused) == 1
+    assert "may not write; nothing was sent" in refused[0]
