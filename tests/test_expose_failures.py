@@ -2,7 +2,9 @@
 
 from __future__ import annotations
 
+import asyncio
 from datetime import timedelta
+from typing import Any
 
 from freezegun.api import FrozenDateTimeFactory
 from homeassistant.config_entries import ConfigEntryState
@@ -14,6 +16,7 @@ from pytest_homeassistant_custom_component.common import MockConfigEntry, async_
 
 from custom_components.plc_bridge.const import DOMAIN
 from custom_components.plc_bridge.expose import BATCH_WINDOW, FAILURE_LIMIT, RETRY_INTERVAL
+from custom_components.plc_bridge.plc.vendors.s7_smart import S7SmartClient
 from custom_components.plc_bridge.repairs import expose_issue_id
 from simulators.s7_smart import S7SmartSimulator
 from tests.ha_fixtures import make_entry, point, set_up
@@ -247,3 +250,44 @@ async def test_user_without_write_permission_sends_nothing(
     refused = [r.message for r in caplog.records if "cannot be written to VW120:" in r.message]
     assert len(refused) == 1
     assert "may not write; nothing was sent" in refused[0]
+
+
+async def test_newer_value_not_overtaken_by_an_older_write(
+    hass: HomeAssistant,
+    freezer: FrozenDateTimeFactory,
+    entry: MockConfigEntry,
+    s7_smart_sim: S7SmartSimulator,
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    """A burst of 20 to a firmware taking 8 nodes, its limit unknown: while the write learns it
+    (several requests), one expose changes again. Its newer value is written after the older
+    one is sent again in smaller requests, never before: the PLC ends with the newer value."""
+    s7_smart_sim.max_nodes = 8
+    entities = [f"input_number.level_{index}" for index in range(20)]
+    targets = [(f"VW{300 + 2 * index}", "signed") for index in range(20)]
+    for entity_id, target in zip(entities, targets, strict=True):
+        hass.states.async_set(entity_id, "0")
+        add_expose(hass, entry, entity_id, target, cooldown=0.0)
+    await set_up(hass, entry)
+    learning = S7SmartClient._fewer_write_nodes
+
+    async def changed_meanwhile(client: S7SmartClient, group: Any) -> bool:
+        """Change the last entity and let its write go (if it may) before learning goes on."""
+        before = s7_smart_sim.calls["write"]
+        hass.states.async_set(entities[-1], "99")
+        await hass.async_block_till_done()
+        freezer.tick(timedelta(seconds=BATCH_WINDOW))
+        async_fire_time_changed(hass)
+        for _ in range(1000):
+            if s7_smart_sim.calls["write"] > before:
+                break
+            await asyncio.sleep(0)
+        return await learning(client, group)
+
+    monkeypatch.setattr(S7SmartClient, "_fewer_write_nodes", changed_meanwhile)
+    for index, entity_id in enumerate(entities):
+        hass.states.async_set(entity_id, str(index + 11))
+    await settle(hass, freezer)
+    await settle(hass, freezer)
+    assert [s7_smart_sim.get(address) for address, _ in targets[:-1]] == list(range(11, 30))
+    assert s7_smart_sim.get(targets[-1][0]) == 99

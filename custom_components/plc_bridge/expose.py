@@ -13,6 +13,7 @@ that failed is not lost: every RETRY_INTERVAL the values that failed go out agai
 
 from __future__ import annotations
 
+import asyncio
 from datetime import datetime, timedelta
 from functools import partial
 from typing import Any
@@ -36,7 +37,7 @@ from homeassistant.helpers.event import (
 from homeassistant.helpers.start import async_at_started
 
 from .const import DOMAIN, LOGGER
-from .expose_config import ExposeConfig, entry_exposes
+from .expose_config import Expose, ExposeConfig, entry_exposes
 from .models import PlcBridgeConfigEntry
 from .plc import PlcError, Point, Value
 from .repairs import async_clear_expose_issues, async_raise_expose_issue, expose_issue_id
@@ -47,35 +48,6 @@ FAILURE_LIMIT = 3
 """Failed writes in a row of one expose that raise its repair issue."""
 RETRY_INTERVAL = 30.0
 """Seconds after a failed write before the values that failed are written again."""
-
-
-class Expose:
-    """One expose running: the value it holds, when it last wrote, and how its writes go."""
-
-    def __init__(self, config: ExposeConfig) -> None:
-        """Start with nothing written."""
-        self.config = config
-        self.value: Value | None = None  # the latest value converted: written, or to be
-        self.sent: Value | None = None  # the value the PLC last took
-        self.sent_at: float | None = None  # loop time of the last write
-        self.again = False  # write the value even if the PLC holds it (start, resend)
-        self.timer: CALLBACK_TYPE | None = None  # the end of the cooldown
-        self.unsubscribe: list[CALLBACK_TYPE] = []
-        self.refused = False  # a value that cannot be written was logged
-        self.failures = 0  # failed writes in a row
-        self.issue = False
-
-    @property
-    def name(self) -> str:
-        """What the log and the repair issue call the expose."""
-        return self.config.title
-
-    def stop(self) -> None:
-        """Stop following the entity and forget a pending write."""
-        for unsubscribe in [*self.unsubscribe, self.timer]:
-            if unsubscribe is not None:
-                unsubscribe()
-        self.unsubscribe, self.timer = [], None
 
 
 class PlcExposes:
@@ -89,6 +61,7 @@ class PlcExposes:
         self._batch: dict[str, Expose] = {}
         self._flush: CALLBACK_TYPE | None = None
         self._retry: CALLBACK_TYPE | None = None
+        self._writing = asyncio.Lock()
 
     @callback
     def async_start(self) -> None:
@@ -248,6 +221,11 @@ class PlcExposes:
         )
 
     async def _async_write(self, batch: list[Expose]) -> None:
+        """Write a batch once the one before has ended: no older value lands after a newer one."""
+        async with self._writing:
+            await self._async_write_now(batch)
+
+    async def _async_write_now(self, batch: list[Expose]) -> None:
         """Write the batch's values in one call; note each expose's outcome."""
         coordinator = self._entry.runtime_data.coordinator
         now = self._hass.loop.time()
@@ -255,7 +233,7 @@ class PlcExposes:
         sending: dict[Point, Expose] = {}
         for expose in batch:
             expose.sent_at, expose.again = now, False
-            if expose.value is None:
+            if expose.value is None or not self._running(expose):
                 continue
             try:
                 coordinator.write_guard.check(expose.config.point)

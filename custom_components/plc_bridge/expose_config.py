@@ -1,4 +1,4 @@
-"""What one expose is: its stored settings, and the PLC value a Home Assistant state becomes.
+"""What one expose is: its stored settings, the PLC value a state becomes, its running state.
 
 An expose subentry stores the entity (and optionally one of its attributes), the PLC address
 and data type, and how the state is converted: a value map (`on=1;off=0`, `home=1;not_home=0`)
@@ -14,7 +14,7 @@ import math
 from typing import Any
 
 from homeassistant.const import CONF_ATTRIBUTE, CONF_ENTITY_ID, STATE_UNAVAILABLE, STATE_UNKNOWN
-from homeassistant.core import State
+from homeassistant.core import CALLBACK_TYPE, State
 
 from .const import (
     CONF_ADDRESS,
@@ -184,3 +184,32 @@ def entry_exposes(
             if unreadable is not None:
                 unreadable.append(str(err))
     return exposes
+
+
+class Expose:
+    """One expose running: the value it holds, when it last wrote, and how its writes go."""
+
+    def __init__(self, config: ExposeConfig) -> None:
+        """Start with nothing written."""
+        self.config = config
+        self.value: Value | None = None  # the latest value converted: written, or to be
+        self.sent: Value | None = None  # the value the PLC last took
+        self.sent_at: float | None = None  # loop time of the last write
+        self.again = False  # write the value even if the PLC holds it (start, resend)
+        self.timer: CALLBACK_TYPE | None = None  # the end of the cooldown
+        self.unsubscribe: list[CALLBACK_TYPE] = []
+        self.refused = False  # a value that cannot be written was logged
+        self.failures = 0  # failed writes in a row
+        self.issue = False
+
+    @property
+    def name(self) -> str:
+        """What the log and the repair issue call the expose."""
+        return self.config.title
+
+    def stop(self) -> None:
+        """Stop following the entity and forget a pending write."""
+        for unsubscribe in [*self.unsubscribe, self.timer]:
+            if unsubscribe is not None:
+                unsubscribe()
+        self.unsubscribe, self.timer = [], None
