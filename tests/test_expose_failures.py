@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import asyncio
 from datetime import timedelta
+import math
 from typing import Any
 
 from freezegun.api import FrozenDateTimeFactory
@@ -179,17 +180,19 @@ async def test_expose_to_a_point_made_read_only_fails_alone(
     assert any("cannot be written to VW120" in r.message for r in caplog.records)
 
 
-async def test_expose_with_unreadable_settings_skipped(
+@pytest.mark.parametrize("bad", [{"cooldown": "soon"}, {"resend": math.inf}])
+async def test_expose_with_unreadable_settings_skipped(  # noqa: PLR0917
     hass: HomeAssistant,
     freezer: FrozenDateTimeFactory,
     entry: MockConfigEntry,
     s7_smart_sim: S7SmartSimulator,
     caplog: pytest.LogCaptureFixture,
+    bad: dict[str, Any],
 ) -> None:
     """An expose whose stored settings cannot be read (a hand-edited file pasted: a cooldown
-    that is no number, an address the parser refuses) is left out or sends nothing, logged once;
-    the PLC and its other exposes work."""
-    add_expose(hass, entry, "input_number.other", ("VW122", "signed"), cooldown="soon")
+    that is no number, a resend `.inf`, an address the parser refuses) is left out or sends
+    nothing, logged once; the PLC and its other exposes work."""
+    add_expose(hass, entry, "input_number.other", ("VW122", "signed"), **bad)
     add_expose(hass, entry, "input_number.third", ("VX1", "signed"))
     add_expose(hass, entry, LEVEL, WORD)
     await set_up(hass, entry)

@@ -142,6 +142,14 @@ class ExposeConfig:
         return client.validate_value(self.point, value)
 
 
+def _finite(value: Any) -> float:
+    """Return a stored number; raise ValueError for one that is not (`soon`, `.inf`, `.nan`)."""
+    number = float(value)
+    if not math.isfinite(number):
+        raise ValueError(f"{value!r} is no finite number")
+    return number
+
+
 def expose_config(subentry_id: str, title: str, data: Mapping[str, Any]) -> ExposeConfig:
     """Return the expose a subentry's data describes; raise ValueError where it cannot be read.
 
@@ -156,11 +164,11 @@ def expose_config(subentry_id: str, title: str, data: Mapping[str, Any]) -> Expo
             entity_id=str(data[CONF_ENTITY_ID]),
             attribute=str(data[CONF_ATTRIBUTE]) if data.get(CONF_ATTRIBUTE) else None,
             point=Point(str(data[CONF_ADDRESS]), str(data[CONF_DATA_TYPE])),
-            scale=float(data.get(CONF_SCALE, 1.0)),
-            offset=float(data.get(CONF_OFFSET, 0.0)),
+            scale=_finite(data.get(CONF_SCALE, 1.0)),
+            offset=_finite(data.get(CONF_OFFSET, 0.0)),
             value_map=parse_state_map(value_map) if value_map.strip() else (),
-            cooldown=max(0.0, float(data.get(CONF_COOLDOWN, DEFAULT_COOLDOWN))),
-            resend=max(0.0, float(data.get(CONF_RESEND, 0.0))),
+            cooldown=max(0.0, _finite(data.get(CONF_COOLDOWN, DEFAULT_COOLDOWN))),
+            resend=max(0.0, _finite(data.get(CONF_RESEND, 0.0))),
             send_on_start=bool(data.get(CONF_SEND_ON_START, True)),
             default=None if default in (None, "") else str(default),
         )
