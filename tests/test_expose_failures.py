@@ -263,8 +263,9 @@ async def test_newer_value_not_overtaken_by_an_older_write(
     monkeypatch: pytest.MonkeyPatch,
 ) -> None:
     """A burst of 20 to a firmware taking 8 nodes, its limit unknown: while the write learns it
-    (several requests), one expose changes again. Its newer value is written after the older
-    one is sent again in smaller requests, never before: the PLC ends with the newer value."""
+    (several requests), one expose changes three times. Its latest value is written after the
+    older one is sent again in smaller requests, never before, and in one write, not three:
+    the PLC ends with the latest value."""
     s7_smart_sim.max_nodes = 8
     entities = [f"input_number.level_{index}" for index in range(20)]
     targets = [(f"VW{300 + 2 * index}", "signed") for index in range(20)]
@@ -275,22 +276,25 @@ async def test_newer_value_not_overtaken_by_an_older_write(
     learning = S7SmartClient._fewer_write_nodes
 
     async def changed_meanwhile(client: S7SmartClient, group: Any) -> bool:
-        """Change the last entity and let its write go (if it may) before learning goes on."""
-        before = s7_smart_sim.calls["write"]
-        hass.states.async_set(entities[-1], "99")
-        await hass.async_block_till_done()
-        freezer.tick(timedelta(seconds=BATCH_WINDOW))
-        async_fire_time_changed(hass)
-        for _ in range(1000):
-            if s7_smart_sim.calls["write"] > before:
-                break
-            await asyncio.sleep(0)
+        """Change the last entity; let each value's write go (if it may) before learning."""
+        for value in ("97", "98", "99"):
+            before = s7_smart_sim.calls["write"]
+            hass.states.async_set(entities[-1], value)
+            await hass.async_block_till_done()
+            freezer.tick(timedelta(seconds=BATCH_WINDOW))
+            async_fire_time_changed(hass)
+            for _ in range(1000):
+                if s7_smart_sim.calls["write"] > before:
+                    break
+                await asyncio.sleep(0)
         return await learning(client, group)
 
     monkeypatch.setattr(S7SmartClient, "_fewer_write_nodes", changed_meanwhile)
+    writes = s7_smart_sim.calls["write"]
     for index, entity_id in enumerate(entities):
         hass.states.async_set(entity_id, str(index + 11))
     await settle(hass, freezer)
     await settle(hass, freezer)
     assert [s7_smart_sim.get(address) for address, _ in targets[:-1]] == list(range(11, 30))
     assert s7_smart_sim.get(targets[-1][0]) == 99
+    assert s7_smart_sim.calls["write"] - writes == 1 + 3 + 1  # refused, 8 + 8 + 4, then 99

@@ -13,7 +13,6 @@ that failed is not lost: every RETRY_INTERVAL the values that failed go out agai
 
 from __future__ import annotations
 
-import asyncio
 from datetime import datetime, timedelta
 from functools import partial
 from typing import Any
@@ -61,7 +60,7 @@ class PlcExposes:
         self._batch: dict[str, Expose] = {}
         self._flush: CALLBACK_TYPE | None = None
         self._retry: CALLBACK_TYPE | None = None
-        self._writing = asyncio.Lock()
+        self._writing = False  # a write is on the way: the batch waits for its end
 
     @callback
     def async_start(self) -> None:
@@ -213,17 +212,32 @@ class PlcExposes:
 
     @callback
     def _flush_due(self, _now: datetime) -> None:
-        """Write the batch in the background (cancelled when Home Assistant stops)."""
+        """Write the batch, unless a write is on the way: the batch then goes when it ends."""
         self._flush = None
+        if not self._writing:
+            self._write_batch()
+
+    @callback
+    def _write_batch(self) -> None:
+        """Write the batch in the background (cancelled when the entry unloads)."""
         batch, self._batch = list(self._batch.values()), {}
+        self._writing = True
         self._entry.async_create_background_task(
             self._hass, self._async_write(batch), f"{self._entry.title} exposes"
         )
 
     async def _async_write(self, batch: list[Expose]) -> None:
-        """Write a batch once the one before has ended: no older value lands after a newer one."""
-        async with self._writing:
+        """Write a batch; what became due meanwhile follows in one write, never before it.
+
+        One write at a time: a write may take several requests, and an older value sent after
+        a newer one would stay in the PLC.
+        """
+        try:
             await self._async_write_now(batch)
+        finally:
+            self._writing = False
+            if self._batch and self._flush is None and not self._hass.is_stopping:
+                self._write_batch()
 
     async def _async_write_now(self, batch: list[Expose]) -> None:
         """Write the batch's values in one call; note each expose's outcome."""
