@@ -156,3 +156,23 @@ async def test_other_vendors(
     )
     assert result["type"] is FlowResultType.CREATE_ENTRY
     assert exposes(entry)[0].data["address"] == stored
+
+
+@pytest.mark.parametrize(
+    ("address", "data_type"),
+    [("vd400", "unsigned"), ("VW402", "signed"), ("VB403", "unsigned")],
+)
+async def test_one_expose_per_address_whatever_its_type(
+    hass: HomeAssistant, address: str, data_type: str
+) -> None:
+    """An address another expose writes, under another data type or overlapping it, is refused:
+    both in one write would leave the PLC holding whichever the request put last."""
+    entry = plc_entry(hass)
+    add_expose(hass, entry, "sensor.outdoor", ("VD400", "float"))
+    result = await start(hass, entry)
+    values = {"entity_id": "sensor.other", "address": address, "data_type": data_type}
+    result = await submit(hass, result, values)
+    assert result["errors"] == {"address": "already_configured"}
+    assert len(exposes(entry)) == 1
+    result = await submit(hass, result, values | {"address": "VW404"})
+    assert result["type"] is FlowResultType.CREATE_ENTRY

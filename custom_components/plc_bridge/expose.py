@@ -7,7 +7,8 @@ write passes), which the vendor packs into its fewest requests. A periodic resen
 last value again; send-on-start writes the current states once Home Assistant has started,
 after every setup of the entry. A value that cannot be written is logged once and not sent; a
 failing write is logged once (and once when it works again), and after FAILURE_LIMIT failures
-in a row raises a repair issue naming the expose, cleared by its next write that works.
+in a row raises a repair issue naming the expose, cleared by its next write that works. A value
+that failed is not lost: every RETRY_INTERVAL the values that failed go out again, in one write.
 """
 
 from __future__ import annotations
@@ -35,44 +36,17 @@ from homeassistant.helpers.event import (
 from homeassistant.helpers.start import async_at_started
 
 from .const import DOMAIN, LOGGER
-from .expose_config import ExposeConfig, entry_exposes
+from .expose_config import Expose, ExposeConfig, entry_exposes
 from .models import PlcBridgeConfigEntry
-from .plc import PlcValueError, Point, Value
+from .plc import PlcError, Point, Value
 from .repairs import async_clear_expose_issues, async_raise_expose_issue, expose_issue_id
 
 BATCH_WINDOW = 0.1
 """Seconds over which the values that become due are gathered into one write."""
 FAILURE_LIMIT = 3
 """Failed writes in a row of one expose that raise its repair issue."""
-
-
-class Expose:
-    """One expose running: the value it holds, when it last wrote, and how its writes go."""
-
-    def __init__(self, config: ExposeConfig) -> None:
-        """Start with nothing written."""
-        self.config = config
-        self.value: Value | None = None  # the latest value converted: written, or to be
-        self.sent: Value | None = None  # the value the PLC last took
-        self.sent_at: float | None = None  # loop time of the last write
-        self.again = False  # write the value even if the PLC holds it (start, resend)
-        self.timer: CALLBACK_TYPE | None = None  # the end of the cooldown
-        self.unsubscribe: list[CALLBACK_TYPE] = []
-        self.refused = False  # a value that cannot be written was logged
-        self.failures = 0  # failed writes in a row
-        self.issue = False
-
-    @property
-    def name(self) -> str:
-        """What the log and the repair issue call the expose."""
-        return self.config.title
-
-    def stop(self) -> None:
-        """Stop following the entity and forget a pending write."""
-        for unsubscribe in [*self.unsubscribe, self.timer]:
-            if unsubscribe is not None:
-                unsubscribe()
-        self.unsubscribe, self.timer = [], None
+RETRY_INTERVAL = 30.0
+"""Seconds after a failed write before the values that failed are written again."""
 
 
 class PlcExposes:
@@ -85,12 +59,17 @@ class PlcExposes:
         self._exposes: dict[str, Expose] = {}
         self._batch: dict[str, Expose] = {}
         self._flush: CALLBACK_TYPE | None = None
+        self._retry: CALLBACK_TYPE | None = None
+        self._writing = False  # a write is on the way: the batch waits for its end
 
     @callback
     def async_start(self) -> None:
         """Follow every expose; send the current states once Home Assistant has started."""
-        for config in entry_exposes(self._entry).values():
+        unreadable: list[str] = []
+        for config in entry_exposes(self._entry, unreadable).values():
             self._start(config)
+        for why in unreadable:
+            LOGGER.warning("%s: an expose is left out: %s", self._entry.title, why)
         async_clear_expose_issues(self._hass, self._entry, keep=self._exposes)
         self._entry.async_on_unload(async_at_started(self._hass, self._send_on_start))
         self._entry.async_on_unload(self._entry.add_update_listener(self._async_entry_updated))
@@ -102,13 +81,17 @@ class PlcExposes:
         for expose in self._exposes.values():
             expose.stop()
         self._exposes, self._batch = {}, {}
-        if self._flush is not None:
-            self._flush()
-            self._flush = None
+        for timer in (self._flush, self._retry):
+            if timer is not None:
+                timer()
+        self._flush = self._retry = None
 
     def _start(self, config: ExposeConfig) -> Expose:
         """Follow one expose's entity (and resend its value periodically, if it asks)."""
         expose = self._exposes[config.subentry_id] = Expose(config)
+        # An issue raised before a reload or an edit goes at this expose's first write that works.
+        issue = expose_issue_id(self._entry, config.subentry_id)
+        expose.issue = ir.async_get(self._hass).async_get_issue(DOMAIN, issue) is not None
         expose.unsubscribe.append(
             async_track_state_change_event(
                 self._hass, [config.entity_id], partial(self._state_changed, expose)
@@ -159,6 +142,14 @@ class PlcExposes:
             self._queue(expose, again=True)
 
     @callback
+    def _retry_failed(self, _now: datetime) -> None:
+        """Write again the values whose write failed (unless the entity has none now)."""
+        self._retry = None
+        for expose in self._exposes.values():
+            if expose.failures and expose.value is not None:
+                self._queue(expose, again=False)
+
+    @callback
     def _follow(self, expose: Expose, state: State | None, *, again: bool = False) -> None:
         """Convert a state; queue its value, or log once that it cannot be written."""
         config = expose.config
@@ -168,7 +159,8 @@ class PlcExposes:
             return
         try:
             value = config.plc_value(self._entry.runtime_data.client, source)
-        except PlcValueError as err:
+        except PlcError as err:  # a value the address cannot hold, or an address from a file
+            expose.value = None  # an older value pending or resent would not be the entity's
             if not expose.refused:
                 expose.refused = True
                 LOGGER.warning(
@@ -210,6 +202,8 @@ class PlcExposes:
         """Put the expose into the batch (unless the PLC holds its value and none is asked)."""
         if expose.value == expose.sent and not expose.again:
             return
+        if self._hass.is_stopping:  # what is pending is dropped at the stop: so is what follows
+            return
         self._batch[expose.config.subentry_id] = expose
         if self._flush is None:
             self._flush = async_call_later(
@@ -218,14 +212,34 @@ class PlcExposes:
 
     @callback
     def _flush_due(self, _now: datetime) -> None:
-        """Write the batch in the background (cancelled when Home Assistant stops)."""
+        """Write the batch, unless a write is on the way: the batch then goes when it ends."""
         self._flush = None
+        if not self._writing:
+            self._write_batch()
+
+    @callback
+    def _write_batch(self) -> None:
+        """Write the batch in the background (cancelled when the entry unloads)."""
         batch, self._batch = list(self._batch.values()), {}
+        self._writing = True
         self._entry.async_create_background_task(
             self._hass, self._async_write(batch), f"{self._entry.title} exposes"
         )
 
     async def _async_write(self, batch: list[Expose]) -> None:
+        """Write a batch; what became due meanwhile follows in one write, never before it.
+
+        One write at a time: a write may take several requests, and an older value sent after
+        a newer one would stay in the PLC.
+        """
+        try:
+            await self._async_write_now(batch)
+        finally:
+            self._writing = False
+            if self._batch and self._flush is None and not self._hass.is_stopping:
+                self._write_batch()
+
+    async def _async_write_now(self, batch: list[Expose]) -> None:
         """Write the batch's values in one call; note each expose's outcome."""
         coordinator = self._entry.runtime_data.coordinator
         now = self._hass.loop.time()
@@ -233,7 +247,7 @@ class PlcExposes:
         sending: dict[Point, Expose] = {}
         for expose in batch:
             expose.sent_at, expose.again = now, False
-            if expose.value is None:
+            if expose.value is None or not self._running(expose):
                 continue
             try:
                 coordinator.write_guard.check(expose.config.point)
@@ -248,14 +262,21 @@ class PlcExposes:
             results = await coordinator.async_write_values(values)
         except HomeAssistantError as err:
             for expose in sending.values():
-                self._failed(expose, str(err))
+                if self._running(expose):
+                    self._failed(expose, str(err))
             return
         for point, expose in sending.items():
+            if not self._running(expose):
+                continue
             result = results.get(point)
             if result is None or result.error is not None:
                 self._failed(expose, str(result.error if result else "no answer for the address"))
             else:
                 self._written(expose, values[point])
+
+    def _running(self, expose: Expose) -> bool:
+        """False for an expose removed or edited while its write was on the way (no issue then)."""
+        return self._exposes.get(expose.config.subentry_id) is expose
 
     def _written(self, expose: Expose, value: Value) -> None:
         """Note a write the PLC took; say so once after failures, and clear the issue."""
@@ -270,8 +291,12 @@ class PlcExposes:
 
     def _failed(self, expose: Expose, error: str) -> None:
         """Note a failed write: logged at the first, an issue after FAILURE_LIMIT in a row."""
-        expose.sent = None  # the same value is written again at the next change or resend
+        expose.sent = None  # the same value is written again by the retry or the next change
         expose.failures += 1
+        if self._retry is None:
+            self._retry = async_call_later(
+                self._hass, RETRY_INTERVAL, HassJob(self._retry_failed, cancel_on_shutdown=True)
+            )
         if expose.failures == 1:
             LOGGER.warning(
                 "%s: %s cannot be written to %s: %s",
@@ -280,7 +305,7 @@ class PlcExposes:
                 expose.config.point.address,
                 error,
             )
-        if expose.failures >= FAILURE_LIMIT and not expose.issue:
+        if expose.failures == FAILURE_LIMIT:  # an issue from before takes today's words
             expose.issue = True
             async_raise_expose_issue(
                 self._hass,

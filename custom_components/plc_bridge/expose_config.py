@@ -1,4 +1,4 @@
-"""What one expose is: its stored settings, and the PLC value a Home Assistant state becomes.
+"""What one expose is: its stored settings, the PLC value a state becomes, its running state.
 
 An expose subentry stores the entity (and optionally one of its attributes), the PLC address
 and data type, and how the state is converted: a value map (`on=1;off=0`, `home=1;not_home=0`)
@@ -14,7 +14,7 @@ import math
 from typing import Any
 
 from homeassistant.const import CONF_ATTRIBUTE, CONF_ENTITY_ID, STATE_UNAVAILABLE, STATE_UNKNOWN
-from homeassistant.core import State
+from homeassistant.core import CALLBACK_TYPE, State
 
 from .const import (
     CONF_ADDRESS,
@@ -142,33 +142,82 @@ class ExposeConfig:
         return client.validate_value(self.point, value)
 
 
+def _finite(value: Any) -> float:
+    """Return a stored number; raise ValueError for one that is not (`soon`, `.inf`, `.nan`)."""
+    number = float(value)
+    if not math.isfinite(number):
+        raise ValueError(f"{value!r} is no finite number")
+    return number
+
+
 def expose_config(subentry_id: str, title: str, data: Mapping[str, Any]) -> ExposeConfig:
-    """Return the expose a subentry's data describes (the form checked it)."""
-    try:
-        value_map = parse_state_map(str(data.get(CONF_VALUE_MAP) or ""))
-    except InvalidPairs:
-        value_map = ()
+    """Return the expose a subentry's data describes; raise ValueError where it cannot be read.
+
+    The form checked what it stored; a pasted file may hold anything (a cooldown `soon`).
+    """
     default = data.get(CONF_DEFAULT)
-    return ExposeConfig(
-        subentry_id=subentry_id,
-        title=title,
-        entity_id=str(data[CONF_ENTITY_ID]),
-        attribute=str(data[CONF_ATTRIBUTE]) if data.get(CONF_ATTRIBUTE) else None,
-        point=Point(data[CONF_ADDRESS], data[CONF_DATA_TYPE]),
-        scale=float(data.get(CONF_SCALE, 1.0)),
-        offset=float(data.get(CONF_OFFSET, 0.0)),
-        value_map=value_map,
-        cooldown=max(0.0, float(data.get(CONF_COOLDOWN, DEFAULT_COOLDOWN))),
-        resend=max(0.0, float(data.get(CONF_RESEND, 0.0))),
-        send_on_start=bool(data.get(CONF_SEND_ON_START, True)),
-        default=None if default in (None, "") else str(default),
-    )
+    value_map = str(data.get(CONF_VALUE_MAP) or "")
+    try:
+        return ExposeConfig(
+            subentry_id=subentry_id,
+            title=title,
+            entity_id=str(data[CONF_ENTITY_ID]),
+            attribute=str(data[CONF_ATTRIBUTE]) if data.get(CONF_ATTRIBUTE) else None,
+            point=Point(str(data[CONF_ADDRESS]), str(data[CONF_DATA_TYPE])),
+            scale=_finite(data.get(CONF_SCALE, 1.0)),
+            offset=_finite(data.get(CONF_OFFSET, 0.0)),
+            value_map=parse_state_map(value_map) if value_map.strip() else (),
+            cooldown=max(0.0, _finite(data.get(CONF_COOLDOWN, DEFAULT_COOLDOWN))),
+            resend=max(0.0, _finite(data.get(CONF_RESEND, 0.0))),
+            send_on_start=bool(data.get(CONF_SEND_ON_START, True)),
+            default=None if default in (None, "") else str(default),
+        )
+    except (InvalidPairs, KeyError, TypeError, ValueError) as err:
+        raise ValueError(f"{title}: its settings cannot be read ({err!r})") from err
 
 
-def entry_exposes(entry: PlcBridgeConfigEntry) -> dict[str, ExposeConfig]:
-    """Return every expose of the entry, by subentry id."""
-    return {
-        subentry.subentry_id: expose_config(subentry.subentry_id, subentry.title, subentry.data)
-        for subentry in entry.subentries.values()
-        if subentry.subentry_type == SUBENTRY_EXPOSE
-    }
+def entry_exposes(
+    entry: PlcBridgeConfigEntry, unreadable: list[str] | None = None
+) -> dict[str, ExposeConfig]:
+    """Return the entry's readable exposes by subentry id; why the others are not: `unreadable`."""
+    exposes: dict[str, ExposeConfig] = {}
+    for subentry in entry.subentries.values():
+        if subentry.subentry_type != SUBENTRY_EXPOSE:
+            continue
+        try:
+            exposes[subentry.subentry_id] = expose_config(
+                subentry.subentry_id, subentry.title, subentry.data
+            )
+        except ValueError as err:
+            if unreadable is not None:
+                unreadable.append(str(err))
+    return exposes
+
+
+class Expose:
+    """One expose running: the value it holds, when it last wrote, and how its writes go."""
+
+    def __init__(self, config: ExposeConfig) -> None:
+        """Start with nothing written."""
+        self.config = config
+        self.value: Value | None = None  # the latest value converted: written, or to be
+        self.sent: Value | None = None  # the value the PLC last took
+        self.sent_at: float | None = None  # loop time of the last write
+        self.again = False  # write the value even if the PLC holds it (start, resend)
+        self.timer: CALLBACK_TYPE | None = None  # the end of the cooldown
+        self.unsubscribe: list[CALLBACK_TYPE] = []
+        self.refused = False  # a value that cannot be written was logged
+        self.failures = 0  # failed writes in a row
+        self.issue = False
+
+    @property
+    def name(self) -> str:
+        """What the log and the repair issue call the expose."""
+        return self.config.title
+
+    def stop(self) -> None:
+        """Stop following the entity and forget a pending write."""
+        for unsubscribe in [*self.unsubscribe, self.timer]:
+            if unsubscribe is not None:
+                unsubscribe()
+        self.unsubscribe, self.timer = [], None

@@ -206,15 +206,10 @@ class ExposeSubentryFlowHandler(ConfigSubentryFlow):
         except HomeAssistantError:
             return "expose_read_only"
         editing = self._reconfigure_subentry_id if self.source == "reconfigure" else None
-        for subentry_id, other in entry_exposes(entry).items():
-            if subentry_id != editing and self._normal(client, other.point) == point:
-                return "already_configured"
-        return None
-
-    @staticmethod
-    def _normal(client: type[PlcClient], point: Point) -> Point:
-        """Return a stored point as the vendor spells it."""
+        # Another expose's address, under any data type or overlapping it, as the guard sees one.
+        others = [other.point for sid, other in entry_exposes(entry).items() if sid != editing]
         try:
-            return client.validate_point(point)
-        except PlcError:
-            return point
+            WriteGuard(client, others).check(point)
+        except HomeAssistantError:
+            return "already_configured"
+        return None

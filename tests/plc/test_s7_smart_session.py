@@ -363,3 +363,21 @@ async def test_write_refused_whole_for_another_reason_fails(
         await s7_smart_client.write(dict.fromkeys(points, 1))
     assert s7_smart_sim.calls["write"] == 1
     assert s7_smart_client._max_nodes == 32
+
+
+async def test_write_beside_a_read_after_the_session_was_lost(
+    s7_smart_sim: S7SmartSimulator, s7_smart_client: S7SmartClient
+) -> None:
+    """A poll and a write at once, their token ended by another login: the poll's new login
+    lands before the write's empty read, which passes on the new token. The write is sent again
+    on it, not taken for refused; one login between them."""
+    s7_smart_sim.invalidate_tokens()
+    logins = s7_smart_sim.calls["login"]
+    written = Point("VW2", "signed")
+    read, result = await asyncio.gather(
+        s7_smart_client.read([POINT]), s7_smart_client.write({written: 5})
+    )
+    assert read.values[POINT].ok
+    assert result[written].ok
+    assert s7_smart_sim.get("VW2") == 5
+    assert s7_smart_sim.calls["login"] == logins + 1
