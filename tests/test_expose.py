@@ -6,7 +6,7 @@ import logging
 
 from freezegun.api import FrozenDateTimeFactory
 from homeassistant.core import HomeAssistant
-from homeassistant.helpers import issue_registry as ir
+from homeassistant.helpers import entity_registry as er, issue_registry as ir
 import pytest
 from pytest_homeassistant_custom_component.common import MockConfigEntry
 from pytest_homeassistant_custom_component.components.diagnostics import (
@@ -293,3 +293,25 @@ async def test_edited_expose_writes_its_new_address(
     await settle(hass, freezer, 2.0)
     assert s7_smart_sim.get("VW130") == 11
     assert s7_smart_sim.get(*WORD) == 0
+
+
+async def test_follows_a_renamed_entity(
+    hass: HomeAssistant,
+    freezer: FrozenDateTimeFactory,
+    entry: MockConfigEntry,
+    s7_smart_sim: S7SmartSimulator,
+) -> None:
+    """An entity given another id in Home Assistant keeps its expose: stored, titled, written."""
+    registry = er.async_get(hass)
+    outdoor = registry.async_get_or_create("sensor", "demo", "outdoor", suggested_object_id="out")
+    hass.states.async_set(outdoor.entity_id, "4.5")
+    subentry_id = add_expose(hass, entry, outdoor.entity_id, REAL)
+    await set_up(hass, entry)
+    registry.async_update_entity(outdoor.entity_id, new_entity_id="sensor.garden")
+    await hass.async_block_till_done()
+    subentry = entry.subentries[subentry_id]
+    assert subentry.data["entity_id"] == "sensor.garden"
+    assert subentry.title == "sensor.garden → VD400"
+    hass.states.async_set("sensor.garden", "7.25")
+    await settle(hass, freezer, 2.0)
+    assert s7_smart_sim.get(*REAL) == 7.25

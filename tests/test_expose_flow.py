@@ -8,6 +8,7 @@ from homeassistant.config_entries import SOURCE_USER
 from homeassistant.const import CONF_HOST, CONF_PORT
 from homeassistant.core import HomeAssistant
 from homeassistant.data_entry_flow import FlowResultType
+from homeassistant.helpers import entity_registry as er
 import pytest
 from pytest_homeassistant_custom_component.common import MockConfigEntry
 
@@ -176,3 +177,40 @@ async def test_one_expose_per_address_whatever_its_type(
     assert len(exposes(entry)) == 1
     result = await submit(hass, result, values | {"address": "VW404"})
     assert result["type"] is FlowResultType.CREATE_ENTRY
+
+
+async def test_own_entity_to_its_own_address_refused(hass: HomeAssistant) -> None:
+    """An entity of this PLC sent to an address it reads would feed back: refused on the address.
+
+    Sent elsewhere, or another integration's entity sent to that address, it is taken.
+    """
+    setpoint = point("setpoint", "Setpoint", "number", "VD100", "float")
+    parts = [
+        point("c1", "Room", "climate", "VW20", "signed", role="target_temperature", entity="c1"),
+        point("c2", "Room", "climate", "VW22", "signed", role="current_temperature", entity="c1"),
+    ]
+    entry = MockConfigEntry(
+        domain=DOMAIN,
+        data={CONF_VENDOR: "s7_smart", CONF_HOST: "192.0.2.1", CONF_PORT: 443},
+        version=2,
+        subentries_data=[device([setpoint, *parts])],
+    )
+    entry.add_to_hass(hass)
+    registry = er.async_get(hass)
+    number = registry.async_get_or_create("number", DOMAIN, "plc_setpoint", config_entry=entry)
+    climate = registry.async_get_or_create("climate", DOMAIN, "plc_c1", config_entry=entry)
+    cases = [
+        (number.entity_id, "VD100", "float", "expose_feeds_back"),
+        (climate.entity_id, "VB22", "unsigned", "expose_feeds_back"),  # inside a part's word
+        (number.entity_id, "VD104", "float", None),
+        ("sensor.outdoor", "VD100", "float", None),
+    ]
+    for entity_id, address, data_type, error in cases:
+        result = await start(hass, entry)
+        values = {"entity_id": entity_id, "address": address, "data_type": data_type}
+        result = await submit(hass, result, values)
+        if error is None:
+            assert result["type"] is FlowResultType.CREATE_ENTRY, (entity_id, address)
+            continue
+        assert result["errors"] == {"address": error}, (entity_id, address)
+        assert address in error_message(result, "address", *EXPOSE)

@@ -36,7 +36,7 @@ from homeassistant.helpers.event import (
 from homeassistant.helpers.start import async_at_started
 
 from .const import DOMAIN, LOGGER
-from .expose_config import Expose, ExposeConfig, entry_exposes
+from .expose_config import Expose, ExposeConfig, async_follow_renames, entry_exposes
 from .models import PlcBridgeConfigEntry
 from .plc import PlcError, Point, Value
 from .repairs import async_clear_expose_issues, async_raise_expose_issue, expose_issue_id
@@ -73,6 +73,7 @@ class PlcExposes:
         async_clear_expose_issues(self._hass, self._entry, keep=self._exposes)
         self._entry.async_on_unload(async_at_started(self._hass, self._send_on_start))
         self._entry.async_on_unload(self._entry.add_update_listener(self._async_entry_updated))
+        self._entry.async_on_unload(async_follow_renames(self._hass, self._entry))
         self._entry.async_on_unload(self.async_stop)
 
     @callback

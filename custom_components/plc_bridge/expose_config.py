@@ -14,7 +14,8 @@ import math
 from typing import Any
 
 from homeassistant.const import CONF_ATTRIBUTE, CONF_ENTITY_ID, STATE_UNAVAILABLE, STATE_UNKNOWN
-from homeassistant.core import CALLBACK_TYPE, State
+from homeassistant.core import CALLBACK_TYPE, Event, HomeAssistant, State, callback
+from homeassistant.helpers import entity_registry as er
 
 from .const import (
     CONF_ADDRESS,
@@ -221,3 +222,34 @@ class Expose:
             if unsubscribe is not None:
                 unsubscribe()
         self.unsubscribe, self.timer = [], None
+
+
+def expose_title(data: Mapping[str, Any]) -> str:
+    """Return an expose's name: its entity (and attribute), an arrow, the address."""
+    source = str(data[CONF_ENTITY_ID])
+    if data.get(CONF_ATTRIBUTE):
+        source += f" ({data[CONF_ATTRIBUTE]})"
+    return f"{source} → {data[CONF_ADDRESS]}"
+
+
+@callback
+def async_follow_renames(hass: HomeAssistant, entry: PlcBridgeConfigEntry) -> CALLBACK_TYPE:
+    """Keep each expose on its entity when the entity's id is changed in Home Assistant."""
+
+    @callback
+    def renamed(event: Event[er.EventEntityRegistryUpdatedData]) -> None:
+        """Store the new entity id in the exposes that named the old one."""
+        data = event.data
+        if data["action"] != "update" or "old_entity_id" not in data:
+            return
+        for subentry in list(entry.subentries.values()):
+            stored = subentry.data
+            if subentry.subentry_type != SUBENTRY_EXPOSE:
+                continue
+            if stored.get(CONF_ENTITY_ID) == data["old_entity_id"]:
+                moved = {**stored, CONF_ENTITY_ID: data["entity_id"]}
+                hass.config_entries.async_update_subentry(
+                    entry, subentry, data=moved, title=expose_title(moved)
+                )
+
+    return hass.bus.async_listen(er.EVENT_ENTITY_REGISTRY_UPDATED, renamed)

@@ -8,11 +8,13 @@ unavailable.
 
 from __future__ import annotations
 
+import re
 from typing import Any
 
 from homeassistant.config_entries import ConfigSubentryFlow, SubentryFlowResult
 from homeassistant.const import CONF_ATTRIBUTE, CONF_ENTITY_ID
 from homeassistant.exceptions import HomeAssistantError
+from homeassistant.helpers import entity_registry as er
 from homeassistant.helpers.selector import (
     BooleanSelector,
     EntitySelector,
@@ -26,11 +28,13 @@ from homeassistant.helpers.selector import (
 )
 import voluptuous as vol
 
+from .composite import group_key
 from .const import (
     CONF_ADDRESS,
     CONF_COOLDOWN,
     CONF_DATA_TYPE,
     CONF_DEFAULT,
+    CONF_ENTITY,
     CONF_OFFSET,
     CONF_RESEND,
     CONF_SCALE,
@@ -44,12 +48,13 @@ from .expose_config import (
     SENDABLE,
     entry_exposes,
     expose_config,
+    expose_title,
     format_state_map,
     parse_state_map,
 )
 from .plc import PlcAddressError, PlcClient, PlcError, Point
 from .plc.vendors import client_class
-from .points import entry_points
+from .points import PointConfig, entry_points
 from .write_guard import WriteGuard
 
 _NUMBER = NumberSelector(NumberSelectorConfig(mode=NumberSelectorMode.BOX, step="any"))
@@ -92,12 +97,9 @@ def expose_schema(client: type[PlcClient]) -> vol.Schema:
     )
 
 
-def expose_title(data: dict[str, Any]) -> str:
-    """Return an expose's name: its entity (and attribute), an arrow, the address."""
-    source = str(data[CONF_ENTITY_ID])
-    if data.get(CONF_ATTRIBUTE):
-        source += f" ({data[CONF_ATTRIBUTE]})"
-    return f"{source} → {data[CONF_ADDRESS]}"
+def entity_key(config: PointConfig) -> str:
+    """Return the end of the unique id of the entity that shows a point (its entity's key)."""
+    return str(config.data.get(CONF_ENTITY) or config.point_id)
 
 
 class ExposeSubentryFlowHandler(ConfigSubentryFlow):
@@ -165,6 +167,8 @@ class ExposeSubentryFlowHandler(ConfigSubentryFlow):
             errors[CONF_DATA_TYPE] = "expose_data_type"
         elif error := self._address_error(client, point):
             errors[CONF_ADDRESS] = error
+        elif self._feeds_back(client, point, str(values[CONF_ENTITY_ID])):
+            errors[CONF_ADDRESS] = "expose_feeds_back"
         data: dict[str, Any] = {
             CONF_ENTITY_ID: str(values[CONF_ENTITY_ID]),
             CONF_ADDRESS: point.address,
@@ -193,6 +197,25 @@ class ExposeSubentryFlowHandler(ConfigSubentryFlow):
                 errors[CONF_DEFAULT] = "invalid_default"
                 placeholders["error"] = str(err)
         return data, errors, placeholders
+
+    def _feeds_back(self, client: type[PlcClient], point: Point, entity_id: str) -> bool:
+        """True when the entity is one of this PLC's and reads the address itself.
+
+        Its value would come back converted at each change (a scale runs away), never settling.
+        """
+        registered = er.async_get(self.hass).async_get(entity_id)
+        entry = self._get_entry()
+        if registered is None or registered.config_entry_id != entry.entry_id:
+            return False
+        configs = entry_points(entry).values()
+        tail = re.sub(r"_bit\d+$", "", registered.unique_id)  # an alarm word's bit: the word
+        keys = {group_key(c) or c.point_id for c in configs if tail.endswith(f"_{entity_key(c)}")}
+        shown = [c.point for c in configs if (group_key(c) or c.point_id) in keys]
+        try:
+            WriteGuard(client, shown).check(point)
+        except HomeAssistantError:
+            return True
+        return False
 
     def _address_error(self, client: type[PlcClient], point: Point) -> str | None:
         """Return why no expose may write the address, if none may."""
