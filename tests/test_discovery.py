@@ -169,7 +169,9 @@ async def test_siemens_both_answer(
     filled_in(result, sim.port)
 
 
-@pytest.mark.parametrize(("mac", "slot"), [(SIEMENS_MAC, 1), (SIEMENS_MAC, 5), (TECO_MAC, 1)])
+@pytest.mark.parametrize(
+    ("mac", "slot"), [(SIEMENS_MAC, 1), (SIEMENS_MAC, 5), (TECO_MAC, 1), (PHOENIX_MAC, 1)]
+)
 async def test_nothing_answers(
     hass: HomeAssistant, ports: Ports, s7_ha_sims: SimFactory, mac: str, slot: int
 ) -> None:
