@@ -56,27 +56,38 @@ class InvalidPairs(Exception):
         self.text = text
 
 
+def pair_parts(text: str) -> list[tuple[str, str, str]]:
+    """Return the parts of a map's text (`;` or lines apart) as (part, left, right), stripped.
+
+    Raise InvalidPairs for a part without `=` and for a text without parts.
+    """
+    parts = []
+    for part in text.replace("\n", ";").split(";"):
+        if part.strip():
+            left, sep, right = part.partition("=")
+            if not sep:
+                raise InvalidPairs("map_not_a_pair", part.strip())
+            parts.append((part.strip(), left.strip(), right.strip()))
+    if not parts:
+        raise InvalidPairs("map_empty")
+    return parts
+
+
 def parse_pairs(text: str, *, low: int | None = None, high: int | None = None) -> Pairs:
     """Return `0=Off;1=Auto` as pairs; raise InvalidPairs for a bad, repeated or empty pair."""
     pairs: list[tuple[int, str]] = []
-    for part in text.replace("\n", ";").split(";"):
-        if not part.strip():
-            continue
-        raw, sep, label = part.partition("=")
-        label = label.strip()
+    for part, raw, label in pair_parts(text):
         try:
-            number = int(raw.strip(), 0)
+            number = int(raw, 0)
         except ValueError:
-            raise InvalidPairs("map_not_a_pair", part.strip()) from None
-        if not sep or not label:
-            raise InvalidPairs("map_not_a_pair", part.strip())
+            raise InvalidPairs("map_not_a_pair", part) from None
+        if not label:
+            raise InvalidPairs("map_not_a_pair", part)
         if (low is not None and number < low) or (high is not None and number > high):
-            raise InvalidPairs("map_out_of_range", part.strip())
+            raise InvalidPairs("map_out_of_range", part)
         if any(number == key or label == name for key, name in pairs):
-            raise InvalidPairs("map_repeated", part.strip())
+            raise InvalidPairs("map_repeated", part)
         pairs.append((number, label))
-    if not pairs:
-        raise InvalidPairs("map_empty")
     return tuple(pairs)
 
 

@@ -29,7 +29,7 @@ from .const import (
     CONF_VALUE_MAP,
     SUBENTRY_EXPOSE,
 )
-from .conversion import InvalidPairs, scaled
+from .conversion import InvalidPairs, pair_parts, scaled
 from .models import PlcBridgeConfigEntry
 from .plc import PlcClient, PlcValueError, Point, Value, ValueKind
 
@@ -61,20 +61,15 @@ def _number(text: str) -> int | float | None:
 def parse_state_map(text: str) -> StateMap:
     """Return `on=1;off=0` as pairs (`1=on` is taken too); raise InvalidPairs where it fails."""
     pairs: list[tuple[str, int | float]] = []
-    for part in text.replace("\n", ";").split(";"):
-        if not part.strip():
-            continue
-        state, sep, value = (side.strip() for side in part.partition("="))
-        number = _number(value)
-        if number is None and _number(state) is not None:
-            state, number = value, _number(state)
-        if not sep or not state or number is None:
-            raise InvalidPairs("map_not_a_pair", part.strip())
+    for part, left, right in pair_parts(text):
+        state, number = left, _number(right)
+        if number is None and _number(left) is not None:
+            state, number = right, _number(left)
+        if not state or number is None:
+            raise InvalidPairs("map_not_a_pair", part)
         if any(state.casefold() == known.casefold() for known, _ in pairs):
-            raise InvalidPairs("map_repeated", part.strip())
+            raise InvalidPairs("map_repeated", part)
         pairs.append((state, number))
-    if not pairs:
-        raise InvalidPairs("map_empty")
     return tuple(pairs)
 
 
