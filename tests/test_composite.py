@@ -15,7 +15,8 @@ from custom_components.plc_bridge.composite import (
     touched,
 )
 from custom_components.plc_bridge.plc.vendors import client_class
-from custom_components.plc_bridge.point_table import export_points, parse_points, point_order
+from custom_components.plc_bridge.point_export import export_points
+from custom_components.plc_bridge.point_table import parse_points, point_order
 from custom_components.plc_bridge.points import PointConfig
 
 SMART = client_class("s7_smart")

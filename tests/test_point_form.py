@@ -11,13 +11,12 @@ from homeassistant.components.sensor import SensorDeviceClass
 import pytest
 
 from custom_components.plc_bridge.const import POINT_PLATFORMS
+from custom_components.plc_bridge.device_classes import DEVICE_CLASSES, device_classes
 from custom_components.plc_bridge.plc import BrowseItem, ValueKind
 from custom_components.plc_bridge.plc.vendors import client_class
 from custom_components.plc_bridge.point_form import (
-    DEVICE_CLASSES,
     browse_values,
     details_schema,
-    device_classes,
     point_data,
     suggested_platform,
 )

@@ -8,8 +8,9 @@ import pytest
 
 from custom_components.plc_bridge.plc import ValueKind
 from custom_components.plc_bridge.plc.vendors import client_class
+from custom_components.plc_bridge.point_export import export_points
 from custom_components.plc_bridge.point_form import details_schema, point_data
-from custom_components.plc_bridge.point_table import export_points, parse_points, point_order
+from custom_components.plc_bridge.point_table import parse_points, point_order
 
 SMART = client_class("s7_smart")
 TECOMAT = client_class("tecomat")

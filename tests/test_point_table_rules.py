@@ -12,10 +12,10 @@ from pytest_homeassistant_custom_component.common import MockConfigEntry
 
 from custom_components.plc_bridge.const import DOMAIN
 from custom_components.plc_bridge.plc.vendors import client_class
+from custom_components.plc_bridge.point_export import export_points
 from custom_components.plc_bridge.point_form import check_point
 from custom_components.plc_bridge.point_table import (
     COLUMNS,
-    export_points,
     parse_points,
     point_order,
 )

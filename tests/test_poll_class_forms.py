@@ -15,7 +15,8 @@ from custom_components.plc_bridge.const import CONF_POINTS, DOMAIN, SUBENTRY_DEV
 from custom_components.plc_bridge.plc import Point
 from custom_components.plc_bridge.plc.vendors import client_class
 from custom_components.plc_bridge.plc.vendors.s7_smart import S7SmartClient
-from custom_components.plc_bridge.point_table import export_points, parse_points, point_order
+from custom_components.plc_bridge.point_export import export_points
+from custom_components.plc_bridge.point_table import parse_points, point_order
 from custom_components.plc_bridge.points import PointConfig, point_classes
 from simulators.s7_smart import S7SmartSimulator
 

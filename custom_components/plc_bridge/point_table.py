@@ -1,4 +1,4 @@
-"""Points as text: pasted tables imported line by line, and the same format exported.
+"""Points as text: pasted tables imported line by line (point_export.py writes the format).
 
 The format is CSV with a header row (comma, semicolon or tab separated, as engineering tools
 and spreadsheets copy tables). A TIA Portal tag table or a STEP 7-Micro/WIN SMART symbol table
@@ -298,32 +298,6 @@ def parse_points(
             errors.append((firsts[name], describe(key, details)))
     errors.sort(key=lambda error: error[0])
     return ([] if errors else points), errors
-
-
-def export_points(points: Iterable[Mapping[str, Any]]) -> str:
-    """Return points in the import format (a header, then one line per point, by name)."""
-    out = io.StringIO()
-    writer = csv.writer(out, lineterminator="\n")
-    writer.writerow(COLUMNS)
-    for data in sorted(points, key=point_order):
-        row = {**data, "unit": data.get(CONF_UNIT_OF_MEASUREMENT)}
-        row[CONF_READ_ONLY] = "true" if data.get(CONF_READ_ONLY) else "false"
-        row |= {key: "true" if data.get(key) else None for key in SET_FLAGS}
-        writer.writerow([_cell(row.get(column)) for column in COLUMNS])
-    return out.getvalue()
-
-
-def _cell(value: Any) -> str:
-    """Return a value as a cell: numbers in their shortest form, nothing for None.
-
-    Text that a spreadsheet would take for a formula goes behind a `'` (import drops it).
-    """
-    if value is None:
-        return ""
-    if isinstance(value, float):
-        return f"{value:g}" if value == float(f"{value:g}") else repr(value)
-    text = str(value)
-    return f"'{text}" if isinstance(value, str) and text.startswith(FORMULA) else text
 
 
 def _unescaped(cell: str) -> str:

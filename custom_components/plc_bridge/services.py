@@ -31,7 +31,7 @@ from .const import (
 )
 from .coordinator import PlcBridgeConfigEntry
 from .plc import PlcClient, PlcError, Point, Value
-from .point_table import export_points
+from .point_export import export_points
 from .points import entry_points
 from .translated_errors import invalid, translated_errors
 

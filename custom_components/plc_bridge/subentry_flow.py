@@ -28,6 +28,7 @@ from .const import (
     CONF_ROLE,
     CONF_VENDOR,
 )
+from .device_classes import device_classes
 from .flow_lists import (
     CONF_FILTER,
     CONF_VARIABLES,
@@ -48,7 +49,6 @@ from .point_form import (
     base_schema,
     check_point,
     details_schema,
-    device_classes,
     point_data,
     point_key,
 )
