@@ -214,3 +214,22 @@ async def test_own_entity_to_its_own_address_refused(hass: HomeAssistant) -> Non
             continue
         assert result["errors"] == {"address": error}, (entity_id, address)
         assert address in error_message(result, "address", *EXPOSE)
+
+
+async def test_attribute_the_entity_lacks(hass: HomeAssistant) -> None:
+    """An attribute the entity lacks now is told with those it has; submitted again, it is kept."""
+    hass.states.async_set("sun.sun", "above_horizon", {"azimuth": 180.5, "elevation": 30.0})
+    entry = plc_entry(hass)
+    values = {"entity_id": "sun.sun", "attribute": "azimut", "address": "VD400"}
+    values["data_type"] = "float"
+    result = await submit(hass, await start(hass, entry), values)
+    assert result["errors"] == {"attribute": "expose_attribute_missing"}
+    message = error_message(result, "attribute", *EXPOSE)
+    assert "`azimut`" in message
+    assert "`azimuth`, `elevation`" in message
+    assert not exposes(entry)
+    result = await submit(hass, result, values)
+    assert result["type"] is FlowResultType.CREATE_ENTRY
+    assert exposes(entry)[0].data["attribute"] == "azimut"
+    result = await submit(hass, await start(hass, entry), values | {"attribute": "azimuth"})
+    assert result["errors"] == {"address": "already_configured"}  # the attribute itself passed

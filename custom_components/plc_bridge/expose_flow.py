@@ -105,6 +105,8 @@ def entity_key(config: PointConfig) -> str:
 class ExposeSubentryFlowHandler(ConfigSubentryFlow):
     """Add or edit one expose of the PLC."""
 
+    _asked: tuple[str, str] | None = None  # an attribute the entity lacked, told once
+
     @property
     def _client(self) -> type[PlcClient]:
         """The client class of the entry's vendor: its parser, data types and value checks."""
@@ -128,6 +130,9 @@ class ExposeSubentryFlowHandler(ConfigSubentryFlow):
         placeholders = {"error": "", CONF_ADDRESS: ""}
         if user_input is not None:
             data, errors, placeholders = self._check(user_input)
+            if not errors and (missing := self._missing_attribute(data)) is not None:
+                errors = {CONF_ATTRIBUTE: "expose_attribute_missing"}
+                placeholders |= missing
             if not errors:
                 if self.source == "reconfigure":
                     return self.async_update_and_abort(
@@ -197,6 +202,23 @@ class ExposeSubentryFlowHandler(ConfigSubentryFlow):
                 errors[CONF_DEFAULT] = "invalid_default"
                 placeholders["error"] = str(err)
         return data, errors, placeholders
+
+    def _missing_attribute(self, data: dict[str, Any]) -> dict[str, str] | None:
+        """Return what to tell when the entity has no such attribute now; None when it has.
+
+        Some attributes come and go with the entity's state: the same form submitted again
+        keeps the attribute as typed (nothing is written while the entity lacks it).
+        """
+        attribute = data.get(CONF_ATTRIBUTE)
+        state = self.hass.states.get(data[CONF_ENTITY_ID])
+        if not attribute or state is None or attribute in state.attributes:
+            return None
+        asked = (state.entity_id, str(attribute))
+        if self._asked == asked:
+            return None
+        self._asked = asked
+        names = ", ".join(f"`{name}`" for name in sorted(state.attributes)) or "none"
+        return {"entity": state.entity_id, "attribute": str(attribute), "attributes": names}
 
     def _feeds_back(self, client: type[PlcClient], point: Point, entity_id: str) -> bool:
         """True when the entity is one of this PLC's and reads the address itself.
