@@ -153,6 +153,19 @@ async def test_s7(hass: HomeAssistant, ports: Ports, s7_ha_sims: SimFactory) -> 
 
 
 @pytest.mark.usefixtures("mock_setup_entry")
+async def test_s7_at_slot_two(hass: HomeAssistant, ports: Ports, s7_ha_sims: SimFactory) -> None:
+    """An S7-300/400 CPU answers at slot 2: the rack/slot page suggests slot 2, and it connects."""
+    sim = await s7_ha_sims(slot=2)
+    ports(s7=sim.port)
+    result = await confirmed(hass, SIEMENS_MAC, "Siemens")
+    result = await submit(hass, result, {CONF_HOST: "127.0.0.1", CONF_PORT: sim.port})
+    assert (suggested(result, "rack"), suggested(result, "slot")) == (0, 2)
+    result = await submit(hass, result, {"rack": 0, "slot": 2})
+    assert result["type"] is FlowResultType.CREATE_ENTRY
+    assert result["data"]["vendor_options"]["slot"] == 2
+
+
+@pytest.mark.usefixtures("mock_setup_entry")
 async def test_siemens_both_answer(
     hass: HomeAssistant, ports: Ports, s7_ha_sims: SimFactory, flow_sim: S7SmartSimulator
 ) -> None:

@@ -32,16 +32,27 @@ PROBE_PORTS: dict[str, int] = {
 """Where each vendor's interface is probed: the port its connection page suggests."""
 
 
-async def answering(hass: HomeAssistant, host: str, vendors: tuple[str, ...]) -> list[str]:
-    """Return the vendors, of those given and in their order, whose interface answers at host."""
+async def answering(
+    hass: HomeAssistant, host: str, vendors: tuple[str, ...]
+) -> dict[str, dict[str, Any]]:
+    """Return the vendors whose interface answers at host, in the order given.
+
+    Each comes with the connection options it answered with (an S7 CPU's slot).
+    """
     session = async_get_clientsession(hass)
 
-    async def answers(vendor: str) -> bool:
+    async def answers(vendor: str) -> dict[str, Any] | None:
         probe = probe_of(vendor)
-        return probe is not None and await probe(host, PROBE_PORTS[vendor], session, PROBE_TIMEOUT)
+        if probe is None:
+            return None
+        return await probe(host, PROBE_PORTS[vendor], session, PROBE_TIMEOUT)
 
     found = await asyncio.gather(*(answers(vendor) for vendor in vendors))
-    return [vendor for vendor, answered in zip(vendors, found, strict=True) if answered]
+    return {
+        vendor: options
+        for vendor, options in zip(vendors, found, strict=True)
+        if options is not None
+    }
 
 
 @callback
@@ -66,7 +77,7 @@ class DiscoveryFlow(ConfigFlow):
     _vendor: str
     _data: dict[str, Any]
     _entered: dict[str, Any]
-    _found: list[str]
+    _found: dict[str, dict[str, Any]]  # the vendors that answered, with what they answered
     _family: Family
     _host: str
 
@@ -114,18 +125,22 @@ class DiscoveryFlow(ConfigFlow):
     ) -> ConfigFlowResult:
         """Name the PLC found; where several of its interfaces answered, the user picks one."""
         if user_input is not None:
-            self._vendor = user_input.get(CONF_VENDOR, self._found[0])
+            self._vendor = user_input.get(CONF_VENDOR, next(iter(self._found)))
             self._data = {
                 CONF_VENDOR: self._vendor,
                 CONF_USERNAME: "",
                 CONF_PASSWORD: "",
                 CONF_MAC: self.unique_id,
             }
-            self._entered = {CONF_HOST: self._host, CONF_PORT: PROBE_PORTS[self._vendor]}
+            self._entered = {
+                CONF_HOST: self._host,
+                CONF_PORT: PROBE_PORTS[self._vendor],
+                **self._found[self._vendor],  # an S7 CPU's slot, on the rack/slot page
+            }
             return self._connection_form({})
         return self.async_show_form(
             step_id="discovery_confirm",
-            data_schema=vendor_schema(vendors=self._found)
+            data_schema=vendor_schema(vendors=list(self._found))
             if len(self._found) > 1
             else vol.Schema({}),
             description_placeholders={"family": self._family.name, "host": self._host},

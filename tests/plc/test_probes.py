@@ -36,14 +36,14 @@ async def sims() -> AsyncGenerator[dict[str, Server]]:
 
 
 async def test_each_probe_knows_its_own(sims: dict[str, Server]) -> None:
-    """A probe answers True at its vendor's simulator only: the family offered is the right one."""
+    """A probe answers at its vendor's simulator only: the family offered is the right one."""
     async with aiohttp.ClientSession() as session:
         for vendor in PROBED:
             probe = probe_of(vendor)
             assert probe is not None
             for where, sim in sims.items():
                 found = await probe(sim.host, sim.port, session, 1.0)
-                assert found is (where == vendor), (vendor, where)
+                assert (found is not None) is (where == vendor), (vendor, where)
 
 
 async def test_nothing_listening(unused_tcp_port: int) -> None:
@@ -53,17 +53,19 @@ async def test_nothing_listening(unused_tcp_port: int) -> None:
         for vendor in PROBED:
             probe = probe_of(vendor)
             assert probe is not None
-            assert not await probe("127.0.0.1", unused_tcp_port, session, 3.0)
+            assert await probe("127.0.0.1", unused_tcp_port, session, 3.0) is None
     assert time.monotonic() - started < 3.0
 
 
-@pytest.mark.parametrize(("slot", "found"), [(1, True), (2, True), (3, False)])
-async def test_s7_slots(slot: int, found: bool) -> None:
-    """The S7 probe asks rack 0, slot 1 then 2; a CPU serving neither is not offered."""
+@pytest.mark.parametrize(
+    ("slot", "found"), [(1, {"rack": 0, "slot": 1}), (2, {"rack": 0, "slot": 2}), (3, None)]
+)
+async def test_s7_slots(slot: int, found: dict[str, int] | None) -> None:
+    """The S7 probe asks rack 0, slot 1 then 2, and says which answered; neither: not offered."""
     async with running(S7Simulator(slot=slot)) as sim, aiohttp.ClientSession() as session:
         probe = probe_of("s7")
         assert probe is not None
-        assert await probe(sim.host, sim.port, session, 3.0) is found
+        assert await probe(sim.host, sim.port, session, 3.0) == found
 
 
 def test_connection_request() -> None:

@@ -18,8 +18,14 @@ from yarl import URL
 PROBE_BODY = 16 * 1024
 """The most of an answer's body a probe reads: enough for an error object or a description."""
 
-type Probe = Callable[[str, int, aiohttp.ClientSession, float], Awaitable[bool]]
-"""A vendor's probe: host, port, HTTP session and timeout in; whether its interface answers out."""
+type Probe = Callable[[str, int, aiohttp.ClientSession, float], Awaitable[dict[str, Any] | None]]
+"""A vendor's probe: host, port, HTTP session and timeout in; None where its interface does not
+answer, else the connection options it answered with (an S7 CPU's slot; mostly none)."""
+
+
+def answered(found: bool) -> dict[str, Any] | None:
+    """Return the result of a probe that only tells whether the interface answered."""
+    return {} if found else None
 
 
 def probe_url(host: str, port: int, path: str, *, secure: bool) -> URL:

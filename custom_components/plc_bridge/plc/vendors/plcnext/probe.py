@@ -2,18 +2,23 @@
 
 from __future__ import annotations
 
+from typing import Any
+
 import aiohttp
 
-from ...probe import http_answer, json_object, probe_url
+from ...probe import answered, http_answer, json_object, probe_url
 from .api import LATEST
 
 
-async def answers(host: str, port: int, session: aiohttp.ClientSession, timeout: float) -> bool:
-    """True when the service description (asked before any login) names an API version."""
+async def answers(
+    host: str, port: int, session: aiohttp.ClientSession, timeout: float
+) -> dict[str, Any] | None:
+    """Answered when the service description (asked before any login) names an API version."""
     answer = await http_answer(session, "GET", probe_url(host, port, LATEST, secure=True), timeout)
     if answer is None or not 200 <= answer[0] < 300:
-        return False
+        return None
     description = json_object(answer[2])
-    return description is not None and any(
-        isinstance(description.get(key), str) for key in ("version", "apiVersion")
+    return answered(
+        description is not None
+        and any(isinstance(description.get(key), str) for key in ("version", "apiVersion"))
     )

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import asyncio
 import contextlib
+from typing import Any
 
 import aiohttp
 
@@ -41,8 +42,10 @@ async def _confirms(host: str, port: int, called_tsap: int) -> bool:
             await writer.wait_closed()
 
 
-async def answers(host: str, port: int, session: aiohttp.ClientSession, timeout: float) -> bool:
-    """True when a CPU at rack 0, slot 1 or 2 confirms a PG connection (no S7 job is sent).
+async def answers(
+    host: str, port: int, session: aiohttp.ClientSession, timeout: float
+) -> dict[str, Any] | None:
+    """The slot at which a CPU at rack 0, slot 1 or 2, confirms a PG connection (no S7 job sent).
 
     A CPU refuses a TSAP it does not serve by closing or with a disconnect request: then the
     next slot is asked, within the same timeout. `session` is not used (no HTTP).
@@ -52,7 +55,7 @@ async def answers(host: str, port: int, session: aiohttp.ClientSession, timeout:
             for slot in SLOTS:
                 with contextlib.suppress(asyncio.IncompleteReadError, ConnectionError):
                     if await _confirms(host, port, PG << 8 | slot):
-                        return True
+                        return {"rack": 0, "slot": slot}
     except OSError:  # TimeoutError is one; so is a refused connection
-        return False
-    return False
+        return None
+    return None

@@ -2,14 +2,18 @@
 
 from __future__ import annotations
 
+from typing import Any
+
 import aiohttp
 
-from ...probe import http_answer, json_object, probe_url
+from ...probe import answered, http_answer, json_object, probe_url
 from .rpc import PATH
 
 
-async def answers(host: str, port: int, session: aiohttp.ClientSession, timeout: float) -> bool:
-    """True when a JSON-RPC 2.0 answer comes back for get_permission sent without a token.
+async def answers(
+    host: str, port: int, session: aiohttp.ClientSession, timeout: float
+) -> dict[str, Any] | None:
+    """Answered when a JSON-RPC 2.0 answer comes back for get_permission sent without a token.
 
     The CPU answers it with an error object (no session); any JSON-RPC answer to the call, in
     whatever HTTP status, is the Web API answering.
@@ -18,7 +22,7 @@ async def answers(host: str, port: int, session: aiohttp.ClientSession, timeout:
     url = probe_url(host, port, PATH, secure=True)
     answer = await http_answer(session, "POST", url, timeout, json=call)
     reply = json_object(answer[2]) if answer is not None else None
-    return (
+    return answered(
         reply is not None
         and reply.get("jsonrpc") == "2.0"
         and reply.get("id") == 1
