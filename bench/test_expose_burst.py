@@ -18,8 +18,7 @@ import pytest
 
 from custom_components.plc_bridge.plc import Point
 from custom_components.plc_bridge.plc.vendors import client_class, implemented
-from tests.expose_fixtures import VENDORS, VendorCase, add_expose, settle, shown
-from tests.ha_fixtures import set_up
+from tests.expose_fixtures import VENDORS, VendorCase, burst
 from tests.plcnext_ha_fixtures import plcnext_sim  # noqa: F401  (fixtures by name)
 from tests.s7_ha_fixtures import s7_ha_sim, s7_ha_sims  # noqa: F401
 from tests.softplc_ha_fixtures import softplc_sim  # noqa: F401
@@ -49,30 +48,17 @@ async def test_expose_burst(
 ) -> None:
     """Change every exposed entity at once; count the write requests the PLC serves."""
     vendor, sim = case
-    entities = [f"input_number.level_{index}" for index in range(len(vendor.burst))]
-    for entity_id in entities:
-        hass.states.async_set(entity_id, "0")
-    entry = vendor.entry(hass, sim, [shown(vendor)])
-    for entity_id, target in zip(entities, vendor.burst, strict=True):
-        add_expose(hass, entry, entity_id, target)
-    await set_up(hass, entry)
+    entry, cost = await burst(hass, freezer, vendor, sim)
     client = entry.runtime_data.client
-    writes, requests = vendor.writes(sim), client.metrics.requests
-    for index, entity_id in enumerate(entities):
-        hass.states.async_set(entity_id, str(index % 100 + 11))
-    await settle(hass, freezer)
     result = {
         "check": "expose_burst",
         "vendor": vendor.vendor,
-        "exposes": len(entities),
-        "write_requests": vendor.writes(sim) - writes,
-        "requests": client.metrics.requests - requests,
+        "exposes": len(cost.sent),
+        "write_requests": cost.writes,
+        "requests": cost.requests,
         "minimum": client.planned_requests([Point(*target) for target in vendor.burst]),
-        "written": sum(
-            vendor.read(sim, *target) == index % 100 + 11
-            for index, target in enumerate(vendor.burst)
-        ),
+        "written": sum(held == sent for held, sent in zip(cost.held, cost.sent, strict=True)),
     }
     print("\nBENCH " + json.dumps(result))
-    assert result["written"] == len(entities)
+    assert result["written"] == len(cost.sent)
     assert result["write_requests"] == result["minimum"]

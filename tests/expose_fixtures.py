@@ -32,7 +32,7 @@ from custom_components.plc_bridge.const import (
     SUBENTRY_EXPOSE,
 )
 from custom_components.plc_bridge.expose import BATCH_WINDOW
-from tests.ha_fixtures import PointData, make_entry, point
+from tests.ha_fixtures import PointData, make_entry, point, set_up
 from tests.plcnext_ha_fixtures import make_plcnext_entry
 from tests.s7_ha_fixtures import make_s7_entry
 from tests.softplc_ha_fixtures import make_softplc_entry, pem_pair
@@ -203,3 +203,38 @@ async def settle(hass: HomeAssistant, freezer: FrozenDateTimeFactory, seconds: f
         async_fire_time_changed(hass)
         await hass.async_block_till_done(wait_background_tasks=True)
         seconds = 0
+
+
+@dataclass(frozen=True, slots=True)
+class Burst:
+    """What changing every exposed entity at once cost, and what the PLC then held."""
+
+    writes: int  # write requests the simulator served
+    requests: int  # every request the client made (a read-back too)
+    sent: list[int]  # the value each burst address was sent, in burst order
+    held: list[Any]  # what each burst address holds afterwards
+
+
+async def burst(
+    hass: HomeAssistant, freezer: FrozenDateTimeFactory, vendor: VendorCase, sim: Any
+) -> tuple[MockConfigEntry, Burst]:
+    """Expose one entity to each burst address, set up, change them all at once; count."""
+    entities = [f"input_number.level_{index}" for index in range(len(vendor.burst))]
+    for entity_id in entities:
+        hass.states.async_set(entity_id, "0")
+    entry = vendor.entry(hass, sim, [shown(vendor)])
+    for entity_id, target in zip(entities, vendor.burst, strict=True):
+        add_expose(hass, entry, entity_id, target)
+    await set_up(hass, entry)
+    client = entry.runtime_data.client
+    writes, requests = vendor.writes(sim), client.metrics.requests
+    sent = [index % 100 + 11 for index in range(len(entities))]
+    for entity_id, value in zip(entities, sent, strict=True):
+        hass.states.async_set(entity_id, str(value))
+    await settle(hass, freezer)
+    return entry, Burst(
+        writes=vendor.writes(sim) - writes,
+        requests=client.metrics.requests - requests,
+        sent=sent,
+        held=[vendor.read(sim, *target) for target in vendor.burst],
+    )

@@ -16,7 +16,7 @@ from custom_components.plc_bridge.expose import FAILURE_LIMIT
 from custom_components.plc_bridge.repairs import expose_issue_id
 from tests.ha_fixtures import set_up
 
-from .expose_fixtures import VENDORS, VendorCase, add_expose, settle, shown
+from .expose_fixtures import VENDORS, VendorCase, add_expose, burst, settle, shown
 
 OUTDOOR = "sensor.outdoor_temperature"
 PRESENCE = "person.anna"
@@ -96,22 +96,11 @@ async def test_burst_costs_the_minimum_requests(
 ) -> None:
     """Ten exposes changed at once go out in the vendor's fewest write requests (one)."""
     vendor, sim = case
-    entities = [f"input_number.level_{index}" for index in range(len(vendor.burst))]
-    for entity_id in entities:
-        hass.states.async_set(entity_id, "0")
-    entry = vendor.entry(hass, sim, [shown(vendor)])
-    for entity_id, target in zip(entities, vendor.burst, strict=True):
-        add_expose(hass, entry, entity_id, target)
-    await set_up(hass, entry)
-    client = entry.runtime_data.client
-    writes, requests = vendor.writes(sim), client.metrics.requests
-    for index, entity_id in enumerate(entities):
-        hass.states.async_set(entity_id, str(index + 11))
-    await settle(hass, freezer)
-    assert [vendor.read(sim, *target) for target in vendor.burst] == list(range(11, 21))
-    assert vendor.writes(sim) - writes == 1
+    _, cost = await burst(hass, freezer, vendor, sim)
+    assert cost.held == cost.sent == list(range(11, 21))
+    assert cost.writes == 1
     # Tecomat reads the written variables back (a PutObject's 204 proves nothing): one more.
-    assert client.metrics.requests - requests == (2 if vendor.vendor == "tecomat" else 1)
+    assert cost.requests == (2 if vendor.vendor == "tecomat" else 1)
 
 
 async def test_send_on_start_after_a_restart(
