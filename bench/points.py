@@ -10,25 +10,31 @@ from custom_components.plc_bridge.plc import Point
 from custom_components.plc_bridge.plc.vendors import client_class
 
 
-def s7_smart_points(count: int) -> list[Point]:
-    """A realistic mix laid out in V memory: REALs, INTs, bits and bytes."""
+def _memory_mix(count: int, kinds: tuple[tuple[str, str], ...]) -> list[Point]:
+    """A realistic mix laid out in one memory area: a REAL, an INT, a bit and a byte in turn.
+
+    `kinds` gives each one's address (with `{offset}` and, for the bit, `{bit}`) and data type.
+    """
     points: list[Point] = []
     offset = 0
     for index in range(count):
-        match index % 4:
-            case 0:
-                points.append(Point(f"VD{offset}", "float"))
-                offset += 4
-            case 1:
-                points.append(Point(f"VW{offset}", "signed"))
-                offset += 2
-            case 2:
-                points.append(Point(f"V{offset}.{index % 8}", "signed"))
-                offset += 1
-            case _:
-                points.append(Point(f"VB{offset}", "unsigned"))
-                offset += 1
+        address, data_type = kinds[index % 4]
+        points.append(Point(address.format(offset=offset, bit=index % 8), data_type))
+        offset += (4, 2, 1, 1)[index % 4]
     return points
+
+
+def s7_smart_points(count: int) -> list[Point]:
+    """A realistic mix laid out in V memory: REALs, INTs, bits and bytes."""
+    return _memory_mix(
+        count,
+        (
+            ("VD{offset}", "float"),
+            ("VW{offset}", "signed"),
+            ("V{offset}.{bit}", "signed"),
+            ("VB{offset}", "unsigned"),
+        ),
+    )
 
 
 def tecomat_points(count: int) -> list[Point]:
@@ -38,23 +44,15 @@ def tecomat_points(count: int) -> list[Point]:
 
 def s7_points(count: int) -> list[Point]:
     """The same mix as for the S7-200 SMART, laid out in data block 1."""
-    points: list[Point] = []
-    offset = 0
-    for index in range(count):
-        match index % 4:
-            case 0:
-                points.append(Point(f"DB1.DBD{offset}", "REAL"))
-                offset += 4
-            case 1:
-                points.append(Point(f"DB1.DBW{offset}", "INT"))
-                offset += 2
-            case 2:
-                points.append(Point(f"DB1.DBX{offset}.{index % 8}", "BOOL"))
-                offset += 1
-            case _:
-                points.append(Point(f"DB1.DBB{offset}", "BYTE"))
-                offset += 1
-    return points
+    return _memory_mix(
+        count,
+        (
+            ("DB1.DBD{offset}", "REAL"),
+            ("DB1.DBW{offset}", "INT"),
+            ("DB1.DBX{offset}.{bit}", "BOOL"),
+            ("DB1.DBB{offset}", "BYTE"),
+        ),
+    )
 
 
 def softplc_points(count: int) -> list[Point]:
