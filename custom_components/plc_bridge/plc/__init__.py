@@ -17,6 +17,7 @@ from .errors import (
     PlcValueError,
     PlcWriteRefusedError,
 )
+from .http import urgent
 from .types import (
     BrowseItem,
     ClientMetrics,
@@ -57,4 +58,5 @@ __all__ = [
     "TlsMode",
     "Value",
     "ValueKind",
+    "urgent",
 ]

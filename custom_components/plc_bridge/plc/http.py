@@ -3,7 +3,9 @@
 from __future__ import annotations
 
 import asyncio
-from collections.abc import Iterable, Mapping
+from collections.abc import Iterable, Iterator, Mapping
+from contextlib import contextmanager
+from contextvars import ContextVar
 import hashlib
 import logging
 import re
@@ -16,6 +18,24 @@ from yarl import URL
 
 from .errors import PlcConnectionError, PlcProtocolError, PlcTimeoutError, PlcTlsError
 from .types import ClientMetrics, ConnectionConfig, TlsMode
+
+
+URGENT: ContextVar[bool] = ContextVar("plc_bridge_urgent", default=False)
+"""True inside `urgent()`: the requests sent there end an output (a pulse's off)."""
+
+
+@contextmanager
+def urgent() -> Iterator[None]:
+    """Send the requests made inside as urgent: they go first and wait out no pacing.
+
+    For the writes that release an output (a pulse's off, an interlock's release): a paced
+    PLC must not keep an output on for another request interval.
+    """
+    token = URGENT.set(True)
+    try:
+        yield
+    finally:
+        URGENT.reset(token)
 
 
 def ssl_option(config: ConnectionConfig) -> aiohttp.Fingerprint | bool | None:
