@@ -28,7 +28,7 @@ from homeassistant.const import CONF_NAME
 from .const import CONF_ENTITY, CONF_INVERT, CONF_PLATFORM, CONF_ROLE, CONF_VALUE_MAP
 from .conversion import stored_pairs
 from .plc import PlcClient
-from .point_form import point_data
+from .point_form import CONTROLS, point_data
 
 if TYPE_CHECKING:
     from .points import PointConfig
@@ -125,6 +125,11 @@ def is_part(platform: str, role: Any) -> bool:
 def as_platform(platform: str, role: Any) -> str:
     """Return the single-address kind a part is checked and stored as (itself if none)."""
     return ROLES.get(platform, {}).get(str(role or ""), platform)
+
+
+def written(data: Mapping[str, Any]) -> bool:
+    """True for a stored point its entity writes: a control, or a part of a written role."""
+    return as_platform(str(data.get(CONF_PLATFORM, "")), data.get(CONF_ROLE)) in CONTROLS
 
 
 INVERTIBLE = frozenset({"position", "set_position", "tilt_position", "set_tilt_position"})

@@ -15,6 +15,7 @@ from typing import Any
 
 from homeassistant.exceptions import ServiceValidationError
 
+from .composite import written
 from .const import CONF_ADDRESS, CONF_DATA_TYPE, CONF_READ_ONLY, DOMAIN
 from .plc import Footprint, PlcClient, PlcError, Point
 
@@ -78,27 +79,38 @@ class WriteGuard:
 def layout_conflicts(
     client: Client, points: Iterable[Mapping[str, Any]], new: Iterable[Mapping[str, Any]]
 ) -> list[tuple[Mapping[str, Any], Conflict]]:
-    """Return the new points (stored data) that make a layout no write can keep to.
+    """Return the new points (stored data) in a layout their entities cannot write.
 
-    A new writable point whose write meets a read-only point of the PLC (`points`, the others)
+    A new point its entity writes (a control or a written part, not read only) whose write meets a read-only point of the PLC (`points`, the others)
     or of `new` is named with that conflict (so a command, not the state beside it); a new
     read-only point that an existing writable point's write meets is named with the writable
-    one's conflict. Unparsable points are the parser's to refuse.
+    one's conflict. A point only shown, or at an address no write reaches (an input), is left
+    to the write guard; unparsable points are the parser's to refuse.
     """
     fresh, known = list(new), list(points)
     locked = [data for data in (*known, *fresh) if data.get(CONF_READ_ONLY)]
     guard = WriteGuard(client, [_point(client, data) for data in locked])
-    writers = [_point(client, data) for data in known if not data.get(CONF_READ_ONLY)]
+    writers = [point for data in known if (point := _writer(client, data)) is not None]
     found: list[tuple[Mapping[str, Any], Conflict]] = []
     for data in fresh:
         if data.get(CONF_READ_ONLY):
             alone = WriteGuard(client, [_point(client, data)])
             hit = next((c for other in writers if (c := alone.conflict(other))), None)
+        elif (point := _writer(client, data)) is not None:
+            hit = guard.conflict(point)
         else:
-            hit = guard.conflict(_point(client, data))
+            hit = None
         if hit is not None:
             found.append((data, hit))
     return found
+
+
+def _writer(client: Client, data: Mapping[str, Any]) -> Point | None:
+    """Return a stored point its entity writes; None if read only, only shown or at an input."""
+    if data.get(CONF_READ_ONLY) or not written(data):
+        return None
+    point = _point(client, data)
+    return point if _writable(client, point) else None
 
 
 def _point(client: Client, data: Mapping[str, Any]) -> Point:
