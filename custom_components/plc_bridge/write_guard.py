@@ -81,11 +81,12 @@ def layout_conflicts(
 ) -> list[tuple[Mapping[str, Any], Conflict]]:
     """Return the new points (stored data) in a layout their entities cannot write.
 
-    A new point its entity writes (a control or a written part, not read only) whose write meets a read-only point of the PLC (`points`, the others)
-    or of `new` is named with that conflict (so a command, not the state beside it); a new
-    read-only point that an existing writable point's write meets is named with the writable
-    one's conflict. A point only shown, or at an address no write reaches (an input), is left
-    to the write guard; unparsable points are the parser's to refuse.
+    A new point its entity writes (a control or a written part, not read only) whose write
+    meets a read-only point of the PLC (`points`, the others) or of `new` is named with that
+    conflict (so a command, not the state beside it); a new read-only point that an existing
+    written point's write meets is named with the written one's conflict. A point only shown,
+    or at an address no write reaches (an input), is left to the write guard; unparsable
+    points are the parser's to refuse.
     """
     fresh, known = list(new), list(points)
     locked = [data for data in (*known, *fresh) if data.get(CONF_READ_ONLY)]
