@@ -314,3 +314,30 @@ async def test_pasted_file_runs_the_same_checks(
     assert strings_at(*CONFIG, "error", error).format(**result["description_placeholders"])
     assert hass.config_entries.async_entries(DOMAIN) == []
     assert softplc_data(softplc_sim)
+
+
+async def test_edited_part_sets_the_whole_entitys_travel_time(
+    hass: HomeAssistant, smart_entry: MockConfigEntry
+) -> None:
+    """Editing one part's travel time changes every part's; out of bounds is refused on it."""
+    result = await composite(hass, smart_entry, "valve")
+    result = await step(hass, result, {"open": "Q0.4", "close": "Q0.5", "travel_time": 20})
+    result = await step(hass, await step(hass, result, {"read_only": False}), {"read_only": False})
+    await step(hass, result, {"next_step_id": "save"})
+    subentry_id = next(iter(smart_entry.subentries))
+    menu = await hass.config_entries.subentries.async_init(
+        (smart_entry.entry_id, SUBENTRY_DEVICE),
+        context={"source": "reconfigure", "subentry_id": subentry_id},
+    )
+    result = await step(hass, menu, {"next_step_id": "edit"})
+    part = next(iter(smart_entry.subentries[subentry_id].data[CONF_POINTS]))
+    result = await step(hass, result, {"point": part})
+    assert result["step_id"] == "composite_edit"
+    stored = smart_entry.subentries[subentry_id].data[CONF_POINTS][part]
+    where = {"address": stored["address"], "data_type": stored["data_type"]}
+    result = await step(hass, result, {**where, "travel_time": 601})
+    assert result["errors"] == {"travel_time": "travel_time_out_of_range"}
+    result = await step(hass, result, {**where, "travel_time": 40})
+    menu = await step(hass, result, {"read_only": False})
+    await step(hass, menu, {"next_step_id": "save"})
+    assert {data["travel_time"] for data in machines(smart_entry)} == {40.0}
