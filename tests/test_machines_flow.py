@@ -56,7 +56,7 @@ async def test_select_button_and_alarm_word(hass: HomeAssistant, entry: MockConf
     result = await step(hass, menu, {"next_step_id": "point"})
     base = {"name": "Start", "platform": "button", "address": "Q0.2", "data_type": "signed"}
     result = await step(hass, result, base)
-    assert fields(result) == {"pulse", "read_only", "poll"}
+    assert fields(result) == {"pulse", "read_only"}  # a button has no poll class
     menu = await step(hass, result, {"pulse": 0.5, "read_only": False})
 
     result = await step(hass, menu, {"next_step_id": "point"})

@@ -180,7 +180,7 @@ async def test_composite_form_sets_every_part(
     result = await step(hass, menu, {"next_step_id": "edit"})
     part = next(iter(points))
     result = await step(hass, result, {"point": part})
-    assert fields(result) == {"address", "data_type"}  # a part's address comes first
+    assert fields(result) == {"address", "data_type", "travel_time"}  # address first
     where = {key: points[part][key] for key in ("address", "data_type")}
     result = await step(hass, result, where)
     assert "poll" in fields(result)

@@ -20,7 +20,7 @@ from __future__ import annotations
 
 from collections.abc import Collection, Iterable, Mapping
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, Final
 
 from homeassistant.components.climate.const import HVACAction, HVACMode
 from homeassistant.const import CONF_NAME
@@ -28,7 +28,7 @@ from homeassistant.const import CONF_NAME
 from .const import CONF_ENTITY, CONF_INVERT, CONF_PLATFORM, CONF_ROLE, CONF_VALUE_MAP
 from .conversion import stored_pairs
 from .plc import PlcClient
-from .point_form import point_data
+from .point_form import CONTROLS, point_data
 
 if TYPE_CHECKING:
     from .points import PointConfig
@@ -103,6 +103,11 @@ LABELS: dict[str, frozenset[str]] = {
 """The labels a role's value map may use: Home Assistant's own states."""
 
 
+CONF_TRAVEL_TIME: Final = "travel_time"
+"""Part data of a cover or valve: seconds a full travel takes (absent: none); every part has it."""
+TRAVEL_PLATFORMS = frozenset({"cover", "valve"})
+TRAVEL_MIN, TRAVEL_MAX = 1.0, 600.0
+"""The travel times a cover or valve may have, in seconds (0 or empty: none)."""
 ALWAYS = frozenset({"cover", "valve", "climate", "light", "fan"})
 """Platforms whose every point is a part; a switch point is one only when it names a role."""
 
@@ -120,6 +125,11 @@ def is_part(platform: str, role: Any) -> bool:
 def as_platform(platform: str, role: Any) -> str:
     """Return the single-address kind a part is checked and stored as (itself if none)."""
     return ROLES.get(platform, {}).get(str(role or ""), platform)
+
+
+def written(data: Mapping[str, Any]) -> bool:
+    """True for a stored point its entity writes: a control, or a part of a written role."""
+    return as_platform(str(data.get(CONF_PLATFORM, "")), data.get(CONF_ROLE)) in CONTROLS
 
 
 INVERTIBLE = frozenset({"position", "set_position", "tilt_position", "set_tilt_position"})
@@ -239,25 +249,56 @@ def part_data(
     )
     if role in INVERTIBLE and values.get(CONF_INVERT):
         data[CONF_INVERT] = True
-    return data | {CONF_PLATFORM: platform, CONF_ROLE: role}, errors | found, placeholders
+    travel, wrong = travel_data(platform, values)
+    data |= travel | {CONF_PLATFORM: platform, CONF_ROLE: role}
+    return data, errors | found | wrong, placeholders
+
+
+def travel_data(platform: str, values: Mapping[str, Any]) -> tuple[dict[str, Any], dict[str, str]]:
+    """Return what a part stores of its entity's travel time (0 or empty: nothing), or the error.
+
+    Only a cover or a valve travels; its time is bounded, so a level command is always released.
+    """
+    given = values.get(CONF_TRAVEL_TIME)
+    if given is None or given == "":
+        return {}, {}
+    try:
+        seconds = float(given)
+    except (TypeError, ValueError):
+        return {}, {CONF_TRAVEL_TIME: "travel_time_out_of_range"}
+    if seconds == 0:
+        return {}, {}
+    if platform not in TRAVEL_PLATFORMS:
+        return {}, {CONF_TRAVEL_TIME: "travel_time_not_here"}
+    if not TRAVEL_MIN <= seconds <= TRAVEL_MAX:
+        return {}, {CONF_TRAVEL_TIME: "travel_time_out_of_range"}
+    return {CONF_TRAVEL_TIME: seconds}, {}
 
 
 def group_errors(rows: Iterable[Mapping[str, Any]]) -> list[tuple[str, str, dict[str, str]]]:
     """Check the parts of new composite entities together: each role once, one that shows.
 
+    Their travel times, where given, agree.
+
     Returns (entity name, error key, placeholders) for each entity at fault.
     """
     groups: dict[tuple[str, str], list[str]] = {}
+    times: dict[tuple[str, str], set[float]] = {}
     for data in rows:
         platform = str(data.get(CONF_PLATFORM, ""))
         if is_part(platform, data.get(CONF_ROLE)):
             key = (platform, str(data[CONF_NAME]))
             groups.setdefault(key, []).append(str(data.get(CONF_ROLE, "")))
+            if data.get(CONF_TRAVEL_TIME):
+                times.setdefault(key, set()).add(float(data[CONF_TRAVEL_TIME]))
     errors: list[tuple[str, str, dict[str, str]]] = []
     for (platform, name), roles in groups.items():
         repeated = sorted({role for role in roles if roles.count(role) > 1})
         if repeated:
             errors.append((name, "role_repeated", {"name": name, "role": repeated[0]}))
+        elif len(times.get((platform, name), ())) > 1:
+            seconds = ", ".join(f"{time:g}" for time in sorted(times[(platform, name)]))
+            errors.append((name, "travel_time_differs", {"name": name, "seconds": seconds}))
         elif not set(roles) & set(NEEDS_ONE_OF[platform]):
             needs = ", ".join(NEEDS_ONE_OF[platform])
             errors.append((name, "role_missing", {"name": name, "roles": needs}))

@@ -10,6 +10,7 @@ it keeps its point id and its entity's key, so the entity keeps its unique id an
 
 from __future__ import annotations
 
+from collections.abc import Iterable, Mapping
 import secrets
 from typing import Any
 
@@ -17,6 +18,9 @@ from homeassistant.config_entries import ConfigSubentryFlow, SubentryFlowResult
 from homeassistant.const import CONF_NAME
 from homeassistant.helpers.selector import (
     BooleanSelector,
+    NumberSelector,
+    NumberSelectorConfig,
+    NumberSelectorMode,
     SelectSelector,
     SelectSelectorConfig,
     SelectSelectorMode,
@@ -24,19 +28,34 @@ from homeassistant.helpers.selector import (
 )
 import voluptuous as vol
 
-from .composite import INVERTIBLE, ROLES, as_platform, group_errors, part_data
+from .composite import (
+    CONF_TRAVEL_TIME,
+    INVERTIBLE,
+    ROLES,
+    TRAVEL_PLATFORMS,
+    as_platform,
+    group_errors,
+    part_data,
+    travel_data,
+)
 from .const import (
     CONF_ADDRESS,
     CONF_DATA_TYPE,
     CONF_ENTITY,
     CONF_INVERT,
     CONF_PLATFORM,
+    CONF_READ_ONLY,
     CONF_ROLE,
 )
 from .plc import PlcAddressError, PlcClient, Point
-from .point_form import BASE_FIELDS, check_point, details_schema, point_key
+from .point_form import BASE_FIELDS, CONTROLS, check_point, details_schema, point_key
 from .point_table import first_type
 from .poll_classes import CONF_POLL, NORMAL, poll_field
+from .write_guard import layout_conflicts
+
+SHARED = (CONF_POLL, CONF_TRAVEL_TIME)
+"""What every part of one entity has alike: its poll class and its travel time."""
+_SECONDS = NumberSelector(NumberSelectorConfig(mode=NumberSelectorMode.BOX, step="any"))
 
 TYPE_SUFFIX = "_data_type"
 """A part's data type field: its role's name and this."""
@@ -59,6 +78,10 @@ class CompositeSteps(ConfigSubentryFlow):
 
     def _taken(self) -> set[Point]:
         """Points of the PLC already used (the handler's)."""
+        raise NotImplementedError
+
+    def _plc_points(self) -> list[dict[str, Any]]:
+        """The stored data of the PLC's points, outside the one being edited (the handler's)."""
         raise NotImplementedError
 
     async def async_step_menu(self, user_input: dict[str, Any] | None = None) -> SubentryFlowResult:
@@ -109,12 +132,19 @@ class CompositeSteps(ConfigSubentryFlow):
         placeholders = {"error": "", "name": self._composite[CONF_NAME], "role": ""}
         placeholders |= {CONF_ADDRESS: "", CONF_DATA_TYPE: ""}
         placeholders["roles"] = ", ".join(ROLES[platform])
+        placeholders |= {"point": "", "written": ""}
         if user_input is not None:
+            travel, errors = travel_data(platform, user_input)
+            self._composite = {k: v for k, v in self._composite.items() if k != CONF_TRAVEL_TIME}
+            self._composite |= travel
             parts = self._given(platform, user_input, errors, placeholders)
             problems = group_errors(parts)
             if not errors and problems:
                 errors["base"] = problems[0][1]
                 placeholders |= problems[0][2]
+            for part, key, found in self._layout_errors(parts, []) if not errors else []:
+                errors.setdefault(part[CONF_ROLE], key)
+                placeholders |= found
             if not errors:
                 self._parts, self._made = parts, []
                 return await self.async_step_composite_part()
@@ -122,6 +152,8 @@ class CompositeSteps(ConfigSubentryFlow):
         for role in ROLES[platform]:
             fields[vol.Optional(role)] = TextSelector()
             fields[vol.Optional(f"{role}{TYPE_SUFFIX}")] = data_types(self._client)
+        if platform in TRAVEL_PLATFORMS:
+            fields[vol.Optional(CONF_TRAVEL_TIME)] = _SECONDS
         return self.async_show_form(
             step_id="composite_parts",
             data_schema=self.add_suggested_values_to_schema(vol.Schema(fields), user_input or {}),
@@ -175,6 +207,17 @@ class CompositeSteps(ConfigSubentryFlow):
             return None, found, details
         return {**values, CONF_ADDRESS: point.address, CONF_DATA_TYPE: point.data_type}, {}, {}
 
+    def _layout_errors(
+        self, new: list[dict[str, Any]], others: list[dict[str, Any]]
+    ) -> list[tuple[Mapping[str, Any], str, dict[str, str]]]:
+        """Return the new parts whose writes would meet read-only data, with error and details.
+
+        A part not made yet is as read only as its role's kind is by default.
+        """
+        return layout_errors(
+            self._client, [*self._plc_points(), *map(defaulted, others)], map(defaulted, new)
+        )
+
     async def async_step_composite_part(
         self, user_input: dict[str, Any] | None = None
     ) -> SubentryFlowResult:
@@ -183,13 +226,16 @@ class CompositeSteps(ConfigSubentryFlow):
         role, platform = values[CONF_ROLE], values[CONF_PLATFORM]
         errors: dict[str, str] = {}
         placeholders = {"role": role, "units": "", "pair": "", "error": "", "platform": platform}
+        placeholders |= {"point": "", "written": ""}
         placeholders |= {key: values[key] for key in (CONF_ADDRESS, CONF_DATA_TYPE, CONF_NAME)}
         if user_input is not None:
-            base = {
-                key: values[key] for key in (*BASE_FIELDS, CONF_ROLE, CONF_POLL) if key in values
-            }
+            base = {key: values[key] for key in (*BASE_FIELDS, CONF_ROLE, *SHARED) if key in values}
             data, errors, found = part_data(self._client, base | user_input)
             placeholders |= found
+            others = [*self._made, *self._parts[len(self._made) + 1 :]]
+            for _part, key, details in self._layout_errors([data], others) if not errors else []:
+                errors[CONF_READ_ONLY] = key
+                placeholders |= details
             if not errors:
                 if values.get(CONF_ENTITY):  # an edited part stays a part of its entity
                     data[CONF_ENTITY] = values[CONF_ENTITY]
@@ -198,8 +244,8 @@ class CompositeSteps(ConfigSubentryFlow):
                     return await self.async_step_composite_part()
                 ids = self._part_ids or [secrets.token_hex(6) for _ in self._made]
                 self._points |= dict(zip(ids, self._made, strict=True))
-                if self._part_ids:  # an edited part's poll class is its whole entity's
-                    self._share_class(self._made[0])
+                if self._part_ids:  # an edited part's class and travel are its entity's
+                    self._share(self._made[0])
                 self._parts, self._made, self._part_ids = [], [], []
                 self._editing = None
                 return await self.async_step_menu()
@@ -209,8 +255,9 @@ class CompositeSteps(ConfigSubentryFlow):
         except PlcAddressError:
             kind = None
         schema = details_schema(shown, kind)
-        if not self._part_ids:  # a new entity's parts take the class its first step set
-            schema = vol.Schema({k: v for k, v in schema.schema.items() if k != CONF_POLL})
+        schema = vol.Schema({k: v for k, v in schema.schema.items() if k != CONF_POLL})
+        if self._part_ids:  # a new entity's parts take the class its first step set
+            schema = schema.extend(poll_field())
         if role in INVERTIBLE:
             schema = schema.extend({vol.Required(CONF_INVERT, default=False): BooleanSelector()})
         return self.async_show_form(
@@ -220,13 +267,13 @@ class CompositeSteps(ConfigSubentryFlow):
             description_placeholders=placeholders,
         )
 
-    def _share_class(self, part: dict[str, Any]) -> None:
-        """Give every part of the edited part's entity the part's poll class."""
-        polled = {CONF_POLL: part[CONF_POLL]} if CONF_POLL in part else {}
+    def _share(self, part: dict[str, Any]) -> None:
+        """Give every part of the edited part's entity the part's poll class and travel time."""
+        shared = {key: part[key] for key in SHARED if key in part}
         for point_id, data in self._points.items():
             if (data[CONF_NAME], data[CONF_PLATFORM]) == (part[CONF_NAME], part[CONF_PLATFORM]):
-                kept = {key: value for key, value in data.items() if key != CONF_POLL}
-                self._points[point_id] = kept | polled
+                kept = {key: value for key, value in data.items() if key not in SHARED}
+                self._points[point_id] = kept | shared
 
     async def async_edit_part(self, point_id: str) -> SubentryFlowResult:
         """Edit one part: its address and data type, then its settings; its entity stays."""
@@ -244,20 +291,32 @@ class CompositeSteps(ConfigSubentryFlow):
         errors: dict[str, str] = {}
         placeholders = {key: str(values[key]) for key in (CONF_NAME, CONF_ROLE, CONF_ADDRESS)}
         placeholders |= {CONF_DATA_TYPE: str(values[CONF_DATA_TYPE]), "error": "", "roles": ""}
+        placeholders |= {"point": "", "written": "", "seconds": ""}
+        platform = str(values[CONF_PLATFORM])
         if user_input is not None:
             address = str(user_input.get(CONF_ADDRESS) or "")
             data_type = str(user_input.get(CONF_DATA_TYPE) or "")
-            part, errors, found = self._part_at(
+            travel, errors = travel_data(platform, user_input)
+            kept = {k: v for k, v in values.items() if k != CONF_TRAVEL_TIME}
+            part, found_errors, found = self._part_at(
                 values[CONF_ROLE], address, data_type, self._taken()
             )
+            errors |= found_errors
             placeholders |= found
-            if part is not None:
-                rows = [*self._entity_rows(self._part_ids[0]), part]
-                if problems := group_errors(rows):
+            if part is not None and not errors:
+                part = {**kept, **part, **travel}
+                rows = [
+                    {k: v for k, v in row.items() if k != CONF_TRAVEL_TIME}
+                    for row in self._entity_rows(self._part_ids[0])
+                ]
+                if problems := group_errors([*rows, part]):
                     errors["base"] = problems[0][1]
                     placeholders |= problems[0][2]
+                for _part, key, details in self._layout_errors([part], []):
+                    errors[CONF_ADDRESS] = key
+                    placeholders |= details
             if not errors and part is not None:
-                self._parts = [{**values, **part}]
+                self._parts = [part]
                 return await self.async_step_composite_part()
         schema = vol.Schema(
             {
@@ -265,6 +324,8 @@ class CompositeSteps(ConfigSubentryFlow):
                 vol.Optional(CONF_DATA_TYPE): data_types(self._client),
             }
         )
+        if platform in TRAVEL_PLATFORMS:
+            schema = schema.extend({vol.Optional(CONF_TRAVEL_TIME): _SECONDS})
         return self.async_show_form(
             step_id="composite_edit",
             data_schema=self.add_suggested_values_to_schema(schema, user_input or values),
@@ -305,6 +366,31 @@ def data_types(client: type[PlcClient]) -> SelectSelector:
             custom_value=True,
         )
     )
+
+
+def defaulted(data: Mapping[str, Any]) -> Mapping[str, Any]:
+    """Return a point's data with its read-only flag, as its form would default it if unset."""
+    if CONF_READ_ONLY in data:
+        return data
+    shown = as_platform(str(data.get(CONF_PLATFORM, "")), data.get(CONF_ROLE))
+    return {**data, CONF_READ_ONLY: shown not in CONTROLS}
+
+
+def layout_errors(
+    client: type[PlcClient], known: Iterable[Mapping[str, Any]], new: Iterable[Mapping[str, Any]]
+) -> list[tuple[Mapping[str, Any], str, dict[str, str]]]:
+    """Return each new point whose writes would meet read-only data: its form error and details.
+
+    Where the point is the read-only one itself (another spelling), it is configured already.
+    """
+    return [
+        (
+            data,
+            "already_configured" if found.key == "read_only" else found.key,
+            {"written": found.point.address, "point": found.other.address if found.other else ""},
+        )
+        for data, found in layout_conflicts(client, known, new)
+    ]
 
 
 def entity_of(data: dict[str, Any]) -> tuple[str, str]:

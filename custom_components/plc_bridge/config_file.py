@@ -19,11 +19,15 @@ from voluptuous.humanize import humanize_error
 import yaml
 
 from .availability import CONF_AVAILABILITY_ADDRESS, CONF_AVAILABILITY_DATA_TYPE
+from .composite import as_platform, travel_data
 from .const import (
     CONF_ADDRESS,
     CONF_DATA_TYPE,
     CONF_OPTIONS,
+    CONF_PLATFORM,
     CONF_POINTS,
+    CONF_READ_ONLY,
+    CONF_ROLE,
     CONF_TLS,
     CONF_VENDOR,
     SUBENTRY_DEVICE,
@@ -32,7 +36,9 @@ from .const import (
 )
 from .plc import PlcClient, PlcError, Point, TlsMode
 from .plc.vendors import implemented
+from .point_form import read_only_errors
 from .point_table import point_order
+from .write_guard import layout_conflicts
 
 FORMAT_KEY = "plc_bridge"
 FORMAT = 1
@@ -256,6 +262,41 @@ def check_addresses(client: type[PlcClient], pasted: ConfigFile) -> None:
                     address=point.address,
                     problem=str(err),
                 ) from err
+    check_points(client, pasted)
+
+
+def check_points(client: type[PlcClient], pasted: ConfigFile) -> None:
+    """Raise ConfigFileError for the first point the forms would refuse as it is laid out.
+
+    A command stored read only, a travel time out of bounds or on an entity without travel,
+    and a write that would meet read-only data (another point's, or data its vendor writes
+    with it) are refused as the forms and tables refuse them.
+    """
+    points = [
+        data
+        for subentry in pasted.subentries
+        for data in (subentry["data"].get(CONF_POINTS) or {}).values()
+        if isinstance(data, Mapping) and CONF_ADDRESS in data and CONF_DATA_TYPE in data
+    ]
+    for data in points:
+        platform, role = str(data.get(CONF_PLATFORM, "")), str(data.get(CONF_ROLE) or "")
+        read_only = bool(data.get(CONF_READ_ONLY))
+        if read_only_errors(as_platform(platform, role), role, read_only):
+            raise ConfigFileError(
+                "config_command_read_only", point=_named(data), address=str(data[CONF_ADDRESS])
+            )
+        if travel_data(platform, data)[1]:
+            raise ConfigFileError("config_travel_time", point=_named(data))
+    for data, conflict in layout_conflicts(client, [], points)[:1]:
+        other = conflict.other.address if conflict.other else ""
+        key = "config_writes_read_only" if conflict.key == "writes_read_only" else "config_overlap"
+        raise ConfigFileError(key, point=_named(data), address=conflict.point.address, other=other)
+
+
+def _named(data: Mapping[str, Any]) -> str:
+    """Return a point's name for a message: its entity's name and, for a part, its role."""
+    role = data.get(CONF_ROLE)
+    return f"{data.get(CONF_NAME, '')} ({role})" if role else str(data.get(CONF_NAME, ""))
 
 
 def _addressed(value: Any, name: str) -> Iterator[tuple[str, Point]]:

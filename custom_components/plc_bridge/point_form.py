@@ -33,6 +33,7 @@ from .const import (
     CONF_OFFSET,
     CONF_PLATFORM,
     CONF_READ_ONLY,
+    CONF_ROLE,
     CONF_SCALE,
     CONF_STEP,
     POINT_PLATFORMS,
@@ -46,7 +47,7 @@ from .device_classes import (
 )
 from .plc import BrowseItem, PlcAddressError, PlcClient, Point, ValueKind
 from .point_kinds import KIND_CONTROLS, KIND_PLATFORMS, kind_data, kind_fields
-from .poll_classes import poll_data, poll_field
+from .poll_classes import has_poll_class, poll_data, poll_field
 
 PLATFORM_KINDS: dict[str, tuple[frozenset[ValueKind], str]] = {
     "binary_sensor": (frozenset({ValueKind.BOOL}), "needs_bool"),
@@ -126,7 +127,25 @@ def details_schema(
         )
     fields |= kind_fields(platform, kind)
     fields[vol.Required(CONF_READ_ONLY, default=platform not in CONTROLS)] = BooleanSelector()
-    return vol.Schema(fields | poll_field())
+    return vol.Schema(fields | (poll_field() if has_poll_class(platform) else {}))
+
+
+def never_read_only(platform: str, role: str | None = None) -> bool:
+    """True for a point written to command an output: a button, or a part its entity writes.
+
+    `platform` is the kind the point is checked as (a part's: the kind its role resembles), so
+    a cover's open or set_position, a climate's mode or a light's brightness all count.
+    """
+    return platform == "button" or (bool(role) and platform in CONTROLS)
+
+
+def read_only_errors(platform: str, role: str | None, read_only: bool) -> dict[str, str]:
+    """Refuse a read-only point that commands an output (the forms, tables and file ask this)."""
+    return (
+        {CONF_READ_ONLY: "command_read_only"}
+        if read_only and never_read_only(platform, role)
+        else {}
+    )
 
 
 def check_point(
@@ -187,9 +206,11 @@ def point_data(
     for key in (CONF_MIN, CONF_MAX, CONF_STEP):
         if values.get(key) is not None and platform == "number":
             data[key] = float(values[key])
+    role = str(values.get(CONF_ROLE) or "")
+    errors |= read_only_errors(platform, role, data[CONF_READ_ONLY])
     extra, found, details = kind_data(platform, kind, values)
-    polled, wrong = poll_data(values)
-    return data | extra | polled, errors | found | wrong, placeholders | details
+    classed, wrong = poll_data(values, polled=bool(role) or has_poll_class(platform))
+    return data | extra | classed, errors | found | wrong, placeholders | details
 
 
 def browse_values(client: type[PlcClient], item: BrowseItem) -> dict[str, Any]:

@@ -19,7 +19,14 @@ from homeassistant.const import CONF_DEVICE_CLASS, CONF_NAME, CONF_UNIT_OF_MEASU
 from homeassistant.core import HomeAssistant
 from homeassistant.helpers.translation import async_get_translations
 
-from .composite import as_platform, group_errors, is_part, part_data, takes_roles
+from .composite import (
+    CONF_TRAVEL_TIME,
+    as_platform,
+    group_errors,
+    is_part,
+    part_data,
+    takes_roles,
+)
 from .const import (
     CONF_ADDRESS,
     CONF_AS_TEXT,
@@ -40,6 +47,7 @@ from .plc import PlcAddressError, PlcClient, Point, ValueKind
 from .point_form import CONTROLS, point_data, point_key, suggested_platform
 from .point_kinds import KIND_COLUMNS, NUMBER_FIELDS, PAIRS_FIELDS
 from .poll_classes import CONF_POLL
+from .write_guard import layout_conflicts
 
 COLUMNS = (
     CONF_NAME,
@@ -59,10 +67,12 @@ COLUMNS = (
     CONF_ROLE,
     CONF_POLL,
     CONF_AS_TEXT,
+    CONF_TRAVEL_TIME,
 )
 """The columns of the format, in the order export writes them (rows of one entity of several
 addresses share its name and platform, and each names its role); an empty poll is normal,
-and `as_text` shows a duration as hh:mm:ss.zzz."""
+`as_text` shows a duration as hh:mm:ss.zzz, and a cover's or valve's rows carry its travel
+time in seconds (empty: none)."""
 COMMENT = "comment"
 HEADERS: dict[str, str] = {
     **{column: column for column in COLUMNS},
@@ -90,7 +100,7 @@ WRITABLE_HEADER = re.compile(
 Writable from HMI/OPC UA/Web API (in the editor), Schreibbar aus HMI/OPC UA/Web API."""
 SET_FLAGS = (CONF_INVERT, CONF_AS_TEXT)
 """Yes/no columns stored only when yes (an empty cell is no)."""
-NUMBERS = (CONF_SCALE, CONF_OFFSET, CONF_MIN, CONF_MAX, CONF_STEP, *NUMBER_FIELDS)
+NUMBERS = (CONF_SCALE, CONF_OFFSET, CONF_MIN, CONF_MAX, CONF_STEP, *NUMBER_FIELDS, CONF_TRAVEL_TIME)
 TRUE = {"1", "true", "yes", "y", "on", "x"}
 FALSE = {"", "0", "false", "no", "n", "off"}
 SIGNED = ("signed", "INT", "DINT")
@@ -248,6 +258,7 @@ def parse_points(
     *,
     assumed: list[tuple[int, str]] | None = None,
     known: Iterable[Mapping[str, Any]] = (),
+    plc: Iterable[Mapping[str, Any]] = (),
 ) -> tuple[list[dict[str, Any]], list[tuple[int, str]]]:
     """Return the points of a pasted table and the errors by line; no points unless no errors.
 
@@ -255,6 +266,8 @@ def parse_points(
     line repeating an earlier line's address and data type. `describe` words each problem.
     `assumed` receives, by line, the data types taken where the table names none. `known`:
     the machine's points already, which new parts of an entity of several points join.
+    `plc`: the PLC's points already (stored data), whose read-only data no new point's write
+    may meet, nor a new read-only point the writes of theirs.
     """
     header, rows = _rows(text)
     columns = [_column(cell) for cell in header]
@@ -266,6 +279,7 @@ def parse_points(
     errors: list[tuple[int, str]] = []
     seen: dict[Point, int] = dict.fromkeys(taken, 0)
     firsts: dict[str, int] = {}  # the line of each entity of several addresses, by its name
+    lines: dict[int, int] = {}  # the line of each point, by the id of its data
     for line, row in rows:
         cells = {
             column: _unescaped(cell)
@@ -278,6 +292,8 @@ def parse_points(
             continue
         part = is_part(values[CONF_PLATFORM], values.get(CONF_ROLE))
         data, found, placeholders = (part_data if part else point_data)(client, values)
+        if not part and values.get(CONF_TRAVEL_TIME):
+            found[CONF_TRAVEL_TIME] = "travel_time_not_here"
         if found:
             texts = dict.fromkeys(describe(key, placeholders) for key in found.values())
             errors.append((line, " ".join(texts)))
@@ -291,11 +307,17 @@ def parse_points(
         seen[point] = line
         firsts.setdefault(data[CONF_NAME], line)
         points.append(data)
+        lines[id(data)] = line
         if assumed is not None and _data_type(client, values[CONF_ADDRESS], cells)[1]:
             assumed.append((line, describe("import_type_assumed", placeholders)))
     for name, key, details in group_errors([*known, *points]):
         if name in firsts:
             errors.append((firsts[name], describe(key, details)))
+    for made, conflict in [] if errors else layout_conflicts(client, [*plc], points):
+        wording = {"written": conflict.point.address}
+        wording["point"] = conflict.other.address if conflict.other else ""
+        key = "already_configured" if conflict.key == "read_only" else conflict.key
+        errors.append((lines[id(made)], describe(key, wording)))
     errors.sort(key=lambda error: error[0])
     return ([] if errors else points), errors
 

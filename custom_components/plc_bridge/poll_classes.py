@@ -49,11 +49,27 @@ def poll_field() -> dict[vol.Marker, Any]:
     }
 
 
-def poll_data(values: Mapping[str, Any]) -> tuple[dict[str, Any], dict[str, str]]:
-    """Return what a point stores of its poll class (nothing for normal), or the field's error."""
+UNPOLLED: Final = frozenset({"button"})
+"""Platforms whose points are only written (a button, pulsed or not): they have no class."""
+
+
+def has_poll_class(platform: str) -> bool:
+    """True for a platform whose point shows a value, so has a poll class (not a button)."""
+    return platform not in UNPOLLED
+
+
+def poll_data(
+    values: Mapping[str, Any], *, polled: bool = True
+) -> tuple[dict[str, Any], dict[str, str]]:
+    """Return what a point stores of its poll class (nothing for normal), or the field's error.
+
+    A point without a class (`polled` false: a button) stores none and takes only normal.
+    """
     value = str(values.get(CONF_POLL) or NORMAL).strip().lower()
     if value not in POLL_CLASSES:
         return {}, {CONF_POLL: "poll_invalid"}
+    if not polled and value != NORMAL:
+        return {}, {CONF_POLL: "poll_not_for_button"}
     return ({CONF_POLL: value} if value != NORMAL else {}), {}
 
 

@@ -18,13 +18,14 @@ import voluptuous as vol
 
 from .availability import AVAILABILITY_FIELDS
 from .composite import assign_entities
-from .composite_flow import CompositeSteps
+from .composite_flow import CompositeSteps, defaulted, layout_errors
 from .const import (
     CONF_ADDRESS,
     CONF_AREA,
     CONF_DATA_TYPE,
     CONF_PLATFORM,
     CONF_POINTS,
+    CONF_READ_ONLY,
     CONF_ROLE,
     CONF_VENDOR,
 )
@@ -92,6 +93,19 @@ class DeviceSubentryFlowHandler(CompositeSteps, MachineStep):
         taken |= {point_key(data) for pid, data in self._points.items() if pid != self._editing}
         return {self._normal(point) for point in taken}
 
+    def _plc_points(self) -> list[dict[str, Any]]:
+        """The stored data of the PLC's points, outside the one being edited."""
+        subentry_id = self._reconfigure_subentry_id if self.source == "reconfigure" else None
+        return [
+            *(
+                data
+                for subentry in self._get_entry().subentries.values()
+                if subentry.subentry_id != subentry_id
+                for data in subentry.data.get(CONF_POINTS, {}).values()
+            ),
+            *(data for pid, data in self._points.items() if pid != self._editing),
+        ]
+
     def _normal(self, point: Point) -> Point:
         """Return a stored point as the vendor spells it (a PLCnext path with its component)."""
         try:
@@ -149,6 +163,13 @@ class DeviceSubentryFlowHandler(CompositeSteps, MachineStep):
                 placeholders[CONF_DATA_TYPE] = (await async_type_names(self.hass)).get(kind, kind)
             if point is not None and point in self._taken():
                 errors[CONF_ADDRESS] = "already_configured"
+            if point is not None and not errors:
+                given = {**user_input, CONF_ADDRESS: point.address, CONF_DATA_TYPE: point.data_type}
+                for _data, key, found in layout_errors(
+                    self._client, self._plc_points(), [defaulted(given)]
+                ):
+                    errors[CONF_ADDRESS] = key
+                    placeholders |= found
             if not errors:
                 self._base = dict(user_input)
                 return await self.async_step_details()
@@ -158,7 +179,7 @@ class DeviceSubentryFlowHandler(CompositeSteps, MachineStep):
             step_id="point",
             data_schema=self.add_suggested_values_to_schema(base_schema(self._client), user_input),
             errors=errors,
-            description_placeholders={"error": "", **placeholders},
+            description_placeholders={"error": "", "point": "", "written": "", **placeholders},
         )
 
     async def async_step_details(
@@ -168,10 +189,15 @@ class DeviceSubentryFlowHandler(CompositeSteps, MachineStep):
         point, kind, _, _ = check_point(self._client, self._base)
         platform = self._base[CONF_PLATFORM]
         errors: dict[str, str] = {}
-        placeholders: dict[str, str] = {"units": ""}
+        placeholders: dict[str, str] = {"units": "", "point": "", "written": ""}
         if user_input is not None:
             data, errors, found = point_data(self._client, {**self._base, **user_input})
             placeholders |= found
+            for _data, key, details in (
+                layout_errors(self._client, self._plc_points(), [data]) if not errors else []
+            ):
+                errors[CONF_READ_ONLY] = key
+                placeholders |= details
             if not errors:
                 self._points[self._editing or secrets.token_hex(6)] = data
                 self._editing = None
@@ -294,7 +320,13 @@ class DeviceSubentryFlowHandler(CompositeSteps, MachineStep):
             table, assumed = str(user_input.get(CONF_TABLE, "")), list[tuple[int, str]]()
             describe, known = await async_describe(self.hass), self._points.values()
             points, problems = parse_points(
-                self._client, table, self._taken(), describe, assumed=assumed, known=known
+                self._client,
+                table,
+                self._taken(),
+                describe,
+                assumed=assumed,
+                known=known,
+                plc=self._plc_points(),
             )
             if not problems and (not assumed or table == self._confirmed):
                 self._points |= {secrets.token_hex(6): data for data in points}

@@ -141,6 +141,14 @@ class PlcClient(ABC):
         return Footprint(point.address, 0, 1)
 
     @classmethod
+    def write_footprint(cls, point: Point) -> Footprint:
+        """What a write of a valid point changes in the PLC: its footprint, or more.
+
+        A vendor that writes more than the point overrides it (SoftPLC writes a bit's word).
+        """
+        return cls.footprint(point)
+
+    @classmethod
     def address_writable(cls, point: Point) -> bool:
         """False where no write can ever reach the address: an input, a read-only area.
 

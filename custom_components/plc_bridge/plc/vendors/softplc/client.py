@@ -42,6 +42,8 @@ from .reading import Wanted, result_of, wanted_of
 from .tls import CERTIFICATE, client_context, has_certificate, pem_options, resolve_material
 from .writing import confirm, write_items
 
+WORD_BITS = 16
+"""Bits of a datatable word: footprints count bits, so that two bits of one word are apart."""
 MAX_PARSED = 65536
 """Points whose parsed address a client keeps (a poll parses only what it has not seen)."""
 
@@ -102,16 +104,27 @@ class SoftplcClient(PlcClient):
 
     @classmethod
     def footprint(cls, point: Point) -> Footprint:
-        """The file and word a point covers (a bit its word); a tag or PD word its name.
+        """The file and the bits a point covers (a word its 16 bits); a tag or PD word its name.
 
         Names are folded: whether the descriptor table folds case is open (READINGS.md), and a
         fold only makes the write guard refuse more.
         """
         address = parse_address(point.address)
         if address.is_tag or address.is_named_word:
-            return Footprint(address.text.casefold(), 0, 1)
-        word = address.element * address.words + address.word
-        return Footprint(f"{address.type}{address.file}", word, word + 1)
+            return Footprint(address.text.casefold(), 0, WORD_BITS)
+        start = (address.element * address.words + address.word) * WORD_BITS
+        if address.bit is None:
+            return Footprint(f"{address.type}{address.file}", start, start + WORD_BITS)
+        return Footprint(
+            f"{address.type}{address.file}", start + address.bit, start + address.bit + 1
+        )
+
+    @classmethod
+    def write_footprint(cls, point: Point) -> Footprint:
+        """A bit's whole word: a PUT writes whole words (the bit's word is read, then written)."""
+        covers = cls.footprint(point)
+        start = covers.start - covers.start % WORD_BITS
+        return Footprint(covers.area, start, max(covers.end, start + WORD_BITS))
 
     @classmethod
     def address_writable(cls, point: Point) -> bool:
