@@ -19,7 +19,6 @@ from yarl import URL
 from .errors import PlcConnectionError, PlcProtocolError, PlcTimeoutError, PlcTlsError
 from .types import ClientMetrics, ConnectionConfig, TlsMode
 
-
 URGENT: ContextVar[bool] = ContextVar("plc_bridge_urgent", default=False)
 """True inside `urgent()`: the requests sent there end an output (a pulse's off)."""
 
