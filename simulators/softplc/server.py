@@ -25,7 +25,9 @@ answers are the simulator's own inventions, not the client's guesses:
 - `extra`: every `<data>` of an answer carries attributes no manual names, one namespaced;
 - `order`: answer items in the "request" order or "reversed";
 - `busy`: HTTP statuses (503...) answered to the next requests, whatever they ask, after
-  `busy_after` more requests answered as usual.
+  `busy_after` more requests answered as usual; `busy_retry` says whether they carry a
+  Retry-After of `busy_wait` seconds: "none", "seconds", or "date" (an HTTP-date);
+  `busy_acts`: a PUT answered busy was written all the same (a firmware that breaks HTTP).
 
 simulators/softplc/READINGS.md lists what each switch answers and where each reading comes from.
 
@@ -37,6 +39,8 @@ PUT authentication on, and a client certificate the PLC trusts written into DIR 
 from __future__ import annotations
 
 from collections import deque
+from datetime import UTC, datetime, timedelta
+from email.utils import format_datetime
 import math
 from pathlib import Path
 import ssl
@@ -92,6 +96,9 @@ class SoftplcSimulator(HttpSimulator):
         self.order = "request"
         self.busy: deque[int] = deque()
         self.busy_after = 0  # requests served as usual before the `busy` statuses start
+        self.busy_retry = "none"  # Retry-After of a busy answer: "none", "seconds", "date"
+        self.busy_wait = 1  # the seconds that Retry-After asks
+        self.busy_acts = False  # a PUT answered busy is written all the same
         self.bodies: deque[bytes] = deque(maxlen=HISTORY)
         self.items: deque[int] = deque(maxlen=HISTORY)  # <data> items of each POST
         self.rewrite: Any = None  # bytes -> bytes applied to every 2xx answer (hostile replies)
@@ -180,8 +187,18 @@ class SoftplcSimulator(HttpSimulator):
         if self.busy and self.busy_after:
             self.busy_after -= 1
         elif self.busy:
-            self.bodies.append(await request.read())
-            return web.Response(status=self.busy.popleft(), text="Service Unavailable")
+            status = self.busy.popleft()
+            if self.busy_acts and request.method == "PUT":
+                await handler(request)
+            else:
+                self.bodies.append(await request.read())
+            headers = {}
+            if self.busy_retry == "seconds":
+                headers["Retry-After"] = str(self.busy_wait)
+            elif self.busy_retry == "date":
+                when = datetime.now(UTC) + timedelta(seconds=self.busy_wait)
+                headers["Retry-After"] = format_datetime(when, usegmt=True)
+            return web.Response(status=status, text="Service Unavailable", headers=headers)
         response: web.StreamResponse = await handler(request)
         return response
 

@@ -36,7 +36,7 @@ from ...types import (
 from .address import Address, parse_address
 from .codec import KINDS, TYPES, check_value, data_type
 from .document import MAX_REPLY, request_body
-from .exchange import Answers, Busy, Refused, exchange, send
+from .exchange import Answers, Busy, Patience, Refused, exchange, send
 from .planner import Key, Locator, ReadItem, plan
 from .reading import Wanted, result_of, wanted_of
 from .tls import CERTIFICATE, client_context, has_certificate, pem_options, resolve_material
@@ -87,6 +87,7 @@ class SoftplcClient(PlcClient):
         self._refused: dict[Key, PlcError] = {}
         self._parsed: dict[Point, Wanted | PlcError] = {}
         self._probed_at = -float("inf")
+        self._patience = Patience(config.poll_interval)  # a busy PLC is waited for this long
         self._certificate = has_certificate(config) and config.tls is not TlsMode.NONE
 
     @classmethod
@@ -167,7 +168,14 @@ class SoftplcClient(PlcClient):
         """Exchange items with the PLC (halving around refused ones)."""
         transport = await self._transport()
         try:
-            await exchange(transport, method, items, answers, certificate=self._certificate)
+            await exchange(
+                transport,
+                method,
+                items,
+                answers,
+                certificate=self._certificate,
+                patience=self._patience,
+            )
         except PlcConnectionError as err:
             await self._refused_certificate(err)
             raise
@@ -195,7 +203,14 @@ class SoftplcClient(PlcClient):
         """Ask for the file listing (GET /dt): the PLC answers (reads need no certificate)."""
         transport = await self._transport()
         try:
-            status, _body = await send(transport, "GET", "/dt", None, certificate=self._certificate)
+            status, _body = await send(
+                transport,
+                "GET",
+                "/dt",
+                None,
+                certificate=self._certificate,
+                patience=self._patience,
+            )
         except PlcConnectionError as err:
             await self._refused_certificate(err)
             raise
