@@ -130,3 +130,18 @@ async def softplc_busy(
         setattr(sim, switch, value)
     async with running(sim), connected(SoftplcClient(softplc_config(sim))) as client:
         yield sim, client
+
+
+REAL_READINGS = ["g7", "comma", "exponent", "long", "short", "grouped"]
+"""Row 15 of simulators/softplc/READINGS.md: how the PLC prints a float (switch `reals`)."""
+
+
+@pytest.fixture(params=REAL_READINGS, ids=REAL_READINGS)
+async def softplc_reals(
+    request: pytest.FixtureRequest,
+) -> AsyncGenerator[tuple[SoftplcSimulator, SoftplcClient]]:
+    """A simulator printing floats as one reading of REAL_READINGS, and a client of it."""
+    sim = SoftplcSimulator(bench=0)
+    sim.reals = request.param
+    async with running(sim), connected(SoftplcClient(softplc_config(sim))) as client:
+        yield sim, client

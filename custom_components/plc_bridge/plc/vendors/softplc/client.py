@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
 from datetime import datetime
+import logging
 import time
 from typing import ClassVar
 
@@ -41,6 +42,8 @@ from .planner import Key, Locator, ReadItem, plan
 from .reading import Wanted, result_of, wanted_of
 from .tls import CERTIFICATE, client_context, has_certificate, pem_options, resolve_material
 from .writing import confirm, write_items
+
+_LOGGER = logging.getLogger(__name__)
 
 MAX_PARSED = 65536
 """Points whose parsed address a client keeps (a poll parses only what it has not seen)."""
@@ -87,6 +90,7 @@ class SoftplcClient(PlcClient):
         self._refused: dict[Key, PlcError] = {}
         self._parsed: dict[Point, Wanted | PlcError] = {}
         self._probed_at = -float("inf")
+        self._unread: set[Point] = set()  # points whose write was logged as not read back
         self._patience = Patience(config.poll_interval)  # a busy PLC is waited for this long
         self._certificate = has_certificate(config) and config.tls is not TlsMode.NONE
 
@@ -328,8 +332,19 @@ class SoftplcClient(PlcClient):
                     )
                     results[sent.point] = PointResult(error=error)
                 else:
-                    results[sent.point] = confirm(answer, sent)
+                    results[sent.point], unread = confirm(answer, sent)
+                    if unread:
+                        self._not_read_back(sent.point, unread)
         return results
+
+    def _not_read_back(self, point: Point, why: str) -> None:
+        """Log a write done but not confirmed: once per point, as a warning."""
+        if point in self._unread or len(self._unread) >= MAX_PARSED:
+            return
+        self._unread.add(point)
+        _LOGGER.warning(
+            "%s on %s: written, not read back (%s)", point.address, self.config.host, why
+        )
 
     @property
     def can_set_clock(self) -> bool:
