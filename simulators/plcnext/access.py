@@ -30,6 +30,7 @@ class Access:
         self.tokens: dict[str, str] = {}  # token -> user
         self.sessions: dict[str, Session] = {}
         self.logins = 0
+        self.created = 0  # sessions made (a keep-alive or a use makes none)
 
     def auth_code(self) -> str:
         """Return a new auth token (valid 600 s, notes 3a)."""
@@ -65,6 +66,7 @@ class Access:
         """Create a session; return its id."""
         session_id = f"s{secrets.randbelow(10**10):010d}"
         self.sessions[session_id] = Session(station, timeout_ms / 1000, time.monotonic())
+        self.created += 1
         return session_id
 
     def touch(self, session_id: str) -> bool:

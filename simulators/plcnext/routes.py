@@ -21,6 +21,8 @@ class AccessRoutes:
     auth: bool
     foreign: bool
     station_conflicts: bool  # a second session for a station with a live one: 409 (PyREST)
+    session_cap: float | None  # the longest session timeout granted (s); None: as asked
+    session_answer: str  # the create answer names the timeout "granted", or it is "absent"
 
     def _reason(self, documented: str, own: str) -> str:
         """Return a reason: the documented one, or in foreign mode the simulator's own."""
@@ -66,8 +68,21 @@ class AccessRoutes:
             live = (s for s in self.access.sessions.values() if s.station == station)
             if self.station_conflicts and any(s.alive(time.monotonic()) for s in live):
                 raise Fault(409, self._reason("stationInUse", "conflict"))
+            if self.session_cap is not None:
+                timeout = min(timeout, self.session_cap * 1000)
             session_id = self.access.open(station, timeout)
-            return self._json({"sessionID": session_id}, status=201)
+            answer: dict[str, Any] = {"sessionID": session_id}
+            if self.session_answer == "granted":
+                answer["timeout"] = round(timeout)
+            return self._json(answer, status=201)
+        if method == "GET" and not parts:  # the report (notes 3a, Sessions)
+            now = time.monotonic()
+            entries = [
+                {"id": key, "stationID": s.station, "timeout": round(s.timeout * 1000)}
+                for key, s in self.access.sessions.items()
+                if s.alive(now)
+            ]
+            return self._json({"sessions": entries, "next": None})
         if parts and method in ("POST", "PUT"):
             self._keep_session(parts[0])
             return self._json({"sessionID": parts[0]})

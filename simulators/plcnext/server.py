@@ -7,7 +7,9 @@ text), `trailing_slashes`, `groups.timeout`, `auth` (user authentication on or o
 `unknown_entries` (unknown names in a variable read fail their entry, not the request),
 `groups_served` (False: an interface without groups), `program.case_sensitive` (names match
 only as declared), `declared_spelling` (answers spell paths as declared, not as asked),
-`station_conflicts` (409 for a second session of one station). See READINGS.md.
+`station_conflicts` (409 for a second session of one station), `session_cap` (the longest
+session timeout granted) and `session_answer` (the create answer names the timeout granted,
+or it is "absent": the sessions report names it). See READINGS.md.
 `foreign` answers the cases the sources leave open with other reasons and error shapes than
 the client's tests assume, so the client is tested on structure.
 """
@@ -72,6 +74,8 @@ class PlcnextSimulator(AccessRoutes, HttpSimulator):
         self.groups_served = True  # False: an interface without groups (405 on /groups)
         self.declared_spelling = False  # answers name a path as declared, not as asked
         self.station_conflicts = False  # 409 for a station that has a live session
+        self.session_cap: float | None = None  # the longest session timeout granted (s)
+        self.session_answer = "granted"  # the create answer names the timeout, or "absent"
         self.groups = Groups()  # `groups.timeout`: 120 s idle
         self.answer_with: tuple[int, bytes] | None = None  # every data answer: status, body
         self.calls: dict[str, int] = {}

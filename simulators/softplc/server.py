@@ -24,8 +24,13 @@ answers are the simulator's own inventions, not the client's guesses:
   decimal), all in "hex", or "signed" decimal;
 - `extra`: every `<data>` of an answer carries attributes no manual names, one namespaced;
 - `order`: answer items in the "request" order or "reversed";
+- `reals`: floats (stored as IEEE singles) printed as C's "%.7g" ("g7"), with a decimal
+  "comma" (a localised firmware), in "exponent" form, with nine digits ("long"), four
+  ("short"), or "grouped" ("1.234,5": digits grouped, decimal comma);
 - `busy`: HTTP statuses (503...) answered to the next requests, whatever they ask, after
-  `busy_after` more requests answered as usual.
+  `busy_after` more requests answered as usual; `busy_retry` says whether they carry a
+  Retry-After of `busy_wait` seconds: "none", "seconds", or "date" (an HTTP-date);
+  `busy_acts`: a PUT answered busy was written all the same (a firmware that breaks HTTP).
 
 simulators/softplc/READINGS.md lists what each switch answers and where each reading comes from.
 
@@ -37,9 +42,12 @@ PUT authentication on, and a client certificate the PLC trusts written into DIR 
 from __future__ import annotations
 
 from collections import deque
+from datetime import UTC, datetime, timedelta
+from email.utils import format_datetime
 import math
 from pathlib import Path
 import ssl
+import struct
 from typing import Any, ClassVar
 from urllib.parse import unquote
 from xml.etree import ElementTree as ET  # the simulator parses the client's own requests
@@ -53,6 +61,18 @@ from .datatable import Bad, File, Target, default_files, normalised, resolve
 
 HISTORY = 200
 DEFAULT_TAGS = {"timer1": "T4:0", "important_int": "N7:10", "setpoint": "F8:1"}
+
+
+def printed_real(value: float, style: str) -> str:
+    """Return a float as the PLC prints it under the `reals` switch."""
+    if style == "exponent":
+        return f"{value:e}"
+    if style in ("long", "short"):
+        return f"{value:.{9 if style == 'long' else 4}g}"
+    if style == "grouped":
+        return f"{value:,.6f}".replace(",", "_").replace(".", ",").replace("_", ".")
+    text = f"{value:.7g}"
+    return text.replace(".", ",") if style == "comma" else text
 
 
 class SoftplcSimulator(HttpSimulator):
@@ -90,8 +110,12 @@ class SoftplcSimulator(HttpSimulator):
         self.reply_forms = "taken"
         self.words = "manual"
         self.order = "request"
+        self.reals = "g7"  # how floats are printed (see the module's docstring)
         self.busy: deque[int] = deque()
         self.busy_after = 0  # requests served as usual before the `busy` statuses start
+        self.busy_retry = "none"  # Retry-After of a busy answer: "none", "seconds", "date"
+        self.busy_wait = 1  # the seconds that Retry-After asks
+        self.busy_acts = False  # a PUT answered busy is written all the same
         self.bodies: deque[bytes] = deque(maxlen=HISTORY)
         self.items: deque[int] = deque(maxlen=HISTORY)  # <data> items of each POST
         self.rewrite: Any = None  # bytes -> bytes applied to every 2xx answer (hostile replies)
@@ -180,8 +204,18 @@ class SoftplcSimulator(HttpSimulator):
         if self.busy and self.busy_after:
             self.busy_after -= 1
         elif self.busy:
-            self.bodies.append(await request.read())
-            return web.Response(status=self.busy.popleft(), text="Service Unavailable")
+            status = self.busy.popleft()
+            if self.busy_acts and request.method == "PUT":
+                await handler(request)
+            else:
+                self.bodies.append(await request.read())
+            headers = {}
+            if self.busy_retry == "seconds":
+                headers["Retry-After"] = str(self.busy_wait)
+            elif self.busy_retry == "date":
+                when = datetime.now(UTC) + timedelta(seconds=self.busy_wait)
+                headers["Retry-After"] = format_datetime(when, usegmt=True)
+            return web.Response(status=status, text="Service Unavailable", headers=headers)
         response: web.StreamResponse = await handler(request)
         return response
 
@@ -314,7 +348,8 @@ class SoftplcSimulator(HttpSimulator):
     def _number(self, text: str, file: File) -> int | float:
         try:
             if file.type in ("F", "PD"):
-                return float(int(text, 16)) if text.lower().startswith("0x") else float(text)
+                number = float(int(text, 16)) if text.lower().startswith("0x") else float(text)
+                return float(struct.unpack("<f", struct.pack("<f", number))[0])
             value = int(text, 0) if text.lower().startswith("0x") else int(text)
         except ValueError:
             raise Bad(f"invalid value '{text}'") from None
@@ -327,7 +362,7 @@ class SoftplcSimulator(HttpSimulator):
         if count is not None:
             element.set("count", str(count))
         if file.type in ("F", "PD"):
-            texts = [f"{float(v):.7g}" for v in values]
+            texts = [printed_real(float(v), self.reals) for v in values]
         elif self.words == "hex" or (self.words == "manual" and file.type in ("O", "I")):
             texts = [f"0x{int(v):04x}" for v in values]
         elif self.words == "signed":

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from collections.abc import AsyncGenerator
+from typing import Any
 
 import pytest
 
@@ -43,3 +44,30 @@ async def plcnext_client(plcnext_config: ConfigFactory) -> AsyncGenerator[Plcnex
     """A client connected to the simulator (its own HTTP session), closed afterwards."""
     async with connected(PlcnextClient(plcnext_config())) as client:
         yield client
+
+
+SESSION_READINGS: dict[str, dict[str, Any]] = {
+    "granted-equal": {},
+    "granted-shorter": {"session_cap": 1.0},
+    "absent-shorter": {"session_cap": 1.0, "session_answer": "absent"},
+    "absent-equal": {"session_answer": "absent"},
+}
+"""Row 20 of simulators/plcnext/READINGS.md: the session timeout a PLC grants, and where it
+says so (the create answer, or only the sessions report)."""
+
+
+@pytest.fixture(params=list(SESSION_READINGS), ids=list(SESSION_READINGS))
+async def plcnext_sessions(
+    request: pytest.FixtureRequest,
+) -> AsyncGenerator[tuple[PlcnextSimulator, ConfigFactory]]:
+    """A simulator granting sessions as one reading of SESSION_READINGS, and its settings."""
+    async with running(PlcnextSimulator()) as sim:
+        for switch, value in SESSION_READINGS[request.param].items():
+            assert hasattr(sim, switch), switch
+            setattr(sim, switch, value)
+        yield (
+            sim,
+            config_factory(
+                sim, username=DEFAULT_USER, password=DEFAULT_PASSWORD, tls=TlsMode.PIN, timeout=5.0
+            ),
+        )

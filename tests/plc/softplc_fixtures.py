@@ -8,7 +8,7 @@ from typing import Any
 import pytest
 
 from custom_components.plc_bridge.plc import ConnectionConfig, TlsMode
-from custom_components.plc_bridge.plc.vendors.softplc import SoftplcClient
+from custom_components.plc_bridge.plc.vendors.softplc import SoftplcClient, exchange
 from simulators.softplc import SoftplcSimulator
 from tests.loopback import ConfigFactory, config_factory, connected, running
 
@@ -86,5 +86,62 @@ async def softplc_reading(
     for switch, value in switches.items():
         assert hasattr(sim, switch), switch
         setattr(sim, switch, value)
+    async with running(sim), connected(SoftplcClient(softplc_config(sim))) as client:
+        yield sim, client
+
+
+@pytest.fixture
+def busy_waits(monkeypatch: pytest.MonkeyPatch) -> list[float]:
+    """Record the waits a busy PLC makes the client sleep, and sleep none of them."""
+    waits: list[float] = []
+
+    async def record(seconds: float) -> None:
+        waits.append(seconds)
+
+    monkeypatch.setattr(exchange, "sleep", record)
+    return waits
+
+
+BUSY_READINGS: dict[str, dict[str, Any]] = {
+    "no-retry-after": {"busy_retry": "none"},
+    "retry-after-seconds": {"busy_retry": "seconds", "busy_wait": 2},
+    "retry-after-date": {"busy_retry": "date", "busy_wait": 2},
+}
+"""Row 14 of simulators/softplc/READINGS.md: the Retry-After a busy answer carries, or none."""
+
+
+def expected_wait(sim: SoftplcSimulator) -> tuple[float, float]:
+    """Return the least and most seconds the client may wait after one busy answer of `sim`."""
+    if sim.busy_retry == "none":
+        return exchange.BACKOFF, exchange.BACKOFF
+    if sim.busy_retry == "date":  # an HTTP-date counts whole seconds
+        return sim.busy_wait - 1.5, float(sim.busy_wait)
+    return float(sim.busy_wait), float(sim.busy_wait)
+
+
+@pytest.fixture(params=list(BUSY_READINGS), ids=list(BUSY_READINGS))
+async def softplc_busy(
+    request: pytest.FixtureRequest,
+) -> AsyncGenerator[tuple[SoftplcSimulator, SoftplcClient]]:
+    """A simulator whose busy answers follow one reading of BUSY_READINGS, and a client of it."""
+    sim = SoftplcSimulator(bench=0)
+    for switch, value in BUSY_READINGS[request.param].items():
+        assert hasattr(sim, switch), switch
+        setattr(sim, switch, value)
+    async with running(sim), connected(SoftplcClient(softplc_config(sim))) as client:
+        yield sim, client
+
+
+REAL_READINGS = ["g7", "comma", "exponent", "long", "short", "grouped"]
+"""Row 15 of simulators/softplc/READINGS.md: how the PLC prints a float (switch `reals`)."""
+
+
+@pytest.fixture(params=REAL_READINGS, ids=REAL_READINGS)
+async def softplc_reals(
+    request: pytest.FixtureRequest,
+) -> AsyncGenerator[tuple[SoftplcSimulator, SoftplcClient]]:
+    """A simulator printing floats as one reading of REAL_READINGS, and a client of it."""
+    sim = SoftplcSimulator(bench=0)
+    sim.reals = request.param
     async with running(sim), connected(SoftplcClient(softplc_config(sim))) as client:
         yield sim, client

@@ -94,12 +94,14 @@ async def test_set_bit_of_a_word_the_plc_refuses(
 async def test_written_value_unreadable(
     softplc_sim: SoftplcSimulator, softplc_client: SoftplcClient
 ) -> None:
-    """A write answered with no number, or without the value, fails its point."""
+    """A write the PLC answered (2xx, its item without an error) with no number, or without
+    the value, is done: reported written, not failed (READINGS.md row 15)."""
     softplc_sim.rewrite = lambda body: body.replace(b"\n77\n", b"\nbusy\n")
     point = Point("N7:0", "INT")
-    assert isinstance((await softplc_client.write({point: 77}))[point].error, PlcProtocolError)
+    assert (await softplc_client.write({point: 77}))[point].value == 77
     softplc_sim.rewrite = lambda body: body.replace(b"\n78\n", b"\n\n")
-    assert isinstance((await softplc_client.write({point: 78}))[point].error, PlcProtocolError)
+    assert (await softplc_client.write({point: 78}))[point].value == 78
+    assert softplc_sim.files["N", 7].words[0] == 78
 
 
 async def test_no_clock(softplc_client: SoftplcClient) -> None:

@@ -19,6 +19,10 @@ from custom_components.plc_bridge.plc import (
 from custom_components.plc_bridge.plc.vendors.softplc import SoftplcClient
 from simulators.softplc import SoftplcSimulator
 
+from .softplc_fixtures import busy_waits
+
+__all__ = ["busy_waits"]  # a fixture, imported to be found
+
 type Reading = tuple[SoftplcSimulator, SoftplcClient]
 
 
@@ -101,25 +105,25 @@ async def test_same_place_twice_never_guessed(softplc_reading: Reading) -> None:
         assert [values[point].value for point in points[:3]] == [10, 11, own]
 
 
-async def test_busy_run_is_no_verdict(softplc_reading: Reading) -> None:
-    """A run of 503 answers fails those polls in one request each, and marks no address bad:
-    on the first good poll every point is back (a bad one still fails alone)."""
+async def test_busy_run_is_no_verdict(softplc_reading: Reading, busy_waits: list[float]) -> None:
+    """A run of 503 answers fails that poll in two requests (one resend), and marks no address
+    bad: on the first good poll every point is back (a bad one still fails alone)."""
     sim, client = softplc_reading
     good = [Point("N7:1", "INT"), Point("N7:50", "INT"), Point("F8:0", "REAL")]
     bad = Point("N99:0", "INT")
-    for run in (1, 3):
+    for run in (2, 3):
         sim.busy.extend([503] * run)
         before = sim.requests
         with pytest.raises(PlcConnectionError, match="503"):
             await client.read([*good, bad])
-        assert sim.requests - before == 1
+        assert sim.requests - before == 2
         sim.busy.clear()
         values = (await client.read([*good, bad])).values
         assert [values[point].value for point in good] == [1, 50, 21.5]
         assert isinstance(values[bad].error, PlcAddressError)
 
 
-async def test_busy_inside_a_search(softplc_reading: Reading) -> None:
+async def test_busy_inside_a_search(softplc_reading: Reading, busy_waits: list[float]) -> None:
     """A 503 met while halving around a bad item fails that poll, never the items asked."""
     sim, client = softplc_reading
     good = [Point("N7:1", "INT"), Point("N7:50", "INT"), Point("F8:0", "REAL")]

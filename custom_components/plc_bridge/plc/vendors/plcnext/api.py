@@ -4,15 +4,18 @@ from __future__ import annotations
 
 import asyncio
 from collections.abc import Callable
+import contextlib
 import json
+import logging
 import re
 import secrets
+import time
 from typing import Any
 from urllib.parse import urlencode
 
 import aiohttp
 
-from ...errors import PlcAuthenticationError, PlcProtocolError
+from ...errors import PlcAuthenticationError, PlcError, PlcProtocolError
 from ...http import HttpTransport
 from ...types import ClientMetrics, ConnectionConfig
 from .errors import ApiError, parse_error, request_error
@@ -21,6 +24,10 @@ ROOT = "/_pxc_api"
 LATEST = f"{ROOT}/api"
 _VERSION = re.compile(r"v?(\d+)\.(\d+)", re.ASCII)
 SESSION_MIN = 300.0  # seconds: a session outlives several polls and a slow write action
+KEEPALIVE_FLOOR = 0.2
+"""The shortest wait between two keep-alives (seconds), whatever the PLC grants."""
+
+_LOGGER = logging.getLogger(__name__)
 SECRETS = ("code",)
 """The auth-token's field (notes 3a, Authentication), masked in the debug log with the rest."""
 
@@ -74,6 +81,9 @@ class PlcnextApi:
         self.last_status = 0  # of the last data answer: 201 where a register made a group
         self._sessions = 0
         self._session_lock = asyncio.Lock()
+        self.granted = self.session_timeout  # seconds the PLC keeps an unused session
+        self._used = 0.0  # when a request last carried the session id (monotonic)
+        self._keepalive: asyncio.Task[None] | None = None
         self.station = secrets.randbelow(2**31 - 1) + 1
         self.roles: list[str] = []
 
@@ -134,6 +144,8 @@ class PlcnextApi:
             status, headers, raw = await self.send(
                 method, path, body, content, idempotent=idempotent
             )
+            if session is not None and 200 <= status < 300 and _carries(session, path, body):
+                self._used = time.monotonic()
             if 200 <= status < 300:
                 answer = loads(raw, path.partition("?")[0][-40:])
                 if not (isinstance(answer, dict) and "error" in answer):
@@ -232,16 +244,95 @@ class PlcnextApi:
                 found = answer.get("sessionID") if isinstance(answer, dict) else None
                 self.session_id = found if isinstance(found, str) and found else None
                 self._sessions += 1
+                self._used = time.monotonic()
+                if self.session_id is not None:
+                    await self._keep(answer)
                 return
             self.session_id = None
+
+    async def _keep(self, answer: Any) -> None:
+        """Take the timeout the PLC grants; keep the session alive where polls would not.
+
+        The create answer's `timeout` (ms, as asked), else the sessions report's entry for it
+        (notes 3a, Sessions: `timeout`); a PLC that names none is taken to grant what was
+        asked. Anything but a positive number is no answer; more than asked is not trusted.
+        """
+        granted = _millis(answer)
+        if granted is None:
+            granted = await self._reported()
+        self.granted = (
+            self.session_timeout if granted is None else min(granted / 1000, self.session_timeout)
+        )
+        if self.granted < 2 * self._config.poll_interval and self._keepalive is None:
+            self._keepalive = asyncio.create_task(self._keep_alive())
+
+    async def _reported(self) -> float | None:
+        """Return the timeout (ms) the sessions report gives this session, None if none.
+
+        Sent as is (never renewed: the session lock is held while a session is made).
+        """
+        status, _headers, raw = await self.send("GET", f"{self.base}/sessions")
+        try:
+            answer = loads(raw, "the sessions report") if 200 <= status < 300 else None
+        except PlcProtocolError:
+            return None
+        entries = answer.get("sessions") if isinstance(answer, dict) else None
+        for entry in entries if isinstance(entries, list) else ():
+            if isinstance(entry, dict) and entry.get("id") == self.session_id:
+                return _millis(entry)
+        return None
+
+    async def _keep_alive(self) -> None:
+        """Maintain the session when half its granted timeout passed unused (notes 3a)."""
+        try:
+            while (session := self.session_id) is not None:
+                left = self._used + self.granted / 2 - time.monotonic()
+                if left > 0:
+                    await asyncio.sleep(max(left, KEEPALIVE_FLOOR))
+                    continue
+                status, _headers, _raw = await self.send("POST", f"{self.base}/sessions/{session}")
+                if not 200 <= status < 300:
+                    return  # gone (410): the next call makes one again
+                self._used = max(self._used, time.monotonic())
+                await asyncio.sleep(KEEPALIVE_FLOOR)
+        except PlcError as err:
+            _LOGGER.debug("Keeping the PLCnext session alive failed: %s", err)
+        finally:
+            self._keepalive = None
 
     def _session_request(self, body: bytes) -> Callable[[str | None], Request]:
         """Return the request maker of a session's creation."""
         form = "application/x-www-form-urlencoded"
         return lambda _session: (f"{self.base}/sessions", body, form)
 
+    async def stop_keepalive(self) -> None:
+        """Stop keeping the session alive (at close)."""
+        if self._keepalive is not None:
+            task, self._keepalive = self._keepalive, None
+            task.cancel()
+            with contextlib.suppress(asyncio.CancelledError):
+                await task
+
     async def close_session(self) -> None:
-        """Delete the session (best effort: it times out on its own)."""
+        """Stop keeping the session alive and delete it (best effort: it times out on its own)."""
+        await self.stop_keepalive()
         if self.session_id is not None:
             session, self.session_id = self.session_id, None
             await self.send("DELETE", f"{self.base}/sessions/{session}")
+
+
+def _carries(session: str, path: str, body: bytes | None) -> bool:
+    """True when a request names the session id (and so keeps the session alive)."""
+    return session in path or (body is not None and session.encode() in body)
+
+
+def _millis(answer: Any) -> float | None:
+    """Return a positive `timeout` (ms, a number or its text) of an answer; None otherwise."""
+    raw = answer.get("timeout") if isinstance(answer, dict) else None
+    if isinstance(raw, bool) or not isinstance(raw, int | float | str):
+        return None
+    try:
+        value = float(raw)
+    except ValueError:
+        return None
+    return value if 0 < value < float("inf") else None

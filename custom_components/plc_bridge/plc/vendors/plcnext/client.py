@@ -270,6 +270,7 @@ class PlcnextClient(PlcClient):
     async def close(self) -> None:
         """Unregister the group and delete the session (best effort, briefly)."""
         if self._api is not None:
+            await self._api.stop_keepalive()
             try:
                 async with asyncio.timeout(CLOSE_TIMEOUT):
                     if self._reader is not None:

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
 from datetime import datetime
+import logging
 import time
 from typing import ClassVar
 
@@ -36,11 +37,13 @@ from ...types import (
 from .address import Address, parse_address
 from .codec import KINDS, TYPES, check_value, data_type
 from .document import MAX_REPLY, request_body
-from .exchange import Answers, Busy, Refused, exchange, send
+from .exchange import Answers, Busy, Patience, Refused, exchange, send
 from .planner import Key, Locator, ReadItem, plan
 from .reading import Wanted, result_of, wanted_of
 from .tls import CERTIFICATE, client_context, has_certificate, pem_options, resolve_material
 from .writing import confirm, write_items
+
+_LOGGER = logging.getLogger(__name__)
 
 WORD_BITS = 16
 """Bits of a datatable word: footprints count bits, so that two bits of one word are apart."""
@@ -89,6 +92,8 @@ class SoftplcClient(PlcClient):
         self._refused: dict[Key, PlcError] = {}
         self._parsed: dict[Point, Wanted | PlcError] = {}
         self._probed_at = -float("inf")
+        self._unread: set[Point] = set()  # points whose write was logged as not read back
+        self._patience = Patience(config.poll_interval)  # a busy PLC is waited for this long
         self._certificate = has_certificate(config) and config.tls is not TlsMode.NONE
 
     @classmethod
@@ -180,7 +185,14 @@ class SoftplcClient(PlcClient):
         """Exchange items with the PLC (halving around refused ones)."""
         transport = await self._transport()
         try:
-            await exchange(transport, method, items, answers, certificate=self._certificate)
+            await exchange(
+                transport,
+                method,
+                items,
+                answers,
+                certificate=self._certificate,
+                patience=self._patience,
+            )
         except PlcConnectionError as err:
             await self._refused_certificate(err)
             raise
@@ -208,7 +220,14 @@ class SoftplcClient(PlcClient):
         """Ask for the file listing (GET /dt): the PLC answers (reads need no certificate)."""
         transport = await self._transport()
         try:
-            status, _body = await send(transport, "GET", "/dt", None, certificate=self._certificate)
+            status, _body = await send(
+                transport,
+                "GET",
+                "/dt",
+                None,
+                certificate=self._certificate,
+                patience=self._patience,
+            )
         except PlcConnectionError as err:
             await self._refused_certificate(err)
             raise
@@ -326,8 +345,19 @@ class SoftplcClient(PlcClient):
                     )
                     results[sent.point] = PointResult(error=error)
                 else:
-                    results[sent.point] = confirm(answer, sent)
+                    results[sent.point], unread = confirm(answer, sent)
+                    if unread:
+                        self._not_read_back(sent.point, unread)
         return results
+
+    def _not_read_back(self, point: Point, why: str) -> None:
+        """Log a write done but not confirmed: once per point, as a warning."""
+        if point in self._unread or len(self._unread) >= MAX_PARSED:
+            return
+        self._unread.add(point)
+        _LOGGER.warning(
+            "%s on %s: written, not read back (%s)", point.address, self.config.host, why
+        )
 
     @property
     def can_set_clock(self) -> bool:

@@ -28,6 +28,8 @@ KINDS: dict[str, ValueKind] = {
 _HEX = re.compile(r"[+-]?0[xX][0-9a-fA-F]{1,8}")
 _DECIMAL = re.compile(r"[+-]?[0-9]{1,20}")
 _FLOAT = re.compile(r"[+-]?(?:[0-9]{1,40}\.?[0-9]{0,40}|\.[0-9]{1,40})(?:[eE][+-]?[0-9]{1,3})?")
+_COMMA = re.compile(r"[+-]?(?:[0-9]{1,40},[0-9]{0,40}|,[0-9]{1,40})(?:[eE][+-]?[0-9]{1,3})?")
+"""A decimal comma: C's printf under a localised LC_NUMERIC (READINGS.md, row 15)."""
 
 
 def default_type(address: Address) -> str:
@@ -56,14 +58,30 @@ def data_type(address: Address, text: str) -> str:
 
 
 def parse_token(token: str, what: str) -> int | float:
-    """Return one printed value: decimal or 0x hex integer, or a float."""
+    """Return one printed value: decimal or 0x hex integer, or a float (point or comma).
+
+    A comma is read as a decimal comma only where it is the one separator: a token with a
+    point and a comma (grouped digits, "1.234,5") could mean two numbers and is refused.
+    """
     if _HEX.fullmatch(token):
         return int(token, 16)
     if _DECIMAL.fullmatch(token):
         return int(token)
     if _FLOAT.fullmatch(token) or token.lower().lstrip("+-") in ("nan", "inf", "infinity"):
         return float(token)
+    if _COMMA.fullmatch(token):
+        return float(token.replace(",", "."))
     raise PlcProtocolError(f"{what}: the PLC answered {token[:20]!r}, not a number")
+
+
+def printed_unit(token: str) -> float:
+    """Return the value of the last digit a float was printed with ("22.30" 0.01, "2.2e1" 1)."""
+    mantissa, _e, exponent = token.lower().partition("e")
+    decimals = len(mantissa.replace(",", ".").partition(".")[2])
+    try:
+        return float(10 ** (int(exponent or "0") - decimals))
+    except (ValueError, OverflowError):
+        return 0.0
 
 
 def decode(kind: str, raw: int | float, bit: int | None, what: str) -> Value:
@@ -118,9 +136,16 @@ def encode_float(value: float) -> str:
     return plain_decimal(shortest_real(value))
 
 
-def same_float(sent: float, answered: float) -> bool:
-    """True when two floats are the same IEEE single (the PLC's own rounding)."""
+def same_float(sent: float, answered: float, unit: float = 0.0) -> bool:
+    """True when an answer is the IEEE single sent, as far as its printed digits (`unit`) show.
+
+    "22.3", "22.299999", "2.230000e+01" and "22.2999992" all show the single 22.3 is stored;
+    "1235" could be 1234.5678 printed with four digits (whether it is, `confirm` decides).
+    """
     try:
-        return struct.pack("<f", sent) == struct.pack("<f", answered)
+        stored: float = struct.unpack("<f", struct.pack("<f", sent))[0]
+        if struct.pack("<f", answered) == struct.pack("<f", stored):
+            return True
     except (OverflowError, struct.error):
         return False
+    return abs(answered - stored) <= unit / 2 + 4 * math.ulp(max(abs(answered), abs(stored)))

@@ -21,6 +21,7 @@ from .codec import (
     encode_float,
     encode_word,
     parse_token,
+    printed_unit,
     same_float,
     word_of,
 )
@@ -161,24 +162,46 @@ def _ranges(
     return items
 
 
-def confirm(answer: Item, sent: Sent) -> PointResult:
-    """Return the point's result: the reply must hold the value sent (hex comes back decimal)."""
+def confirm(answer: Item, sent: Sent) -> tuple[PointResult, str]:
+    """Return the point's result and, for a write done but not read back, why not.
+
+    The reply must hold the value sent (hex comes back decimal; a REAL as far as its printed
+    digits show, READINGS.md row 15). A PUT the PLC answered with the item and no error wrote
+    it: an echo that cannot be read, or not told apart from another value, leaves the write
+    done but not confirmed; only an echo that reads as another value fails it.
+    """
     what = sent.point.address
+    done = PointResult(value=sent.value)
     if sent.index >= len(answer.tokens):
-        return PointResult(error=PlcProtocolError(f"{what}: the PLC's answer lacks the value"))
+        return done, "the PLC's answer lacks the value"
+    token = answer.tokens[sent.index]
     try:
-        held, wrote = parse_token(answer.tokens[sent.index], what), parse_token(sent.token, what)
-    except PlcError as err:
-        return PointResult(error=err)
-    if isinstance(held, int) and isinstance(wrote, int):
-        same = held & 0xFFFF == wrote & 0xFFFF
-    else:
-        same = same_float(float(wrote), float(held))
-    if not same:
-        return PointResult(
-            error=PlcWriteRefusedError(
-                f"{what}: the PLC answered the write with {answer.tokens[sent.index][:20]}, "
-                f"not {sent.token}"
-            )
+        held = parse_token(token, what)
+    except PlcError:
+        return done, f"the PLC answered {token[:20]!r}"
+    wrote = parse_token(sent.token, what)
+    if _is_real(sent.point):
+        if not same_float(float(wrote), float(held), printed_unit(token)):
+            return _other(what, token, sent), ""
+        if same_float(float(wrote), float(held)) or printed_unit(token) < 1:
+            return done, ""
+        return done, f"the PLC answered {token[:20]!r}, without the digits to tell"
+    if isinstance(held, float) and not held.is_integer():
+        return _other(what, token, sent), ""
+    if int(held) & 0xFFFF != int(wrote) & 0xFFFF:
+        return _other(what, token, sent), ""
+    return done, ""
+
+
+def _is_real(point: Point) -> bool:
+    """True when the point holds a float (its echo is compared as printed)."""
+    return data_type(parse_address(point.address), point.data_type) == "REAL"
+
+
+def _other(what: str, token: str, sent: Sent) -> PointResult:
+    """Return the failure of a write the PLC answered with another value."""
+    return PointResult(
+        error=PlcWriteRefusedError(
+            f"{what}: the PLC answered the write with {token[:20]}, not {sent.token}"
         )
-    return PointResult(value=sent.value)
+    )
