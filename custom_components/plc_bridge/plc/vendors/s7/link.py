@@ -300,7 +300,8 @@ class S7Link:
         """Open a new connection in place of the one the PLC closed; the same PDU size or fail."""
         _LOGGER.debug("The S7 PLC %s closed the connection; opening a new one", self._where)
         with contextlib.suppress(Exception):
-            await self._connection.disconnect()
+            async with asyncio.timeout(self._timeout):
+                await self._connection.disconnect()
         self._connection = self._new_connection()
         self._broken = False
         self._metrics.session_renewals += 1
