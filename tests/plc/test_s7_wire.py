@@ -77,7 +77,7 @@ def config_of(sim: S7Simulator, **changes: Any) -> ConnectionConfig:
 def idle(sim: S7Simulator) -> float:
     """Return a wait past the simulator's idle limit."""
     assert sim.idle_close is not None
-    return sim.idle_close + 0.15
+    return sim.idle_close + 0.4
 
 
 async def test_reads_outlive_idle_closes(
