@@ -70,6 +70,13 @@ class S7Simulator:
         # definition) or a binary word (what S7.Net's Counter type reads): READINGS.md row 15
         self.counters = "bcd"
         self.put_get_refused = False  # an S7-1200/1500 without "Permit PUT/GET": jobs get 0x8104
+        # On the wire (server.Wire; READINGS.md rows 17-19): replies in COTP frames of
+        # `frame_size` bytes; connections idle `idle_close` s closed ("fin") or reset at the next
+        # request ("reset"); `silent`: requests taken and never answered, nothing closed
+        self.frame_size: int | None = None
+        self.idle_close: float | None = None
+        self.idle_close_how = "fin"
+        self.silent = False
         self.on_request: Callable[[bytes], None] | None = None  # runs in the server's thread
         # SZL 0x001C records by index, in a CPU's order: 1 name, 2 module, 5 serial, 7 type
         self.identity = dict(enumerate(_IDENTITY, 1)) | {5: self.serial, 7: _IDENTITY[1]}

@@ -7,12 +7,15 @@ protection (0x03); the P area (0x80: reads see the inputs, writes reach the outp
 timers and counters on area codes 0x1F/0x1E (the stock server's area enum has neither); a clock
 that keeps the time it is set to, or none at all; every CPU state of SZL 0x0424; SZL 0x001C as a
 real list, fragmented when the PDU is small, or no SZL at all (S7-200, LOGO!); the checks of a
-CPU (called TSAP, PDU size, item count); a stop that drops every client at once.
+CPU (called TSAP, PDU size, item count); a stop that drops every client at once. On the wire
+(`Wire`): replies split into COTP frames of a few bytes, idle connections closed as a CPU, CP or
+firewall closes them, and a CPU that stops answering without closing (READINGS.md, rows 17-19).
 """
 
 from __future__ import annotations
 
 import contextlib
+import select
 import socket
 import struct
 import threading
@@ -49,6 +52,59 @@ def _peek_called_tsap(sock: socket.socket) -> bytes | None:
     return data[offset + 2 : offset + 2 + data[offset + 1]] if offset + 2 <= len(data) else None
 
 
+class Wire:
+    """A client's socket as the CPU uses it: replies in frames, idle connections closed.
+
+    `frame_size` splits every reply into COTP data frames of that many bytes, the last marked
+    EOT. `idle_close` closes a connection idle that many seconds (0: after each reply):
+    `idle_close_how` "fin" closes it then, as a CPU or CP does; "reset" lets it be and resets it
+    when the next request comes, as a firewall that forgot the connection does.
+    """
+
+    def __init__(self, sock: socket.socket, sim: S7Simulator) -> None:
+        """Wrap an accepted socket."""
+        self._sock, self._sim = sock, sim
+        self._idle_since: float | None = time.monotonic()  # None while a request comes in
+
+    def __getattr__(self, name: str) -> Any:
+        """Everything else is the socket's."""
+        return getattr(self._sock, name)
+
+    def recv(self, size: int, *flags: int) -> bytes:
+        """Receive; an idle connection past `idle_close` is closed instead (returns EOF)."""
+        idle, since = self._sim.idle_close, self._idle_since
+        if idle is None or since is None or flags:
+            return self._sock.recv(size, *flags)
+        if self._sim.idle_close_how == "fin":
+            wait, timeout = since + idle - time.monotonic(), self._sock.gettimeout()
+            early = timeout is None or wait < timeout  # else the socket's timeout comes first
+            if early and not select.select([self._sock], [], [], max(wait, 0.0))[0]:
+                self._sock.shutdown(socket.SHUT_RDWR)
+                return b""
+        data = self._sock.recv(size)
+        if data and self._sim.idle_close_how == "reset" and time.monotonic() - since > idle:
+            self._sock.setsockopt(socket.SOL_SOCKET, socket.SO_LINGER, struct.pack("ii", 1, 0))
+            return b""  # the handler closes the socket: a reset, the request unanswered
+        if data:
+            self._idle_since = None
+        return data
+
+    def sendall(self, data: bytes) -> None:
+        """Send a frame; a reply (a COTP data frame) in frames of `frame_size` bytes."""
+        size = self._sim.frame_size
+        if size and len(data) > 7 and data[5] == 0xF0:
+            body = data[7:]
+            chunks = [body[at : at + size] for at in range(0, len(body), size)] or [b""]
+            for index, chunk in enumerate(chunks):
+                eot = 0x80 if index == len(chunks) - 1 else 0x00
+                head = struct.pack(">BBHBBB", 3, 0, len(chunk) + 7, 2, 0xF0, eot)
+                self._sock.sendall(head + chunk)
+        else:
+            self._sock.sendall(data)
+        if len(data) > 5 and data[5] == 0xF0:  # a reply; the connection confirm starts no idling
+            self._idle_since = time.monotonic()
+
+
 class CpuServer(Server):
     """python-snap7's server with the extensions listed in the module docstring."""
 
@@ -70,7 +126,7 @@ class CpuServer(Server):
             else:  # a CPU refuses a rack/slot or TSAP it does not have
                 with contextlib.suppress(OSError):  # a client that is gone already
                     client_socket.shutdown(socket.SHUT_RDWR)
-            super()._handle_client(client_socket, address)
+            super()._handle_client(Wire(client_socket, self.sim), address)  # type: ignore[arg-type]
         finally:
             with self.guard:
                 self.sockets.discard(client_socket)
@@ -85,6 +141,8 @@ class CpuServer(Server):
 
     def _process_request(self, request_data: bytes, client_address: tuple[str, int]) -> Any:
         self.sim.count(request_data)
+        if self.sim.silent:
+            return None
         function = request_data[10] if len(request_data) > 11 and request_data[1] == 1 else None
         refused = {"sequence": int.from_bytes(request_data[4:6], "big")}
         if function == 0xF0:  # setup: the PDU is the smaller of what both sides can do

@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 import asyncio
-from collections.abc import AsyncGenerator, Awaitable, Callable
+from collections.abc import AsyncGenerator, Awaitable, Callable, Iterable, Iterator
 import struct
 from typing import Any
 
@@ -14,6 +14,7 @@ from simulators.s7 import S7Simulator
 from tests.loopback import ConfigFactory, config_factory, connected, running
 
 type Answer = Callable[[bytes], bytes | None]
+type Frames = Callable[[bytes], Iterable[bytes]]
 
 DBS = {1: 512, 2: 64, 3: 300, 4: 300}
 
@@ -25,6 +26,28 @@ ITEM_READINGS: dict[str, dict[str, Any]] = {
     "fails_the_rest": {"max_items": 5, "too_many": "item_codes"},
 }
 """How a CPU meets a job of more items than it takes (simulators/s7/READINGS.md, row 1)."""
+
+
+IDLE_READINGS: dict[str, dict[str, Any]] = {
+    "closes_idle": {"idle_close": 0.2, "idle_close_how": "fin"},  # a CPU or CP: FIN when idle
+    "resets_idle": {"idle_close": 0.2, "idle_close_how": "reset"},  # a firewall: RST at the next
+}
+"""How a CPU, CP or firewall ends an idle connection (simulators/s7/READINGS.md, row 17)."""
+
+FRAME_READINGS: dict[str, dict[str, Any]] = {
+    "one_frame": {},  # python-snap7's server: a reply in one COTP data frame
+    "tpdu_128": {"frame_size": 121},  # the smallest TPDU ISO 8073 allows: 128 bytes, 7 of headers
+    "frames_of_5": {"frame_size": 5},
+    "frames_of_1": {"frame_size": 1},
+}
+"""How a CPU frames its replies (simulators/s7/READINGS.md, row 18)."""
+
+
+def reading(sim: S7Simulator, switches: dict[str, Any]) -> S7Simulator:
+    """Set the simulator's switches of one reading."""
+    for name, value in switches.items():
+        setattr(sim, name, value)
+    return sim
 
 
 def item_reading(sim: S7Simulator, reading: str) -> S7Simulator:
@@ -81,11 +104,20 @@ def setup_ack(request: bytes, pdu: int = 240) -> bytes:
     return header + bytes([0xF0, 0, 0, 1, 0, 1]) + pdu.to_bytes(2, "big")
 
 
-class RawPeer:
-    """A loopback ISO-on-TCP peer whose S7 answers a test writes (a misbehaving PLC)."""
+def one_frame(pdu: bytes) -> Iterator[bytes]:
+    """Carry an S7 PDU in one COTP data frame, marked last (EOT)."""
+    yield b"\x02\xf0\x80" + pdu
 
-    def __init__(self, answer: Answer) -> None:
+
+class RawPeer:
+    """A loopback ISO-on-TCP peer whose S7 answers a test writes (a misbehaving PLC).
+
+    `frames` carries each answer in COTP data frames (header included), one by default.
+    """
+
+    def __init__(self, answer: Answer, frames: Frames = one_frame) -> None:
         self.answer = answer
+        self.frames = frames
         self.port = 0
         self._server: asyncio.Server | None = None
 
@@ -108,28 +140,29 @@ class RawPeer:
                 head = await reader.readexactly(4)
                 payload = await reader.readexactly(int.from_bytes(head[2:4]) - 4)
                 if payload[1] == 0xE0:
-                    reply = b"\x06\xd0\x00\x01\x00\x01\x00"
+                    replies: Iterable[bytes] = [b"\x06\xd0\x00\x01\x00\x01\x00"]
                 elif payload[1] != 0xF0:  # a disconnect request
                     break
                 else:
                     pdu = self.answer(payload[3:])
                     if pdu is None:
                         continue
-                    reply = b"\x02\xf0\x80" + pdu
-                writer.write(struct.pack(">BBH", 3, 0, len(reply) + 4) + reply)
-                await writer.drain()
+                    replies = self.frames(pdu)
+                for reply in replies:
+                    writer.write(struct.pack(">BBH", 3, 0, len(reply) + 4) + reply)
+                    await writer.drain()
         except (asyncio.IncompleteReadError, ConnectionError):
             pass
         writer.close()
 
 
 @pytest.fixture
-async def raw_peer() -> AsyncGenerator[Callable[[Answer], Awaitable[RawPeer]]]:
+async def raw_peer() -> AsyncGenerator[Callable[..., Awaitable[RawPeer]]]:
     """Start raw peers answering as a test says; stopped afterwards."""
     peers: list[RawPeer] = []
 
-    async def make(answer: Answer) -> RawPeer:
-        peer = RawPeer(answer)
+    async def make(answer: Answer, frames: Frames = one_frame) -> RawPeer:
+        peer = RawPeer(answer, frames)
         await peer.start()
         peers.append(peer)
         return peer

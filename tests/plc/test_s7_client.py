@@ -139,6 +139,15 @@ async def test_known_bytes(s7_sim: S7Simulator, s7_client: S7Client) -> None:
     assert result.status.mode == "RUN"
 
 
+async def test_real_shown_as_the_float32_it_is(s7_sim: S7Simulator, s7_client: S7Client) -> None:
+    """22.3 stored by the program reads 22.3, not its double expansion 22.299999237060547."""
+    s7_sim.set_db(2, 20, struct.pack(">ff", 22.3, -0.1))
+    s7_sim.set_bytes("M", 40, struct.pack(">f", 1e-7))
+    points = [Point("DB2.DBD20", "REAL"), Point("DB2.DBD24", "REAL"), Point("MD40", "REAL")]
+    result = await s7_client.read(points)
+    assert [repr(result.values[point].value) for point in points] == ["22.3", "-0.1", "1e-07"]
+
+
 async def test_poll_of_100_points_in_one_read(s7_sim: S7Simulator, s7_client: S7Client) -> None:
     points = [Point(f"DB3.DBW{2 * i}", "INT") for i in range(60)]
     points += [Point(f"DB4.DBD{8 * i}", "REAL") for i in range(30)]

@@ -51,6 +51,9 @@ class S7Client(PlcClient):
     requested_pdu: ClassVar[int] = 960  # the PLC answers with what it can (240, 480, 960)
     reconnect_delay: ClassVar[tuple[float, float]] = (1.0, 60.0)  # first and longest wait
     status_interval: ClassVar[float] = 60.0  # state and clock cost a round trip each: once a minute
+    # A request waits a poll interval, never less than this: an S7 CPU serves communication at
+    # its cycle's end, and 1 s is several times the default maximum cycle time (150 ms)
+    shortest_timeout: ClassVar[float] = 1.0
 
     def __init__(
         self, config: ConnectionConfig, session: aiohttp.ClientSession | None = None
@@ -60,7 +63,9 @@ class S7Client(PlcClient):
         self._ends = endpoint(config.options)
         self._zone = ZoneInfo(config.time_zone)
         self._where = f"{config.host}:{config.port}"
-        self._connection = Session(config, self._ends, self.metrics, lambda: self.reconnect_delay)
+        self._connection = Session(
+            config, self._ends, self.metrics, lambda: self.reconnect_delay, self.shortest_timeout
+        )
         self._seen = 0  # the session's link count when this client last looked
         self._items = ItemLimit()  # items a job: as many as the PDU holds, fewer once learned
         self._reader = Reader(self._variable, self._items)
@@ -133,6 +138,11 @@ class S7Client(PlcClient):
     def planned_requests(self, points: Sequence[Point]) -> int:
         """Round trips of one poll at the PDU size this PLC negotiated."""
         return self.requests_for(points, self.pdu_size)
+
+    @property
+    def request_timeout(self) -> float:
+        """Seconds a request waits for its answer (about one poll interval; session.py)."""
+        return self._connection.timeout
 
     @property
     def pdu_size(self) -> int:

@@ -9,6 +9,12 @@ The window never outlasts the poll interval, so every poll makes one attempt at 
 first poll after the PLC is back reconnects: it is capped at the interval less a second (a
 scheduler may start a poll up to a second early: Home Assistant aligns polls to whole seconds),
 but never below half the interval, and it counts from the start of the failed attempt.
+
+A request waits about one poll interval for its answer (`request_timeout`): at least the
+client's `shortest_timeout`, at most the configured timeout. A connection that went half-open
+(the PLC vanished without a reset) is then found by the poll that meets it, and the next poll
+opens a new one, instead of a fixed 10 s wait holding every entity past several polls; a PLC
+that answers later than an interval but within that bound is still read.
 """
 
 from __future__ import annotations
@@ -31,6 +37,11 @@ def longest_wait(longest: float, poll_interval: float) -> float:
     return min(longest, max(poll_interval - 1.0, poll_interval / 2))
 
 
+def request_timeout(config: ConnectionConfig, shortest: float) -> float:
+    """Return a request's wait: a poll interval, at least `shortest`, at most the timeout."""
+    return min(config.timeout, max(shortest, config.poll_interval))
+
+
 class Session:
     """Owns the link, the lock every job takes, and the reconnect backoff."""
 
@@ -40,9 +51,11 @@ class Session:
         ends: Endpoint,
         metrics: ClientMetrics,
         delays: Callable[[], tuple[float, float]],
+        shortest_timeout: float,
     ) -> None:
         """Keep what a connection needs; `delays` returns the first and longest wait."""
         self._config, self._ends, self._metrics, self._delays = config, ends, metrics, delays
+        self.timeout = request_timeout(config, shortest_timeout)
         self._where = f"{config.host}:{config.port}"
         self._link: S7Link | None = None
         self._lock = asyncio.Lock()
@@ -93,7 +106,7 @@ class Session:
         """Open a new link; on success forget the backoff and say so once if it was lost."""
         await self._drop()
         config = self._config
-        link = S7Link(config.host, config.port, self._ends, config.timeout, self._metrics)
+        link = S7Link(config.host, config.port, self._ends, self.timeout, self._metrics)
         await link.open(requested_pdu)
         self._link, self.pdu_size = link, link.pdu_size
         self._delay, self._retry_at = 0.0, 0.0
