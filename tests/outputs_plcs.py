@@ -1,7 +1,7 @@
 """The PLCs the output tests run on (S7-200 SMART and TecoApi simulators) and write faults.
 
-`plc` is a started simulator with the addresses of one cover's parts and a pulse button;
-`faults` wraps the entry's client write: each queued fault hits one write, every write is
+`plc` (import `plc_fixture`) is a started simulator with the addresses of a cover's parts and
+a pulse button; `faults` (import `faults_fixture`) wraps the entry's client write: each queued fault hits one write, every write is
 recorded (with whether it was sent as urgent), and after each one the memory is checked for
 open and close requested at once.
 """
@@ -93,8 +93,8 @@ TECOMAT = {
 }
 
 
-@pytest.fixture(params=["s7_smart", "tecomat"])
-async def plc(
+@pytest.fixture(name="plc", params=["s7_smart", "tecomat"])
+async def plc_fixture(
     request: pytest.FixtureRequest, hass: HomeAssistant, freezer: FrozenDateTimeFactory
 ) -> AsyncGenerator[Plc]:
     """A started simulator of each vendor the output tests run on (time frozen until unload)."""
@@ -151,8 +151,8 @@ class Faults:
         return [values[address] for values, _ in self.writes if address in values]
 
 
-@pytest.fixture
-def faults(plc: Plc) -> Faults:
+@pytest.fixture(name="faults")
+def faults_fixture(plc: Plc) -> Faults:
     """The fault queue of the test PLC (wrap it once the entry is set up)."""
     return Faults(plc)
 

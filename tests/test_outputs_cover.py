@@ -34,7 +34,7 @@ from custom_components.plc_bridge.const import DOMAIN
 from custom_components.plc_bridge.cover import DEFAULT_TRAVEL_TIME, STOP_HOLD
 
 from .ha_fixtures import SCAN_INTERVAL
-from .outputs_plcs import Faults, Plc, faults, plc, wait  # noqa: F401  (fixtures)
+from .outputs_plcs import Faults, Plc, faults_fixture, plc_fixture, wait  # noqa: F401
 
 COMMANDS = ("open", "close", "stop")
 
@@ -189,6 +189,7 @@ async def test_released_at_unload_and_stop(
 @pytest.mark.parametrize("fault", ["lost_answer", "dropped"])
 async def test_open_that_failed_is_still_released(
     hass: HomeAssistant,
+    *,
     freezer: FrozenDateTimeFactory,
     plc: Plc,
     faults: Faults,
@@ -209,6 +210,7 @@ async def test_open_that_failed_is_still_released(
 
 async def test_release_retried_until_confirmed(
     hass: HomeAssistant,
+    *,
     freezer: FrozenDateTimeFactory,
     plc: Plc,
     faults: Faults,
