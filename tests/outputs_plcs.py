@@ -1,9 +1,9 @@
 """The PLCs the output tests run on (S7-200 SMART and TecoApi simulators) and write faults.
 
 `plc` (import `plc_fixture`) is a started simulator with the addresses of a cover's parts and
-a pulse button; `faults` (import `faults_fixture`) wraps the entry's client write: each queued fault hits one write, every write is
-recorded (with whether it was sent as urgent), and after each one the memory is checked for
-open and close requested at once.
+a pulse button; `faults` (import `faults_fixture`) wraps the entry's client write: each queued
+fault hits one write, every write is recorded (with whether it was sent as urgent), and after
+each one the memory is checked for open and close requested at once.
 """
 
 from __future__ import annotations
