@@ -208,10 +208,9 @@ async def test_pulse_ends_at_unload_and_failures_are_reported(
     async_fire_time_changed(hass)
     await hass.async_block_till_done(wait_background_tasks=True)
     assert s7_smart_sim.get("Q0.6") is True
-    assert s7_smart_sim.calls["write"] == 3
+    assert s7_smart_sim.calls["write"] == 2
     assert issue_registry.async_get_issue(DOMAIN, f"pulse_failed_{ENTRY_ID}_s1_stop")
     s7_smart_sim.mode = "RUN"
-    await cover(hass, SERVICE_STOP_COVER, SHUTTER_ID)
     assert await hass.config_entries.async_unload(entry.entry_id)
     assert s7_smart_sim.get("Q0.6") is False
     assert issue_registry.async_get_issue(DOMAIN, f"pulse_failed_{ENTRY_ID}_s1_stop") is None

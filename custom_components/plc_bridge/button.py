@@ -1,24 +1,28 @@
 """Buttons: pressing writes a point's "on" value once, or pulses it on, then off.
 
 Without a pulse duration (the safe mode) a press writes the "on" value and the PLC program
-resets the bit. With one (0.1-60 s) the "off" value follows after that time (pulse.py: a
-failed off-write retried, then reported; a pending one sent at unload or stop).
+resets the bit. With one (0.1-60 s) the "off" value follows after that time, whatever the
+outcome of the on-write (outputs.py: the off retried until confirmed, a repair issue meanwhile,
+sent at once at unload or stop); a press during a pulse keeps its end.
 """
 
 from __future__ import annotations
 
+import asyncio
 from dataclasses import dataclass
 from typing import Any
 
 from homeassistant.components.button import ButtonEntity, ButtonEntityDescription
-from homeassistant.core import HomeAssistant
+from homeassistant.core import HomeAssistant, callback
 from homeassistant.helpers.entity_platform import AddConfigEntryEntitiesCallback
 
 from .coordinator import PlcBridgeConfigEntry
 from .entity import PlcPointDescription, PlcPointEntity, point_fields
+from .outputs import Output, async_send
 from .plc import ValueKind
 from .points import PointConfig
-from .pulse import Pulse, pulse_seconds
+from .pulse import pulse_seconds
+from .repairs import PULSE_FAILED
 
 PARALLEL_UPDATES = 1
 
@@ -56,12 +60,16 @@ class PlcButton(PlcPointEntity, ButtonEntity):
     ) -> None:
         """Bind the button to its point; no pulse runs yet."""
         super().__init__(entry, config, description)
-        self._pulse = Pulse(
+        point = description.point
+        off = {point: self._level(on=False)}
+        self._output = Output(
             entry,
-            description.key,
+            asyncio.Lock(),
+            (PULSE_FAILED, description.key),
             name=config.name,
-            address=description.point.address,
-            write_off=lambda: self.async_write(self._level(on=False)),
+            address=point.address,
+            write_off=lambda: async_send(self.coordinator, off, release=True),
+            read_back=self._read_back_later,
         )
 
     def observed(self) -> Any:
@@ -73,14 +81,34 @@ class PlcButton(PlcPointEntity, ButtonEntity):
         description = self.entity_description
         return description.convert.state_value(on, boolean=description.kind is ValueKind.BOOL)
 
+    @callback
+    def _read_back_later(self) -> None:
+        """Have the point read back by a poll soon, without waiting for it."""
+        self.coordinator.ask_back(self.read_points())
+        self.coordinator.config_entry.async_create_background_task(
+            self.hass, self.coordinator.async_request_refresh(), f"{self.entity_id} read back"
+        )
+
     async def async_press(self) -> None:
-        """Write "on"; with a pulse, write "off" when it ends (a new press restarts it)."""
-        self._pulse.cancel()
-        await self.async_write(self._level(on=True))
+        """Write "on"; with a pulse, "off" when it ends (a press during a pulse keeps its end)."""
+        description = self.entity_description
+        if description.pulse <= 0:
+            await self.async_write(self._level(on=True))
+            return
+        on = {description.point: self._level(on=True)}
+        if await self._output.async_turn_on(
+            lambda: async_send(self.coordinator, on, release=False), description.pulse
+        ):
+            self.coordinator.ask_back(self.read_points())
+            await self.coordinator.async_request_refresh()
+
+    async def async_added_to_hass(self) -> None:
+        """Follow Home Assistant's stop; release what a previous setup left on."""
+        await super().async_added_to_hass()
         if self.entity_description.pulse > 0:
-            self._pulse.start(self.hass, self.entity_description.pulse)
+            self.async_on_remove(self._output.async_attach(self.hass))
 
     async def async_will_remove_from_hass(self) -> None:
         """Removed (unload, reload, edit) mid-pulse: end the pulse now."""
-        await self._pulse.async_end_now()
+        await self._output.async_end()
         await super().async_will_remove_from_hass()

@@ -2,17 +2,19 @@
 
 A part whose read fails shows as unknown while the others keep showing; the entity is
 unavailable only when the PLC does not answer or none of its parts reads. Commands write
-their point's "on" value once, or pulse it (pulse.py: on, then off after the point's pulse
-time, a failed off-write retried and reported).
+their point's "on" value once, or pulse it (outputs.py: on, then off after the point's pulse
+time whatever the on's outcome, the off retried until confirmed and ended at unload or stop).
 """
 
 from __future__ import annotations
 
-from collections.abc import Callable
+import asyncio
+from collections.abc import Callable, Collection
 from dataclasses import dataclass
 from typing import Any
 
-from homeassistant.exceptions import HomeAssistantError
+from homeassistant.core import callback
+from homeassistant.exceptions import HomeAssistantError, ServiceValidationError
 from homeassistant.helpers.device_registry import DeviceInfo
 from homeassistant.helpers.entity import Entity
 from homeassistant.helpers.entity_platform import AddConfigEntryEntitiesCallback
@@ -22,9 +24,11 @@ from .const import DOMAIN
 from .conversion import Conversion
 from .coordinator import PlcBridgeConfigEntry
 from .entity import PlcEntity, entity_name, point_fields
+from .outputs import Output, async_send
 from .plc import Point, PointResult, Value, ValueKind
 from .points import PointConfig, PointFactory, entry_points
-from .pulse import Pulse, pulse_seconds
+from .pulse import pulse_seconds
+from .repairs import COMMAND_NOT_RELEASED, PULSE_FAILED
 
 
 @dataclass(frozen=True, slots=True)
@@ -96,7 +100,36 @@ class PlcCompositeEntity(PlcEntity):
         self._machine = group.subentry_id
         self.parts = parts
         self._key = group.key
-        self._pulses: dict[str, Pulse] = {}
+        self._writing = asyncio.Lock()  # one write of commands and releases at a time
+        self.outputs = {role: self._output(role) for role, part in parts.items() if part.pulse > 0}
+
+    def _output(self, role: str) -> Output:
+        """Return the output of a command part: its off-write and its repair issue."""
+        part = self.parts[role]
+        kind = PULSE_FAILED if part.pulse > 0 else COMMAND_NOT_RELEASED
+        off = {part.point: part.level(on=False)}
+        return Output(
+            self.coordinator.config_entry,
+            self._writing,
+            (kind, f"{self._key}_{role}"),
+            name=f"{self._label} ({role})",
+            address=part.point.address,
+            write_off=lambda: async_send(self.coordinator, off, release=True),
+            read_back=self._read_back_later,
+        )
+
+    @callback
+    def _read_back_later(self) -> None:
+        """Have the parts read back by a poll soon, without waiting for it."""
+        self.coordinator.ask_back(self.read_points())
+        self.coordinator.config_entry.async_create_background_task(
+            self.hass, self.coordinator.async_request_refresh(), f"{self._label} read back"
+        )
+
+    async def _async_read_back(self) -> None:
+        """Have the parts read back now, whatever their class."""
+        self.coordinator.ask_back(self.read_points())
+        await self.coordinator.async_request_refresh()
 
     def read_points(self) -> list[Point]:
         """The points of the entity's parts."""
@@ -146,22 +179,40 @@ class PlcCompositeEntity(PlcEntity):
             {self.parts[role].point: values[role] for role in values}, read_back=self.read_points()
         )
 
-    async def async_command(self, role: str) -> None:
-        """Send a command part: its "on" value, and "off" after its pulse if it has one."""
+    async def async_command(
+        self, role: str, *, hold: float = 0.0, release: Collection[str] = ()
+    ) -> None:
+        """Send a command part's "on", its `release` parts' "off" in the same write.
+
+        A pulse's off follows after its time; a level with an output (`hold` seconds at most)
+        is released by its entity. Either way whatever the on-write's outcome.
+        """
         part = self.parts[role]
-        pulse = self._pulses.get(role)
-        if pulse is None:
-            pulse = self._pulses[role] = Pulse(
-                self.coordinator.config_entry,
-                f"{self._key}_{role}",
-                name=f"{self._label} ({role})",
-                address=part.point.address,
-                write_off=lambda: self.async_write_parts({role: part.level(on=False)}),
-            )
-        pulse.cancel()
-        await self.async_write_parts({role: part.level(on=True)})
-        if part.pulse > 0:
-            pulse.start(self.hass, part.pulse)
+        values = {role: part.level(on=True)}
+        values |= {other: self.parts[other].level(on=False) for other in release}
+        points = {self.parts[key].point: value for key, value in values.items()}
+        output = self.outputs.get(role)
+        try:
+            if output is None:
+                async with self._writing:
+                    await async_send(self.coordinator, points, release=bool(release))
+            elif not await output.async_turn_on(
+                lambda: async_send(self.coordinator, points, release=bool(release)),
+                part.pulse or hold,
+                again=not part.pulse,
+            ):
+                return
+        except ServiceValidationError:
+            raise
+        except HomeAssistantError:
+            for other in release:
+                if (released := self.outputs.get(other)) is not None:
+                    released.unconfirmed()
+            raise
+        for other in release:
+            if (released := self.outputs.get(other)) is not None:
+                released.released()
+        await self._async_read_back()
 
     def switched(self) -> bool | None:
         """On or off: the `state` part, else what a level `command` part reads back."""
@@ -196,8 +247,14 @@ class PlcCompositeEntity(PlcEntity):
         if state != on:
             await self.async_command("command")
 
+    async def async_added_to_hass(self) -> None:
+        """Follow Home Assistant's stop for every output; release what a last setup left on."""
+        await super().async_added_to_hass()
+        for output in self.outputs.values():
+            self.async_on_remove(output.async_attach(self.hass))
+
     async def async_will_remove_from_hass(self) -> None:
-        """Removed (unload, reload, edit) mid-pulse: end the pulses now."""
-        for pulse in self._pulses.values():
-            await pulse.async_end_now()
+        """Removed (unload, reload, edit): release every output still held, now."""
+        for output in self.outputs.values():
+            await output.async_end()
         await super().async_will_remove_from_hass()

@@ -7,11 +7,19 @@ and `closed_limit` (limit switches), `status` (a value map onto open, closed, op
 closing), `tilt_position` and `set_tilt_position` (as the position), `step` (one step-relay
 button: open, close and stop each send its pulse). `invert` on a position point makes 0 %
 open. Without open or close commands, a settable position opens to 100 % and closes to 0 %.
+
+Commands written as levels are interlocked and always released (outputs.py): each command
+writes its own "on" and the other commands' "off" in one write, so open and close are never
+asked for at once. Open (close) is released once the open (closed) end is read reached, by
+the limit switch, the position at 100 % (0 %) or the status map, in a poll after the command;
+or after the group's `travel_time` (seconds), DEFAULT_TRAVEL_TIME without one. A level stop
+is released after STOP_HOLD. A position written releases the level commands still held.
 """
 
 from __future__ import annotations
 
 from enum import IntFlag
+import math
 from typing import Any
 
 from homeassistant.components.cover import (
@@ -22,16 +30,23 @@ from homeassistant.components.cover import (
     CoverEntityFeature,
 )
 from homeassistant.const import CONF_DEVICE_CLASS
-from homeassistant.core import HomeAssistant
+from homeassistant.core import HomeAssistant, callback
 from homeassistant.helpers.entity_platform import AddConfigEntryEntitiesCallback
 
-from .composite import Composite
+from .composite import CONF_TRAVEL_TIME, Composite
 from .composite_entity import Part, PlcCompositeEntity, async_setup_composites
 from .coordinator import PlcBridgeConfigEntry
-from .plc import ValueKind
+from .outputs import async_send
+from .plc import Point, Value, ValueKind
 
 PARALLEL_UPDATES = 1
 FULL = 100
+COMMANDS = ("open", "close", "stop")
+"""The command roles that interlock: each one written releases the others."""
+DEFAULT_TRAVEL_TIME = 60.0
+"""Seconds after which a level open or close is released when no travel time is set."""
+STOP_HOLD = 2.0
+"""Seconds a level stop is held: seen by any PLC scan, short enough not to block a move."""
 
 
 async def async_setup_entry(
@@ -43,8 +58,32 @@ async def async_setup_entry(
     async_setup_composites(entry, "cover", PlcCover, async_add_entities)
 
 
+def travel_time(parts: dict[str, Part]) -> float:
+    """Return the group's travel time in seconds: its parts' `travel_time`, else the default."""
+    for part in parts.values():
+        try:
+            seconds = float(part.config.data[CONF_TRAVEL_TIME])
+        except (KeyError, TypeError, ValueError):
+            continue
+        if math.isfinite(seconds) and seconds > 0:
+            return seconds
+    return DEFAULT_TRAVEL_TIME
+
+
 class Travel(PlcCompositeEntity):
     """What covers and valves share: commands, a position, limit switches, a status map."""
+
+    def __init__(
+        self, entry: PlcBridgeConfigEntry, group: Composite, parts: dict[str, Part]
+    ) -> None:
+        """Give each command part its output; a level open or close travels this long at most."""
+        super().__init__(entry, group, parts)
+        self._commands = [role for role in COMMANDS if role in parts and not parts[role].read_only]
+        for role in self._commands:
+            self.outputs.setdefault(role, self._output(role))
+        self._travel_time = travel_time(parts)
+        self._moved: dict[str, float] = {}  # level open or close held: loop time of its command
+        self._left: set[str] = set()  # of those, the ones read away from their end since
 
     def _travel_features[F: IntFlag](self, open_: F, close: F, stop: F, set_position: F) -> F:
         """The given flags of what the parts allow: open, close, stop, be set to a position."""
@@ -109,10 +148,53 @@ class Travel(PlcCompositeEntity):
         position = self._position()
         return None if position is None else position == 0
 
+    def _reached(self, role: str) -> bool | None:
+        """Whether the end `role` moves to reads reached; None where no part tells."""
+        limit, status, end = (
+            ("open_limit", "open", FULL) if role == "open" else ("closed_limit", "closed", 0)
+        )
+        readings: list[bool] = []
+        if (on := self.on(limit)) is not None:
+            readings.append(on)
+        if (label := self.label("status")) is not None:
+            readings.append(label == status)
+        if (position := self._position()) is not None:
+            readings.append(position == end)
+        return None if not readings else any(readings)
+
+    @callback
+    def _handle_coordinator_update(self) -> None:
+        """Release a level open or close once a poll after its command reads its end reached.
+
+        An end that already read reached when the command was given counts once it was read
+        left, or once a poll interval passed (a fresh poll read it still reached).
+        """
+        now = self.hass.loop.time()
+        interval = self.coordinator.update_interval
+        tick = interval.total_seconds() if interval is not None else 0.0
+        for role, since in list(self._moved.items()):
+            output = self.outputs[role]
+            if not output.held:
+                del self._moved[role]
+                self._left.discard(role)
+                continue
+            reached = self._reached(role)
+            if reached is False:
+                self._left.add(role)
+            elif reached and (role in self._left or now - since >= tick):
+                output.release_soon()
+        super()._handle_coordinator_update()
+
     async def _async_move(self, role: str, position: int | None) -> None:
         """Send the command, else a step relay's pulse, else move to the position."""
         if role in self.parts:
-            await self.async_command(role)
+            release = [other for other in self._commands if other != role]
+            level = not self.parts[role].pulse and role in self._commands
+            if level and role != "stop":
+                self._moved[role] = self.hass.loop.time()
+                self._left.discard(role)
+            hold = STOP_HOLD if role == "stop" else self._travel_time
+            await self.async_command(role, hold=hold, release=release)
         elif "step" in self.parts:
             await self.async_command("step")
         elif position is not None:
@@ -127,7 +209,17 @@ class Travel(PlcCompositeEntity):
         if self._inverted(role):
             position = FULL - position
         raw = part.conversion.raw(position, integer=part.kind is ValueKind.INTEGER)
-        await self.async_write_parts({role: raw})
+        held = [other for other in self._commands if self.outputs[other].held]
+        if not held:
+            await self.async_write_parts({role: raw})
+            return
+        values: dict[Point, Value] = {part.point: raw}
+        values |= {self.parts[other].point: self.parts[other].level(on=False) for other in held}
+        async with self._writing:
+            await async_send(self.coordinator, values, release=True)
+        for other in held:
+            self.outputs[other].released()
+        await self._async_read_back()
 
 
 class PlcCover(Travel, CoverEntity):

@@ -1,4 +1,7 @@
-"""Repair issues: an unchecked TLS link, a replaced certificate, a shared PLC user, lost points."""
+"""Repair issues: an unchecked TLS link, a replaced certificate, a shared PLC user, lost points.
+
+And outputs that cannot be released (raised and cleared by outputs.py).
+"""
 
 from __future__ import annotations
 
@@ -32,6 +35,10 @@ UNKNOWN_ADDRESS = "unknown_address"
 """One issue per point whose address the PLC does not know (typically a renamed variable)."""
 EXPOSE_FAILED = "expose_failed"
 """One issue per expose whose writes keep failing."""
+PULSE_FAILED = "pulse_failed"
+"""One issue per pulsed output whose off is not written yet (outputs.py)."""
+COMMAND_NOT_RELEASED = "command_not_released"
+"""One issue per level command of a cover or valve whose off is not written yet."""
 
 
 def issue_id(entry: PlcBridgeConfigEntry, key: str) -> str:
@@ -187,6 +194,9 @@ def async_clear_all(hass: HomeAssistant, entry: ConfigEntry) -> None:
         async_clear_issue(hass, entry, key)
     async_clear_point_issues(hass, entry)
     async_clear_expose_issues(hass, entry)
+    for kind in (PULSE_FAILED, COMMAND_NOT_RELEASED):
+        for key in _async_item_issues(hass, entry, kind):
+            ir.async_delete_issue(hass, DOMAIN, f"{kind}_{entry.entry_id}_{key}")
 
 
 class CertificateRepairFlow(RepairsFlow):

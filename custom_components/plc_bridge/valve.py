@@ -3,6 +3,8 @@
 `open`, `close`, `stop` commands (level or pulse), `position` and `set_position` (0-100 %
 through the point's linear range, invertible), `open_limit` and `closed_limit` switches, or a
 `status` map onto open, closed, opening, closing. A valve reports a position when it has one.
+Open and close send their commands where the valve has them (Home Assistant would write 100 %
+and 0 % to a valve that can be set to a position), the position where it has only that.
 """
 
 from __future__ import annotations
@@ -51,6 +53,16 @@ class PlcValve(Travel, ValveEntity):
     def current_valve_position(self) -> int | None:
         """The position read, 0 closed to 100 open."""
         return self._position()
+
+    # Home Assistant's final handlers write 100 % and 0 % to a valve that takes a position,
+    # which would never send the valve's own open and close commands.
+    async def async_handle_open_valve(self) -> None:  # type: ignore[misc]
+        """Open by the open command (or step relay) where there is one, else to 100 %."""
+        await self._async_move("open", FULL)
+
+    async def async_handle_close_valve(self) -> None:  # type: ignore[misc]
+        """Close by the close command (or step relay) where there is one, else to 0 %."""
+        await self._async_move("close", 0)
 
     async def async_open_valve(self) -> None:
         """Send the open command, or move to 100 %."""
