@@ -42,6 +42,36 @@ class Fault(Exception):
         return int(self.code.split(".")[0])
 
 
+ERROR_TEXTS = ("manual", "localised", "unnamed")
+"""How a PLC words 400.005 and 400.015 (3.7 gives only its English examples). manual: "Variable
+'NNN' is not found"; localised: the manual's Czech description ("Proměnná 'NNN' nebyla
+nalezena", "Hodnotu VVV nelze zapsat do proměnné 'NNN'"); unnamed: newer wording without the
+name ("Variable is not found", "Value was not written")."""
+
+_WORDINGS = {
+    "400.005": (
+        re.compile(r"Variable '(.*)' is not found", re.DOTALL),
+        {"localised": "Proměnná '{1}' nebyla nalezena", "unnamed": "Variable is not found"},
+    ),
+    "400.015": (
+        re.compile(r"Value (.*) was not written to variable '(.*)' \(type of", re.DOTALL),
+        {
+            "localised": "Hodnotu {1} nelze zapsat do proměnné '{2}'",
+            "unnamed": "Value was not written",
+        },
+    ),
+}
+
+
+def worded(fault: Fault, texts: str) -> str:
+    """Return a fault's message as a PLC of the given wording (ERROR_TEXTS) prints it."""
+    rule = _WORDINGS.get(fault.code)
+    match = rule[0].match(fault.message) if rule else None
+    if rule is None or match is None or texts not in rule[1]:
+        return fault.message
+    return rule[1][texts].format(fault.message, *match.groups())
+
+
 @dataclass(slots=True)
 class Var:
     """One elementary variable: IEC type, value (TIME/TOD in ms, DATE a date, DT naive)."""
