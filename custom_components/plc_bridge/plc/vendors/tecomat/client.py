@@ -5,6 +5,7 @@ from __future__ import annotations
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from datetime import datetime
+import logging
 from time import monotonic
 from typing import Any, ClassVar
 from zoneinfo import ZoneInfo
@@ -49,6 +50,9 @@ from .paths import (
 )
 from .reading import Plan, Reading, results
 from .unknown import UnknownVariables
+
+_LOGGER = logging.getLogger(__name__)
+_NOT_READ_BACK = PlcProtocolError("written, not read back")  # a marker: the write stands
 
 
 @dataclass(frozen=True, slots=True)
@@ -95,6 +99,7 @@ class TecomatClient(PlcClient):
         self._stamp: str | None = None  # the program's stamp (GetInfo, 3.2)
         self._parsed: dict[Point, tuple[VariablePath, str] | PlcError] = {}  # the last poll's
         self._poll: Plan | None = None
+        self._unread_logged: set[str] = set()  # variables whose read-back failed, warned once
 
     @classmethod
     def validate_options(cls, options: Mapping[str, object]) -> dict[str, str | int | bool]:
@@ -265,6 +270,9 @@ class TecomatClient(PlcClient):
             failures |= await self._not_taken(group, taken)
             for index, item in enumerate(group):
                 error = failures.get(index)
+                if error is _NOT_READ_BACK:
+                    results[item.point] = PointResult()  # done; the next poll shows its value
+                    continue
                 if error is None:
                     self._unknown.found(item.path.key)
                 results[item.point] = PointResult(value=None if error else item.value, error=error)
@@ -274,26 +282,39 @@ class TecomatClient(PlcClient):
         """Read the written variables back; return the ones the PLC does not hold.
 
         A PutObject's 204 carries nothing that proves the values were taken (3.6), and some
-        firmware answers so to values it dropped.
+        firmware answers so to values it dropped. A read-back that gets no usable answer proves
+        nothing either way: the write the PLC acknowledged stands, its value unshown (`unread`).
         """
         if not taken:
             return {}
         paths = {item.path.key: item.path for item in taken}
-        reading = await self._teco().get(plan(paths.values()))
+        try:
+            reading = await self._teco().get(plan(paths.values()))
+        except PlcError as err:
+            reading = Reading(failed=dict.fromkeys(paths, err))
         failures: dict[int, PlcError] = {}
         for index, item in enumerate(group):
             if item not in taken:
                 continue
             try:
                 held = decode(item.kind, reading.found[item.path.key], self._zone, item.path.text)
-            except (KeyError, PlcError):
-                held = None
-            if held is None or not same_value(item.kind, held, item.value, self._zone):
+            except (KeyError, PlcError) as err:
+                self._unread(item, reading.failed.get(item.path.key, err))
+                failures[index] = _NOT_READ_BACK
+                continue
+            if not same_value(item.kind, held, item.value, self._zone):
                 failures[index] = PlcWriteRefusedError(
                     f"{item.path.text}: the PLC answered the write but holds {held!r}, "
                     f"not {item.value!r}"
                 )
         return failures
+
+    def _unread(self, item: _Write, error: BaseException) -> None:
+        """Log a write the PLC acknowledged whose read-back failed: once a variable, a warning."""
+        key = item.path.key
+        level = logging.DEBUG if key in self._unread_logged else logging.WARNING
+        self._unread_logged.add(key)
+        _LOGGER.log(level, "%s: written, not read back (%s)", item.path.text, error)
 
     async def browse(self) -> list[BrowseItem]:
         """List the public variables (GetList) and expand each value into its leaves."""
