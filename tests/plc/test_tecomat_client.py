@@ -156,9 +156,9 @@ async def test_renamed_variable(
     ]
     tecomat_sim.rename("plcType", "plcKind")
     tecomat_sim.rename("myObject.favorites.sport", "hobby")
-    before = tecomat_sim.requests
+    before = tecomat_sim.calls["GetObject"]
     result = await tecomat_client.read(points)
-    assert tecomat_sim.requests - before == 3  # one unknown variable a request, then the rest
+    assert tecomat_sim.calls["GetObject"] - before == 3  # one unknown a request, then the rest
     assert result.values[points[0]].value == "myFoxtrot"
     assert result.values[points[3]].value == "for testing only"
     for lost in (points[1], points[2]):

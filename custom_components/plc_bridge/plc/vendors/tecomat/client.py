@@ -99,6 +99,7 @@ class TecomatClient(PlcClient):
         self._stamp: str | None = None  # the program's stamp (GetInfo, 3.2)
         self._parsed: dict[Point, tuple[VariablePath, str] | PlcError] = {}  # the last poll's
         self._poll: Plan | None = None
+        self._status_read = False  # GetInfo was asked in this poll
         self._unread_logged: set[str] = set()  # variables whose read-back failed, warned once
 
     @classmethod
@@ -168,8 +169,17 @@ class TecomatClient(PlcClient):
     async def _poll_status(self) -> PlcStatus:
         """Return the PLC status; GetInfo is asked again once `status_interval` has passed."""
         if monotonic() - self._status_at >= self.status_interval:
-            self._take_status(await self._teco().ask("GET", SERVICE + "GetInfo"))
+            await self._new_program()
         return self._status
+
+    async def _new_program(self) -> bool:
+        """Ask GetInfo (once a poll at most); True when the program's stamp changed."""
+        if self._status_read:
+            return False
+        before = self._stamp
+        self._take_status(await self._teco().ask("GET", SERVICE + "GetInfo"))
+        self._status_read = True
+        return self._stamp != before
 
     def _parse(
         self, points: Sequence[Point], poll: bool
@@ -208,11 +218,13 @@ class TecomatClient(PlcClient):
 
         A value the PLC sent exactly as at the last poll keeps its last result (`LastResults`).
         """
-        status = await self._poll_status() if poll else PlcStatus()
+        self._status_read = False
+        if poll:
+            await self._poll_status()
         plan = self._prepare(points, poll)
         reading = await self._read_paths(plan.paths, poll)
         values = results(reading, plan, self._zone)
-        return ReadResult(values=values, status=status)
+        return ReadResult(values=values, status=self._status if poll else PlcStatus())
 
     async def _read_paths(self, paths: dict[str, VariablePath], poll: bool) -> Reading:
         """Read paths; an array holding several of them is read whole and indexed here (5.2).
@@ -234,14 +246,19 @@ class TecomatClient(PlcClient):
         skipped: dict[str, PlcError] = {}
         if unknown:
             unknown.keep_used(paths.values())
-            for gone in unknown.due(now):
+            due = unknown.due(now)
+            if due and await self._new_program():
+                due = []  # a new program: every name rides with this poll's request
+            for gone in due:
                 if await self._teco().exists(gone.path):
                     unknown.found(gone.path.key)
                 else:
                     unknown.still_gone(gone.path.key, now)
             paths, skipped = unknown.skip(paths)
         reading = await self._teco().get(self._planned(paths))
-        unknown.add(reading.gone.values(), now, self.status_interval)
+        if any(key not in unknown for key in reading.gone):
+            await self._new_program()  # the stamp as the variable went: a change then shows
+        unknown.add(reading.gone.values(), now)
         reading.failed.update(skipped)
         return reading
 
