@@ -30,7 +30,7 @@ async def test_unknown_variable_named_by_its_last_item(
     tecomat_sim.rename("myObject.favorites.sport", "hobby")
     before = tecomat_sim.calls["GetObject"]
     result = await tecomat_client.read([SPORT, COLOR, NAME, REQUESTED])
-    assert tecomat_sim.calls["GetObject"] - before == 2  # the answer names 'sport': only that one goes
+    assert tecomat_sim.calls["GetObject"] - before == 2  # the answer names "sport": only it goes
     error = result.values[SPORT].error
     assert isinstance(error, PlcAddressError)
     assert str(error) == (
@@ -60,7 +60,7 @@ async def test_unknown_variable_the_answer_does_not_single_out(
     tecomat_sim.rename("Main.pump.value", "state")  # 'value' fits both Main objects
     before = tecomat_sim.calls["GetObject"]
     result = await tecomat_client.read([REQUESTED, PUMP, NAME])
-    assert tecomat_sim.calls["GetObject"] - before == 4  # halves: one reads, the other drops the pump
+    assert tecomat_sim.calls["GetObject"] - before == 4  # halves: one reads, one drops the pump
     assert isinstance(result.values[PUMP].error, PlcAddressError)
     assert (result.values[REQUESTED].value, result.values[NAME].value) == (23, "myFoxtrot")
 
@@ -161,4 +161,4 @@ async def test_fewer_names_learned(
     assert not [p for p, r in first.values.items() if isinstance(r.error, PlcValueError)]
     before = tecomat_sim.calls["GetObject"]
     await tecomat_client.read(points)
-    assert tecomat_sim.calls["GetObject"] - before == 4  # halved to 3, then 2 names a request: none refused
+    assert tecomat_sim.calls["GetObject"] - before == 4  # halved to 3, then 2 names a request
