@@ -103,7 +103,11 @@ async def test_every_type_round_trip(
     before = tecomat_sim.requests
     result = await tecomat_client.read(list(values))
     assert {point: outcome.value for point, outcome in result.values.items()} == values
-    assert tecomat_sim.requests - before == TecomatClient.requests_for(list(values)) == 2
+    # and one request confirms arr3 starts at 0, once (READINGS.md row 18)
+    assert tecomat_sim.requests - before == TecomatClient.requests_for(list(values)) + 1 == 3
+    before = tecomat_sim.requests
+    await tecomat_client.read(list(values))
+    assert tecomat_sim.requests - before == 2
     assert tecomat_sim.get("plcData.varTime") == 2**31 - 1
     assert tecomat_sim.get("plcData.varDate") == date(2024, 2, 29)
     assert tecomat_sim.get("plcData.varDT") == datetime(2025, 7, 1, 12, 30, 15, 250000)

@@ -36,7 +36,7 @@ from ...types import (
     ValueKind,
 )
 from .api import AUTH_METHODS, TecoApi
-from .arrays import array_plan, place_arrays
+from .arrays import array_plan, elements_later, known, place_arrays, place_whole
 from .browse import LIST_URI, Listing, expand, listed_names
 from .codec import KINDS, TYPES, check_value, data_type, decode, encode, same_value
 from .info import device_info, plc_status
@@ -95,7 +95,10 @@ class TecomatClient(PlcClient):
             None
         )
         self._unknown = UnknownVariables()
-        self._too_big: set[str] = set()  # arrays the PLC cannot answer whole (413.004), by key
+        # Arrays by key: asked element by element (too big, 413.004, or not from 0), or
+        # confirmed to start at 0 in every dimension (read whole, indexed by position).
+        self._by_elements: set[str] = set()
+        self._from_zero: set[str] = set()
         self._stamp: str | None = None  # the program's stamp (GetInfo, 3.2)
         self._parsed: dict[Point, tuple[VariablePath, str] | PlcError] = {}  # the last poll's
         self._poll: Plan | None = None
@@ -163,7 +166,8 @@ class TecomatClient(PlcClient):
         stamp = self._status.extra.get("program_stamp")
         if stamp != self._stamp:
             self._unknown.clear()
-            self._too_big.clear()
+            self._by_elements.clear()
+            self._from_zero.clear()
             self._stamp = stamp
 
     async def _poll_status(self) -> PlcStatus:
@@ -229,13 +233,24 @@ class TecomatClient(PlcClient):
     async def _read_paths(self, paths: dict[str, VariablePath], poll: bool) -> Reading:
         """Read paths; an array holding several of them is read whole and indexed here (5.2).
 
-        An array too big for one answer (413.004) has its elements asked instead, from then on.
+        A JSON array is indexed by position once the PLC confirmed it starts at 0 (its first
+        and last elements, one request, once a program); else, and for an array too big for
+        one answer (413.004), its elements are asked by their own index, from then on.
         """
-        arrays = array_plan(paths, self._too_big)
+        arrays = array_plan(paths, self._by_elements)
         reading = await self._get_paths(arrays.asked, poll)
-        later = place_arrays(arrays, reading, self._too_big if poll else set())
-        if later:
-            reading.merge(await self._get_paths(later, poll))
+        placed = place_arrays(arrays, reading, self._by_elements, self._from_zero)
+        if placed.unconfirmed:
+            ends = [path for pair in placed.unconfirmed.values() for path in pair]
+            proof = await self._teco().get(plan(ends))
+            for key, pair in placed.unconfirmed.items():
+                if known(proof, pair):
+                    self._from_zero.add(key)
+                    place_whole(arrays, key, reading)
+                else:
+                    elements_later(key, arrays.inside[key], self._by_elements, placed)
+        if placed.later:
+            reading.merge(await self._get_paths(placed.later, poll))
         return reading
 
     async def _get_paths(self, paths: dict[str, VariablePath], poll: bool) -> Reading:
@@ -336,15 +351,16 @@ class TecomatClient(PlcClient):
     async def browse(self) -> list[BrowseItem]:
         """List the public variables (GetList) and expand each value into its leaves."""
         paths: dict[str, VariablePath] = {}
-        for name in listed_names(await self._teco().ask("GET", LIST_URI)):
+        listing = Listing()
+        for name in listed_names(await self._teco().ask("GET", LIST_URI), listing.declared):
             try:
                 path = parse_path(name)
             except PlcAddressError:
                 continue
             paths.setdefault(path.key, path)
-        listing = Listing()
         await expand(self._teco(), list(paths.values()), listing)
         self.unlisted = listing.unlisted
+        self._from_zero |= listing.from_zero
         return listing.items
 
     @property
