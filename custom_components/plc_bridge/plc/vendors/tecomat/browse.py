@@ -116,8 +116,8 @@ async def _first_indices(
 
     Arrays of one type inside an array of structures share their answer (one probe each).
     """
-    shape = (tuple(None if isinstance(part, int) else part.lower() for part in path.segments),)
-    shape += (lengths,)
+    names = tuple(None if isinstance(part, int) else part.lower() for part in path.segments)
+    shape = (names, lengths)
     if shape in listing.lows_by_shape:
         return listing.lows_by_shape[shape]
     declared = listing.declared.get(path.key)
