@@ -149,3 +149,14 @@ async def test_a_variable_gone_for_good_costs_few_requests(
     # 600 polls, 10 GetInfo (60 s), and about log2(300 / 2) + 600 / 300 re-asks (a probe and
     # a stamp check each)
     assert tecomat_client.metrics.requests - before <= 600 + 10 + 2 * 12
+
+
+async def test_read_clock_after_a_poll_asks_getinfo(
+    tecomat_sim: TecomatSimulator, tecomat_client: TecomatClient
+) -> None:
+    """A poll that read GetInfo (a variable went missing) leaves read_clock its own GetInfo."""
+    tecomat_sim.rename("plcType", "plcKind")
+    await tecomat_client.read([NAME, Point("plcType", "UINT")])
+    before = tecomat_sim.calls["GetInfo"]
+    await tecomat_client.read_clock()
+    assert tecomat_sim.calls["GetInfo"] == before + 1

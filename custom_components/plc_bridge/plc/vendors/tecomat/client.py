@@ -223,10 +223,13 @@ class TecomatClient(PlcClient):
         A value the PLC sent exactly as at the last poll keeps its last result (`LastResults`).
         """
         self._status_read = False
-        if poll:
-            await self._poll_status()
-        plan = self._prepare(points, poll)
-        reading = await self._read_paths(plan.paths, poll)
+        try:
+            if poll:
+                await self._poll_status()
+            plan = self._prepare(points, poll)
+            reading = await self._read_paths(plan.paths, poll)
+        finally:
+            self._status_read = False  # outside a poll (read_clock), GetInfo is always asked
         values = results(reading, plan, self._zone)
         return ReadResult(values=values, status=self._status if poll else PlcStatus())
 
