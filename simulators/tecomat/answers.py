@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from typing import Any
 
-from .program import Node, Segment, parse, resolve, stopped_at
+from .program import Node, Segment, parse, positions, resolve, stopped_at
 from .values import Fault, leaves, render
 
 
@@ -30,7 +30,8 @@ ARRAY_ANSWERS = ("keyed", "whole", "partial", "compact", "flat", "objects")
 """How a PLC may answer elements of an array; the spec shows whole arrays only (5.2).
 
 keyed: `{"arr2[1][3]": v}`; whole: the whole array, as if it were asked; partial: nested arrays
-padded with null up to the highest asked index; compact: nested arrays of the asked elements
+padded with null up to the highest asked element (positions from the array's first element);
+compact: nested arrays of the asked elements
 only, in index order; flat: one array of the asked elements, in request order; objects: objects
 keyed by index, `{"arr2": {"1": {"3": v}}}`.
 """
@@ -57,6 +58,7 @@ def read(
     array_answers: str = "keyed",
     asked_case: bool = False,
     element_spelling: str = "any",
+    whole_arrays: str = "list",
 ) -> dict[str, Any]:
     """Answer GetObject; the first unknown name fails the request (400.005).
 
@@ -64,6 +66,8 @@ def read(
     `array_answers` picks how elements of an array come (ARRAY_ANSWERS). With `asked_case` the
     answer spells names as the request did, else as the program declares them.
     `element_spelling` is how the PLC takes an element of several indices (ELEMENT_SPELLINGS).
+    `whole_arrays` is how an array read whole comes (values.WHOLE_ARRAYS); `partial` and
+    `compact` lists hold elements by position from the array's first element.
     """
     answer: dict[str, Any] = {}
     elements: dict[tuple[str, ...], Any] = {}
@@ -78,19 +82,22 @@ def read(
             shown = stopped_at(variables, parts) if parts and leaf_names else name
             raise Fault("400.005", f"Variable '{shown}' is not found") from None
         items += leaves(node)
+        placed = positions(variables, canonical)
         if asked_case:
             canonical = parts
         first = next((at for at, part in enumerate(canonical) if isinstance(part, int)), 0)
+        value = render(node, whole_arrays)
         if not first or array_answers == "keyed":
-            place(answer, canonical, render(node))
+            place(answer, canonical, value)
             continue
         root = tuple(str(part) for part in canonical[:first])
         if array_answers == "whole":
-            place(answer, list(root), render(resolve(variables, list(root))[1]))
+            place(answer, list(root), render(resolve(variables, list(root))[1], whole_arrays))
         elif array_answers == "flat":
-            elements.setdefault(root, []).append(render(node))
+            elements.setdefault(root, []).append(value)
         else:
-            elements[root] = _put(elements.get(root), canonical[first:], render(node))
+            rest = canonical[first:] if array_answers == "objects" else placed[first:]
+            elements[root] = _put(elements.get(root), rest, value)
     if items > limit:
         raise Fault("413.004", f"Too many variables (maximum is {limit})")
     for root, tree in elements.items():

@@ -8,7 +8,7 @@ import re
 import struct
 from typing import Any
 
-from .values import Fault, Var
+from .values import Bounded, Fault, Var, low_of
 
 type Node = Var | dict[str, Node] | list[Node]
 type Segment = str | int
@@ -16,8 +16,8 @@ type Segment = str | int
 MAX_ITEM = 64  # 3.6: an item name of a PutObject body is at most 64 characters
 MAX_NESTING = 32  # 3.6: an array item takes two levels
 MAX_VALUE = 255  # 3.6: a value is at most 255 characters
-_PATH = re.compile(r"[A-Za-z_]\w*(?:\.[A-Za-z_]\w*|\[\d+(?:,\d+)*\])*", re.ASCII)
-_PART = re.compile(r"([A-Za-z_]\w*)|\[([\d,]+)\]", re.ASCII)
+_PATH = re.compile(r"[A-Za-z_]\w*(?:\.[A-Za-z_]\w*|\[-?\d+(?:,-?\d+)*\])*", re.ASCII)
+_PART = re.compile(r"([A-Za-z_]\w*)|\[([-\d,]+)\]", re.ASCII)
 CLOCK = datetime(2018, 1, 31, 16, 50, 39, 949000)
 MACHINES = {
     "water": "Boiler.water",
@@ -131,6 +131,23 @@ def default_program(bench: int = 1000) -> dict[str, Node]:
     return program
 
 
+def bounded_arrays() -> dict[str, Node]:
+    """Return arrays whose first index is not 0, which 5.2 forbids (READINGS.md row 18).
+
+    `arrB`: ARRAY[1..5] OF INT (10, 20, ... 50); `arrC`: ARRAY[1..2, 1..3] OF INT (arrC[i, j] =
+    10 i + j); `arrN`: ARRAY[-2..2] OF INT (-20, -10, ... 20); `rec.arrS`: ARRAY[1..3] OF INT
+    inside a structure (100, 200, 300).
+    """
+    return {
+        "arrB": Bounded(1, [Var("INT", 10 * (index + 1)) for index in range(5)]),
+        "arrC": Bounded(
+            1, [Bounded(1, [Var("INT", 10 * i + j) for j in (1, 2, 3)]) for i in (1, 2)]
+        ),
+        "arrN": Bounded(-2, [Var("INT", -20 + 10 * index) for index in range(5)]),
+        "rec": {"arrS": Bounded(1, [Var("INT", 100 * index) for index in (1, 2, 3)])},
+    }
+
+
 def _machines() -> dict[str, Node]:
     """Return the demo machines' structures: the boiler's words (INT), the other's bits."""
     machines: dict[str, dict[str, Node]] = {}
@@ -168,10 +185,11 @@ def resolve(variables: dict[str, Node], parts: list[Segment]) -> tuple[list[Segm
     canonical: list[Segment] = []
     for part in parts:
         if isinstance(part, int):
-            if not isinstance(node, list) or part >= len(node):
+            at = part - low_of(node)  # elements are named by their declared index
+            if not isinstance(node, list) or not 0 <= at < len(node):
                 raise KeyError(part)
             canonical.append(part)
-            node = node[part]
+            node = node[at]
             continue
         if not isinstance(node, dict):
             raise KeyError(part)
@@ -289,3 +307,17 @@ def write(
             )
         checked.append((node, node.store(raw, name)))
     return checked
+
+
+def positions(variables: dict[str, Node], canonical: list[Segment]) -> list[Segment]:
+    """Return a resolved path with each index as its position in its array (from 0)."""
+    node: Any = variables
+    placed: list[Segment] = []
+    for part in canonical:
+        if isinstance(part, int):
+            placed.append(part - low_of(node))
+            node = node[part - low_of(node)]
+        else:
+            placed.append(part)
+            node = node[part]
+    return placed

@@ -33,7 +33,7 @@ from .program import (
     resolve,
     write,
 )
-from .values import Fault, Var, dumps
+from .values import Fault, Var, declaration, dumps, worded
 
 DEFAULT_USER = "admin"
 DEFAULT_PASSWORD = "Foxtrot-1"
@@ -55,8 +55,8 @@ class TecomatSimulator(HttpSimulator):
     time; writing `setTime` sets it, as a PLC program would), `public_file` ("ok", "missing",
     "too_big", "unreadable"), `rewrite` (edit each JSON answer), `leaf_names` (400.005 and
     400.015 name only the item where the PLC stopped, `sport` for myObject.favorites.sport),
-    `array_answers`, `asked_case`, `element_spelling`, `real_format`, `rename_stamps` (see
-    READINGS.md),
+    `array_answers`, `asked_case`, `element_spelling`, `real_format`, `rename_stamps`,
+    `error_texts`, `whole_arrays`, `list_types` (see READINGS.md),
     `stale_nonce()`, `rename()`; the demo calls `animate()`.
     `bodies` keeps the last PutObject bodies and `uris` the last request targets; `calls`
     counts services; `auth.accepted` counts the credentials accepted, by method and qop.
@@ -97,6 +97,9 @@ class TecomatSimulator(HttpSimulator):
         self.real_format = "fixed"  # how REALs are printed (values.REAL_FORMATS)
         self.stamp = "E28AE29B"  # GetInfo's userProg.stamp
         self.rename_stamps = True  # rename() builds a new program: a new stamp
+        self.error_texts = "manual"  # how 400.005 and 400.015 are worded (ERROR_TEXTS)
+        self.whole_arrays = "list"  # how an array read whole comes (values.WHOLE_ARRAYS)
+        self.list_types = False  # GetList gives each variable's declared type (READINGS.md 18)
 
     def build_app(self, app: web.Application) -> None:
         app.router.add_route("*", "/TecoApi{tail:.*}", self._handle)
@@ -203,7 +206,8 @@ class TecomatSimulator(HttpSimulator):
         if fault.status == 401:
             headers["WWW-Authenticate"] = self.auth.challenge(stale=fault.code == "401.020")
         stamp = datetime.now(UTC).strftime("%Y-%m-%dT%H:%M:%S.%f")[:-3] + "Z"
-        error = {"error": {"code": fault.code, "message": fault.message, "time": stamp}}
+        message = worded(fault, self.error_texts)
+        error = {"error": {"code": fault.code, "message": message, "time": stamp}}
         return web.Response(
             status=fault.status,
             body=json.dumps(error).encode(),
@@ -251,10 +255,17 @@ class TecomatSimulator(HttpSimulator):
         listing: dict[str, Any] = {}
         for name, node in self.variables.items():
             members = node if name in self.instances and isinstance(node, dict) else {}
-            listing[name] = {member: {} for member in members}
+            listing[name] = {member: self._listed(value) for member, value in members.items()}
+            if not members:
+                listing[name] = self._listed(node)
         if form == "array":
             return self._json([{name: value} for name, value in listing.items()])
         return self._json(listing)
+
+    def _listed(self, node: Node) -> dict[str, str]:
+        """Return a variable's GetList entry: {} (3.3), or its declared type (`list_types`)."""
+        kind = declaration(node) if self.list_types else None
+        return {"type": kind} if kind else {}
 
     def _names(self, query: str) -> list[str]:
         """Return the variable names of a GetObject or SetObject query."""
@@ -285,6 +296,7 @@ class TecomatSimulator(HttpSimulator):
                 array_answers=self.array_answers,
                 asked_case=self.asked_case,
                 element_spelling=self.element_spelling,
+                whole_arrays=self.whole_arrays,
             )
         )
 

@@ -42,6 +42,36 @@ class Fault(Exception):
         return int(self.code.split(".")[0])
 
 
+ERROR_TEXTS = ("manual", "localised", "unnamed")
+"""How a PLC words 400.005 and 400.015 (3.7 gives only its English examples). manual: "Variable
+'NNN' is not found"; localised: the manual's Czech description ("Proměnná 'NNN' nebyla
+nalezena", "Hodnotu VVV nelze zapsat do proměnné 'NNN'"); unnamed: newer wording without the
+name ("Variable is not found", "Value was not written")."""
+
+_WORDINGS = {
+    "400.005": (
+        re.compile(r"Variable '(.*)' is not found", re.DOTALL),
+        {"localised": "Proměnná '{1}' nebyla nalezena", "unnamed": "Variable is not found"},
+    ),
+    "400.015": (
+        re.compile(r"Value (.*) was not written to variable '(.*)' \(type of", re.DOTALL),
+        {
+            "localised": "Hodnotu {1} nelze zapsat do proměnné '{2}'",
+            "unnamed": "Value was not written",
+        },
+    ),
+}
+
+
+def worded(fault: Fault, texts: str) -> str:
+    """Return a fault's message as a PLC of the given wording (ERROR_TEXTS) prints it."""
+    rule = _WORDINGS.get(fault.code)
+    match = rule[0].match(fault.message) if rule else None
+    if rule is None or match is None or texts not in rule[1]:
+        return fault.message
+    return rule[1][texts].format(fault.message, *match.groups())
+
+
 @dataclass(slots=True)
 class Var:
     """One elementary variable: IEC type, value (TIME/TOD in ms, DATE a date, DT naive)."""
@@ -174,10 +204,46 @@ def leaves(node: Any) -> int:
     return 1
 
 
-def render(node: Any) -> Any:
-    """Return the JSON form of a variable: structures as objects, arrays as arrays."""
+class Bounded(list[Any]):
+    """An array declared with its first index not 0 (`ARRAY[1..5] OF INT`): its items, first."""
+
+    def __init__(self, low: int, items: list[Any]) -> None:
+        super().__init__(items)
+        self.low = low
+
+
+def low_of(node: Any) -> int:
+    """Return the first index of an array node (0 unless declared otherwise)."""
+    return node.low if isinstance(node, Bounded) else 0
+
+
+WHOLE_ARRAYS = ("list", "keyed")
+"""How a whole array is answered. list: a JSON array of its elements in order, whatever its
+first index (5.2 shows only arrays from 0); keyed: an object keyed by each element's declared
+index ({"1": 10, "2": 20})."""
+
+
+def render(node: Any, whole_arrays: str = "list") -> Any:
+    """Return the JSON form of a variable: structures as objects, arrays as WHOLE_ARRAYS says."""
     if isinstance(node, dict):
-        return {name: render(item) for name, item in node.items()}
+        return {name: render(item, whole_arrays) for name, item in node.items()}
     if isinstance(node, list):
-        return [render(item) for item in node]
+        if whole_arrays == "keyed":
+            low = low_of(node)
+            return {str(low + at): render(item, whole_arrays) for at, item in enumerate(node)}
+        return [render(item, whole_arrays) for item in node]
     return node.json()
+
+
+def declaration(node: Any) -> str | None:
+    """Return a variable's IEC type as a declaration spells it; None for a structure."""
+    if isinstance(node, Var):
+        return node.type
+    if not isinstance(node, list) or not node:
+        return None
+    ranges = []
+    while isinstance(node, list) and node:
+        ranges.append(f"{low_of(node)}..{low_of(node) + len(node) - 1}")
+        node = node[0]
+    inner = declaration(node)
+    return f"ARRAY [{', '.join(ranges)}] OF {inner or 'STRUCT'}"

@@ -180,8 +180,8 @@ def test_options() -> None:
     [
         ({"myObject": {"favorites": {"sport": "Soccer"}}}, "MyObject.Favorites.SPORT", "Soccer"),
         ({"arr2[1][3]": 1.3}, "arr2[1][3]", 1.3),
-        ({"arr2[1]": [0, 1, 2, 3.5]}, "arr2[1][3]", 3.5),
-        ({"arr2": [[0], [0, 1, 2, 4.5]]}, "arr2[1][3]", 4.5),
+        ({"arr2[1]": [0, 1, 2, 3.5]}, "arr2[1][3]", None),  # its first index is unknown
+        ({"arr2": [[0], [0, 1, 2, 4.5]]}, "arr2[1][3]", None),
         ({"_dum[1]": {"valve": 67}}, "_dum[1].valve", 67),
         ({"arr2[1][3]": {}, "arr2": [[], [0, 0, 0, 9]]}, "arr2[1][3].x", None),
     ],

@@ -59,13 +59,14 @@ async def test_renamed_structure_of_1000_points(
         assert bench_sim.calls["GetObject"] - before == (2 if leaf_names else 3)
         assert all(isinstance(result.values[point].error, PlcAddressError) for point in BENCH)
         assert result.values[NAME].value == "myFoxtrot"
-        for ahead, asked in ((30, 1), (61, 2), (100, 1), (190, 2)):  # timers: 60 s, then 120 s
+        # timers: 2 s, then doubling (4 s, 8 s): short at first, cheap while it stays gone
+        for ahead, asked in ((1, 1), (2.5, 2), (5, 1), (7, 2), (14, 1), (16, 2)):
             clock(ahead)
             before = bench_sim.calls["GetObject"]
             await client.read([*BENCH, NAME])
             assert bench_sim.calls["GetObject"] - before == asked, ahead
         bench_sim.rename("BENCH2", "BENCH")
-        clock(190 + 241)
+        clock(16 + 17)
         result = await client.read([*BENCH, NAME])
         assert [result.values[point].value for point in BENCH[:3]] == [0, 1, 2]
     finally:
@@ -106,3 +107,56 @@ async def test_a_new_program_stamp_asks_again_at_once(
     tecomat_client._unknown._entries["plctype"].due += 1000  # so only the stamp can tell
     result = await tecomat_client.read([NAME, kind])
     assert result.values[kind].value == 2005
+
+
+@pytest.mark.parametrize("stamps", [True, False], ids=["new-stamp", "same-stamp"])
+async def test_renamed_back_shows_within_a_poll_or_two(
+    tecomat_sim: TecomatSimulator,
+    tecomat_client: TecomatClient,
+    clock: Callable[[float], None],
+    stamps: bool,
+) -> None:
+    """Renamed away and back 3 s later: shown again at the next poll after its short timer.
+
+    Before: asked again 60 s after it went, the stamp read once a minute (issue 23: unavailable
+    3.4-73 s after the rename back).
+    """
+    tecomat_sim.rename_stamps = stamps
+    kind = Point("plcType", "UINT")
+    clock(0)
+    tecomat_sim.rename("plcType", "plcKind")
+    assert isinstance((await tecomat_client.read([NAME, kind])).values[kind].error, Exception)
+    clock(1)
+    assert not (await tecomat_client.read([NAME, kind])).values[kind].ok
+    tecomat_sim.rename("plcKind", "plcType")
+    clock(3)  # the next poll (1 s polls): the first timer (2 s) is due
+    assert (await tecomat_client.read([NAME, kind])).values[kind].value == 2005
+
+
+async def test_a_variable_gone_for_good_costs_few_requests(
+    tecomat_sim: TecomatSimulator, tecomat_client: TecomatClient, clock: Callable[[float], None]
+) -> None:
+    """Polled every second for 10 minutes: asked again on doubling timers, not every poll."""
+    tecomat_sim.rename_stamps = False
+    kind = Point("plcType", "UINT")
+    tecomat_sim.rename("plcType", "plcKind")
+    clock(0)
+    await tecomat_client.read([NAME, kind])
+    before = tecomat_client.metrics.requests
+    for second in range(1, 601):
+        clock(second)
+        await tecomat_client.read([NAME, kind])
+    # 600 polls, 10 GetInfo (60 s), and about log2(300 / 2) + 600 / 300 re-asks (a probe and
+    # a stamp check each)
+    assert tecomat_client.metrics.requests - before <= 600 + 10 + 2 * 12
+
+
+async def test_read_clock_after_a_poll_asks_getinfo(
+    tecomat_sim: TecomatSimulator, tecomat_client: TecomatClient
+) -> None:
+    """A poll that read GetInfo (a variable went missing) leaves read_clock its own GetInfo."""
+    tecomat_sim.rename("plcType", "plcKind")
+    await tecomat_client.read([NAME, Point("plcType", "UINT")])
+    before = tecomat_sim.calls["GetInfo"]
+    await tecomat_client.read_clock()
+    assert tecomat_sim.calls["GetInfo"] == before + 1

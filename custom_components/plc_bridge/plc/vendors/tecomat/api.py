@@ -22,12 +22,14 @@ from ...types import ClientMetrics, ConnectionConfig
 from .arrays import answered
 from .codec import dumps
 from .errors import (
+    NOT_FOUND,
     TOO_MANY_ITEMS,
     TOO_MANY_REQUESTED,
     TecoError,
     blame,
     missing_variable,
     parse_error,
+    refused,
     refused_value,
     request_error,
 )
@@ -196,6 +198,8 @@ class TecoApi:
                 answer = await self.send("GET", get_uri(path.text for path in pending))
             except TecoError as err:
                 name = missing_variable(err)
+                if name is None and err.code == NOT_FOUND and len(pending) == 1:
+                    name = pending[0].text  # worded without the name: a lone path is the one
                 hit = blame(pending, name) if name is not None else None
                 if name is not None and hit is not None:
                     lost, length = hit
@@ -207,7 +211,11 @@ class TecoApi:
                     reading.gone[gone.key] = Gone(gone, name)
                     pending = self._left(pending, reading)
                     continue
-                split = name is not None or err.code in (TOO_MANY_REQUESTED, TOO_MANY_ITEMS)
+                split = name is not None or err.code in (
+                    NOT_FOUND,
+                    TOO_MANY_REQUESTED,
+                    TOO_MANY_ITEMS,
+                )
                 if err.code == TOO_MANY_REQUESTED and len(pending) > 1:
                     self.max_names = min(self.max_names or len(pending), len(pending) // 2)
                 if split and len(pending) > 1:
@@ -237,7 +245,7 @@ class TecoApi:
         try:
             await self.send("GET", get_uri([path.text]))
         except TecoError as err:
-            if missing_variable(err) is not None:
+            if err.code == NOT_FOUND:
                 return False
             if err.code in (TOO_MANY_REQUESTED, TOO_MANY_ITEMS):
                 return True
@@ -283,29 +291,34 @@ class TecoApi:
             try:
                 await self.send("PUT", SERVICE + "PutObject", body.encode("ascii"))
             except TecoError as err:
-                refused, name = refused_value(err), missing_variable(err)
-                target = name if name is not None else (refused[1] if refused else None)
-                if target is None:
+                if not refused(err):
                     raise request_error(err, self.auth) from None
-                hit = blame([pairs[index][0] for index in pending], target)
+                value, name = refused_value(err), missing_variable(err)
+                target = name if name is not None else (value[1] if value else None)
+                paths = [pairs[index][0] for index in pending]
+                hit = blame(paths, target) if target is not None else None
+                if hit is None and len(pending) == 1:
+                    hit = [0], len(paths[0].segments)  # worded without the name: the lone one
                 if hit is None:
                     half = len(pending) // 2
                     await self._put(pairs, pending[:half], failures)
                     await self._put(pairs, pending[half:], failures)
                     return
                 for position in hit[0]:
-                    text = pairs[pending[position]][0].text
-                    failures[pending[position]] = (
-                        PlcValueError(
-                            f"{text}: the PLC did not take {refused[0]} "
-                            f"(the variable is a {refused[2]}; 400.015)"
-                        )
-                        if refused is not None
-                        else PlcAddressError(
-                            f"{text}: the PLC does not know this variable "
-                            f"(400.005: '{target}' is not found)"
-                        )
-                    )
+                    failures[pending[position]] = _refusal(paths[position].text, err)
                 pending = [index for index in pending if index not in failures]
                 continue
             return
+
+
+def _refusal(text: str, err: TecoError) -> PlcError:
+    """Return the error of one path a PutObject refusal (400.005 or 400.015) concerns."""
+    value, name = refused_value(err), missing_variable(err)
+    if value is not None:
+        return PlcValueError(
+            f"{text}: the PLC did not take {value[0]} (the variable is a {value[2]}; 400.015)"
+        )
+    if err.code == NOT_FOUND:
+        shown = f"'{name}' is not found" if name is not None else err.message.strip()[:80]
+        return PlcAddressError(f"{text}: the PLC does not know this variable (400.005: {shown})")
+    return PlcValueError(f"{text}: the PLC did not take the value ({err.message.strip()[:80]})")

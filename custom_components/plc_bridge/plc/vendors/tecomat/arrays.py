@@ -2,9 +2,12 @@
 
 The spec shows arrays only whole, as nested JSON arrays (5.2: `arr2` answers `[[0.0, ...], ...]`),
 and no answer to some of an array's elements. So a poll that needs several elements of one array,
-or an element of a multi-dimensional one, reads the array whole and indexes it; only an array too
-big for one answer (413.004) has its elements asked, and their answer places a value only where
-its shape names the index (simulators/tecomat/READINGS.md, "array answers").
+or an element of a multi-dimensional one, reads the array whole and indexes it. A JSON array
+says nothing of the first index, which IEC 61131-3 lets a program choose (`ARRAY[1..5]`; 5.2 asks
+for 0): it is indexed by position only once the PLC has confirmed the first and last elements
+as [0, ..] and [n - 1, ..] (`corners`); otherwise its elements are asked by their own index, as
+for an array too big for one answer (413.004). An answer to elements places a value only where
+its shape names the index (simulators/tecomat/READINGS.md, rows 1 and 18).
 """
 
 from __future__ import annotations
@@ -34,10 +37,11 @@ class ArrayPlan:
     inside: dict[str, list[VariablePath]] = field(default_factory=dict)  # by the array's key
 
 
-def array_plan(paths: dict[str, VariablePath], too_big: set[str]) -> ArrayPlan:
+def array_plan(paths: dict[str, VariablePath], by_elements: set[str]) -> ArrayPlan:
     """Return what to ask: an array holding two asked paths, or one path of several indices, whole.
 
-    An array known to be too big for one answer (`too_big`) has its paths asked instead.
+    An array whose elements are asked instead (`by_elements`: too big, or its first index not
+    confirmed as 0) has its paths asked as they are.
     """
     if not any(path.first_index for path in paths.values()):
         return ArrayPlan(paths)
@@ -45,7 +49,7 @@ def array_plan(paths: dict[str, VariablePath], too_big: set[str]) -> ArrayPlan:
     result = ArrayPlan()
     for key, path in paths.items():
         array = array_of(path)
-        if array is None or array.key in too_big:
+        if array is None or array.key in by_elements:
             result.asked[key] = path
         else:
             arrays.setdefault(array.key, (array, []))[1].append(path)
@@ -59,40 +63,108 @@ def array_plan(paths: dict[str, VariablePath], too_big: set[str]) -> ArrayPlan:
     return result
 
 
-def place_arrays(plan: ArrayPlan, reading: Reading, too_big: set[str]) -> dict[str, VariablePath]:
-    """Index the arrays read whole into the reading; return the paths of those too big to read.
+@dataclass(slots=True)
+class Placed:
+    """What placing the arrays read whole left: paths to ask alone, arrays to confirm first."""
 
-    Their keys join `too_big`: from then on their elements are asked.
+    later: dict[str, VariablePath] = field(default_factory=dict)
+    unconfirmed: dict[str, tuple[VariablePath, VariablePath]] = field(default_factory=dict)
+
+
+def place_arrays(
+    plan: ArrayPlan, reading: Reading, by_elements: set[str], from_zero: set[str]
+) -> Placed:
+    """Index the arrays read whole into the reading where their indices are sure.
+
+    Sure: an answer keyed by index, or a JSON array confirmed to start at 0 (`from_zero`). Any
+    other JSON array is returned with its corners to confirm; one too big or of no shape to
+    confirm joins `by_elements` and has its paths returned to be asked alone.
     """
-    later: dict[str, VariablePath] = {}
+    placed = Placed()
     for key, inside in plan.inside.items():
         array = plan.asked[key]
         if key in reading.too_big:
-            too_big.add(key)
-            later.update((path.key, path) for path in inside)
+            elements_later(key, inside, by_elements, placed)
         elif key in reading.found:
-            placed = elements(reading.found[key], array, inside)
-            reading.found.update(placed)
-            for path in inside:
-                if path.key not in placed:
-                    reading.failed[path.key] = PlcAddressError(  # as 400.005 for it alone
-                        f"{path.text}: the array {array.text} has no such element"
-                    )
+            raw = reading.found[key]
+            if isinstance(raw, dict) or key in from_zero:
+                place_whole(plan, key, reading)
+            elif (ends := corners(raw, array, inside)) is not None:
+                placed.unconfirmed[key] = ends
+            else:
+                elements_later(key, inside, by_elements, placed)
         else:
             for path in inside:
                 gone = gone_for(path, reading.gone)
                 reading.failed[path.key] = gone.error(path) if gone else reading.failed[key]
-    return later
+    return placed
+
+
+def elements_later(
+    key: str, inside: list[VariablePath], by_elements: set[str], placed: Placed
+) -> None:
+    """Ask an array's paths by their own index, from now on (until the program changes)."""
+    by_elements.add(key)
+    placed.later.update((path.key, path) for path in inside)
+
+
+def place_whole(plan: ArrayPlan, key: str, reading: Reading) -> None:
+    """Index one array read whole into the reading; an index it lacks fails that path alone."""
+    array, inside = plan.asked[key], plan.inside[key]
+    found = elements(reading.found[key], array, inside)
+    reading.found.update(found)
+    for path in inside:
+        if path.key not in found:
+            reading.failed[path.key] = PlcAddressError(  # as 400.005 for it alone
+                f"{path.text}: the array {array.text} has no such element"
+            )
+
+
+def corners(
+    raw: Any, array: VariablePath, inside: Sequence[VariablePath]
+) -> tuple[VariablePath, VariablePath] | None:
+    """Return the first and last elements a JSON array holds if it starts at 0, in each dimension.
+
+    When the PLC knows both, every dimension starts at 0 (n elements from 0 to n - 1). None when
+    the answer is not nested deep enough for the asked indices.
+    """
+    depth = max(_depth(path, len(array.segments)) for path in inside)
+    lengths: list[int] = []
+    node = raw
+    for _ in range(depth):
+        if not isinstance(node, list) or not node:
+            return None
+        lengths.append(len(node))
+        node = node[0]
+    first = VariablePath((*array.segments, *(0 for _ in lengths)))
+    last = VariablePath((*array.segments, *(length - 1 for length in lengths)))
+    return first, last
+
+
+def known(reading: Reading, ends: Sequence[VariablePath]) -> bool:
+    """True when the PLC refused none of the paths as unknown (400.005): it has them all.
+
+    Whatever shape their values came in: the proof needs their names only.
+    """
+    return all(gone_for(end, reading.gone) is None for end in ends)
+
+
+def _depth(path: VariablePath, start: int) -> int:
+    """Return how many indices follow one another from `start` in a path."""
+    end = start
+    while end < len(path.segments) and isinstance(path.segments[end], int):
+        end += 1
+    return end - start
 
 
 def answered(answer: Any, paths: Sequence[VariablePath]) -> dict[str, Any]:
     """Return each path's value in a GetObject answer, by key; a path it cannot place is absent.
 
     Members nest as in 5.1; an element may come keyed in its parent ("arr2[1][3]", "arr2[1,3]"),
-    under index keys ({"arr2": {"1": {"3": ...}}}) or in a nested array. An array holding an
-    asked index is read by position. One shorter than that holds the asked elements only when it
-    has exactly as many items as indices were asked at that level: then in index order (the
-    client asks elements in index order). Any other array places nothing below it.
+    under index keys ({"arr2": {"1": {"3": ...}}}) or in a nested array. A JSON array holds the
+    asked elements only when it has exactly as many items as indices were asked at that level:
+    then in index order (the client asks elements in index order). Any other array places
+    nothing below it: its first index is unknown (READINGS.md row 18).
     """
     found: dict[str, Any] = {}
     rest = [path for path in paths if path.first_index or not _by_exact_names(answer, path, found)]
@@ -179,7 +251,7 @@ def _by_name(node: dict[str, Any], walk: Walk, found: dict[str, Any], *, whole: 
                 hits.append((value, path, stop))
             break
     if hits:
-        _descend(hits, found, whole)
+        _descend(hits, found, False)  # an array below a member is not the one confirmed
 
 
 def _spellings(name: str, indices: tuple[object, ...]) -> tuple[str, ...]:
@@ -194,10 +266,15 @@ def _spellings(name: str, indices: tuple[object, ...]) -> tuple[str, ...]:
 
 
 def _by_position(node: list[Any], walk: Walk, found: dict[str, Any], *, whole: bool) -> None:
-    """Follow an index into a JSON array: by position, or by order when it holds only the asked."""
+    """Follow an index into a JSON array: by position, or by order when it holds only the asked.
+
+    By position only in an array confirmed to start at 0 (`whole`); by order when it holds
+    exactly as many items as indices were asked.
+    A longer list may be the whole array or one padded, from an index it does not say: nothing.
+    """
     asked = sorted({_index(path, at) for path, at in walk})
-    if whole or len(node) > asked[-1]:
-        places = {index: index for index in asked if index < len(node)}
+    if whole:
+        places = {index: index for index in asked if 0 <= index < len(node)}
     elif len(node) == len(asked):
         places = {index: position for position, index in enumerate(asked)}
     else:

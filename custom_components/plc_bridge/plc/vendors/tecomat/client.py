@@ -5,6 +5,7 @@ from __future__ import annotations
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from datetime import datetime
+import logging
 from time import monotonic
 from typing import Any, ClassVar
 from zoneinfo import ZoneInfo
@@ -35,7 +36,7 @@ from ...types import (
     ValueKind,
 )
 from .api import AUTH_METHODS, TecoApi
-from .arrays import array_plan, place_arrays
+from .arrays import array_plan, elements_later, known, place_arrays, place_whole
 from .browse import LIST_URI, Listing, expand, listed_names
 from .codec import KINDS, TYPES, check_value, data_type, decode, encode, same_value
 from .info import device_info, plc_status
@@ -49,6 +50,9 @@ from .paths import (
 )
 from .reading import Plan, Reading, results
 from .unknown import UnknownVariables
+
+_LOGGER = logging.getLogger(__name__)
+_NOT_READ_BACK = PlcProtocolError("written, not read back")  # a marker: the write stands
 
 
 @dataclass(frozen=True, slots=True)
@@ -91,10 +95,15 @@ class TecomatClient(PlcClient):
             None
         )
         self._unknown = UnknownVariables()
-        self._too_big: set[str] = set()  # arrays the PLC cannot answer whole (413.004), by key
+        # Arrays by key: asked element by element (too big, 413.004, or not from 0), or
+        # confirmed to start at 0 in every dimension (read whole, indexed by position).
+        self._by_elements: set[str] = set()
+        self._from_zero: set[str] = set()
         self._stamp: str | None = None  # the program's stamp (GetInfo, 3.2)
         self._parsed: dict[Point, tuple[VariablePath, str] | PlcError] = {}  # the last poll's
         self._poll: Plan | None = None
+        self._status_read = False  # GetInfo was asked in this poll
+        self._unread_logged: set[str] = set()  # variables whose read-back failed, warned once
 
     @classmethod
     def validate_options(cls, options: Mapping[str, object]) -> dict[str, str | int | bool]:
@@ -157,14 +166,24 @@ class TecomatClient(PlcClient):
         stamp = self._status.extra.get("program_stamp")
         if stamp != self._stamp:
             self._unknown.clear()
-            self._too_big.clear()
+            self._by_elements.clear()
+            self._from_zero.clear()
             self._stamp = stamp
 
     async def _poll_status(self) -> PlcStatus:
         """Return the PLC status; GetInfo is asked again once `status_interval` has passed."""
         if monotonic() - self._status_at >= self.status_interval:
-            self._take_status(await self._teco().ask("GET", SERVICE + "GetInfo"))
+            await self._new_program()
         return self._status
+
+    async def _new_program(self) -> bool:
+        """Ask GetInfo (once a poll at most); True when the program's stamp changed."""
+        if self._status_read:
+            return False
+        before = self._stamp
+        self._take_status(await self._teco().ask("GET", SERVICE + "GetInfo"))
+        self._status_read = True
+        return self._stamp != before
 
     def _parse(
         self, points: Sequence[Point], poll: bool
@@ -203,22 +222,38 @@ class TecomatClient(PlcClient):
 
         A value the PLC sent exactly as at the last poll keeps its last result (`LastResults`).
         """
-        status = await self._poll_status() if poll else PlcStatus()
-        plan = self._prepare(points, poll)
-        reading = await self._read_paths(plan.paths, poll)
+        self._status_read = False
+        try:
+            if poll:
+                await self._poll_status()
+            plan = self._prepare(points, poll)
+            reading = await self._read_paths(plan.paths, poll)
+        finally:
+            self._status_read = False  # outside a poll (read_clock), GetInfo is always asked
         values = results(reading, plan, self._zone)
-        return ReadResult(values=values, status=status)
+        return ReadResult(values=values, status=self._status if poll else PlcStatus())
 
     async def _read_paths(self, paths: dict[str, VariablePath], poll: bool) -> Reading:
         """Read paths; an array holding several of them is read whole and indexed here (5.2).
 
-        An array too big for one answer (413.004) has its elements asked instead, from then on.
+        A JSON array is indexed by position once the PLC confirmed it starts at 0 (its first
+        and last elements, one request, once a program); else, and for an array too big for
+        one answer (413.004), its elements are asked by their own index, from then on.
         """
-        arrays = array_plan(paths, self._too_big)
+        arrays = array_plan(paths, self._by_elements)
         reading = await self._get_paths(arrays.asked, poll)
-        later = place_arrays(arrays, reading, self._too_big if poll else set())
-        if later:
-            reading.merge(await self._get_paths(later, poll))
+        placed = place_arrays(arrays, reading, self._by_elements, self._from_zero)
+        if placed.unconfirmed:
+            ends = [path for pair in placed.unconfirmed.values() for path in pair]
+            proof = await self._teco().get(plan(ends))
+            for key, pair in placed.unconfirmed.items():
+                if known(proof, pair):
+                    self._from_zero.add(key)
+                    place_whole(arrays, key, reading)
+                else:
+                    elements_later(key, arrays.inside[key], self._by_elements, placed)
+        if placed.later:
+            reading.merge(await self._get_paths(placed.later, poll))
         return reading
 
     async def _get_paths(self, paths: dict[str, VariablePath], poll: bool) -> Reading:
@@ -229,14 +264,19 @@ class TecomatClient(PlcClient):
         skipped: dict[str, PlcError] = {}
         if unknown:
             unknown.keep_used(paths.values())
-            for gone in unknown.due(now):
+            due = unknown.due(now)
+            if due and await self._new_program():
+                due = []  # a new program: every name rides with this poll's request
+            for gone in due:
                 if await self._teco().exists(gone.path):
                     unknown.found(gone.path.key)
                 else:
                     unknown.still_gone(gone.path.key, now)
             paths, skipped = unknown.skip(paths)
         reading = await self._teco().get(self._planned(paths))
-        unknown.add(reading.gone.values(), now, self.status_interval)
+        if any(key not in unknown for key in reading.gone):
+            await self._new_program()  # the stamp as the variable went: a change then shows
+        unknown.add(reading.gone.values(), now)
         reading.failed.update(skipped)
         return reading
 
@@ -265,6 +305,9 @@ class TecomatClient(PlcClient):
             failures |= await self._not_taken(group, taken)
             for index, item in enumerate(group):
                 error = failures.get(index)
+                if error is _NOT_READ_BACK:
+                    results[item.point] = PointResult()  # done; the next poll shows its value
+                    continue
                 if error is None:
                     self._unknown.found(item.path.key)
                 results[item.point] = PointResult(value=None if error else item.value, error=error)
@@ -274,39 +317,53 @@ class TecomatClient(PlcClient):
         """Read the written variables back; return the ones the PLC does not hold.
 
         A PutObject's 204 carries nothing that proves the values were taken (3.6), and some
-        firmware answers so to values it dropped.
+        firmware answers so to values it dropped. A read-back that gets no usable answer proves
+        nothing either way: the write the PLC acknowledged stands, its value unshown (`unread`).
         """
         if not taken:
             return {}
         paths = {item.path.key: item.path for item in taken}
-        reading = await self._teco().get(plan(paths.values()))
+        try:
+            reading = await self._teco().get(plan(paths.values()))
+        except PlcError as err:
+            reading = Reading(failed=dict.fromkeys(paths, err))
         failures: dict[int, PlcError] = {}
         for index, item in enumerate(group):
             if item not in taken:
                 continue
             try:
                 held = decode(item.kind, reading.found[item.path.key], self._zone, item.path.text)
-            except (KeyError, PlcError):
-                held = None
-            if held is None or not same_value(item.kind, held, item.value, self._zone):
+            except (KeyError, PlcError) as err:
+                self._unread(item, reading.failed.get(item.path.key, err))
+                failures[index] = _NOT_READ_BACK
+                continue
+            if not same_value(item.kind, held, item.value, self._zone):
                 failures[index] = PlcWriteRefusedError(
                     f"{item.path.text}: the PLC answered the write but holds {held!r}, "
                     f"not {item.value!r}"
                 )
         return failures
 
+    def _unread(self, item: _Write, error: BaseException) -> None:
+        """Log a write the PLC acknowledged whose read-back failed: once a variable, a warning."""
+        key = item.path.key
+        level = logging.DEBUG if key in self._unread_logged else logging.WARNING
+        self._unread_logged.add(key)
+        _LOGGER.log(level, "%s: written, not read back (%s)", item.path.text, error)
+
     async def browse(self) -> list[BrowseItem]:
         """List the public variables (GetList) and expand each value into its leaves."""
         paths: dict[str, VariablePath] = {}
-        for name in listed_names(await self._teco().ask("GET", LIST_URI)):
+        listing = Listing()
+        for name in listed_names(await self._teco().ask("GET", LIST_URI), listing.declared):
             try:
                 path = parse_path(name)
             except PlcAddressError:
                 continue
             paths.setdefault(path.key, path)
-        listing = Listing()
         await expand(self._teco(), list(paths.values()), listing)
         self.unlisted = listing.unlisted
+        self._from_zero |= listing.from_zero
         return listing.items
 
     @property

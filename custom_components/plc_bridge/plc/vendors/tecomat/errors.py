@@ -62,6 +62,16 @@ def missing_variable(error: TecoError) -> str | None:
     return match[1] if match else None
 
 
+def refused(error: TecoError) -> bool:
+    """True for a refusal of some variable (400.005, 400.015), whatever its text says.
+
+    3.7 words them in English with the name; a localised or newer firmware words them
+    otherwise (simulators/tecomat/READINGS.md, "error texts"): the code alone is enough to
+    narrow a request down.
+    """
+    return error.code in (NOT_FOUND, NOT_WRITTEN)
+
+
 def refused_value(error: TecoError) -> tuple[str, str, str] | None:
     """Return (value, variable, PLC type) of a 400.015 answer."""
     match = _NOT_WRITTEN.search(error.message) if error.code == NOT_WRITTEN else None

@@ -22,8 +22,8 @@ MAX_NESTING = 32  # 3.6: the PutObject parser nests at most 32 levels
 EXAMPLES = "plcType, myObject.favorites.sport, arr2[1][3] or Main.myObject3.value"
 
 _NAME = r"[A-Za-z_][A-Za-z0-9_]*"
-_PATH = re.compile(rf"{_NAME}(?:\s*\.\s*{_NAME}|\s*\[[\s\d,]*\])*", re.ASCII)
-_PART = re.compile(rf"\.\s*({_NAME})|\[([\s\d,]*)\]|({_NAME})", re.ASCII)
+_PATH = re.compile(rf"{_NAME}(?:\s*\.\s*{_NAME}|\s*\[[\s\d,-]*\])*", re.ASCII)
+_PART = re.compile(rf"\.\s*({_NAME})|\[([\s\d,-]*)\]|({_NAME})", re.ASCII)
 
 type Segment = str | int
 
@@ -80,13 +80,20 @@ def parse_path(address: str) -> VariablePath:
             continue
         indices = [item.strip() for item in match[2].split(",")]
         # ASCII, and at most 9 digits: int() refuses over 4,300, and no PLC array is that long.
-        if not all(item.isascii() and item.isdigit() and len(item) <= 9 for item in indices):
+        # IEC 61131-3 arrays may start below 0 (ARRAY[-2..2]): a sign is taken.
+        if not all(_index(item) for item in indices):
             raise PlcAddressError(f"{text}: an array index is a whole number, as in arr2[1][3]")
         segments.extend(int(item) for item in indices)  # arr2[1, 3] is arr2[1][3]
     path = VariablePath(tuple(segments))
     if len(path.text) > MAX_PATH:
         raise PlcAddressError(f"{path.text[:24]}...: a path is at most {MAX_PATH} characters")
     return path
+
+
+def _index(item: str) -> bool:
+    """True for an array index as a path spells it: ASCII digits, perhaps after a minus."""
+    digits = item.removeprefix("-")
+    return digits.isascii() and digits.isdigit() and len(digits) <= 9
 
 
 def _check_name(name: str) -> None:

@@ -1,7 +1,8 @@
 """Variables the PLC said it does not know (400.005): each asked again on its own timer.
 
 A renamed variable would otherwise cost a failed request at every poll. Each unknown variable
-(a whole structure, when that is what went) is asked again on its own, after a delay that doubles
+(a whole structure, when that is what went) is asked again on its own, first after FIRST_DELAY
+(a variable renamed back shows again within a poll or two), then after a delay that doubles
 while it stays unknown; a new program (GetInfo's stamp, 3.2) forgets them all at once.
 """
 
@@ -14,6 +15,8 @@ from ...errors import PlcError
 from .paths import VariablePath
 from .reading import Gone, gone_for
 
+FIRST_DELAY = 2.0
+"""Seconds before a variable found unknown is first asked about again."""
 LONGEST_DELAY = 300.0
 """Seconds at most between two questions about a variable still unknown."""
 
@@ -38,11 +41,15 @@ class UnknownVariables:
         """True while any variable is unknown."""
         return bool(self._entries)
 
+    def __contains__(self, key: object) -> bool:
+        """True when the variable of this key is unknown."""
+        return key in self._entries
+
     def gone(self) -> dict[str, Gone]:
         """Return the unknown variables by key."""
         return {key: entry.gone for key, entry in self._entries.items()}
 
-    def add(self, gone: Iterable[Gone], now: float, delay: float) -> None:
+    def add(self, gone: Iterable[Gone], now: float, delay: float = FIRST_DELAY) -> None:
         """Remember variables found unknown now; a known one keeps its timer."""
         for entry in gone:
             if entry.path.key not in self._entries:
