@@ -253,8 +253,12 @@ def place_again(reading: Reading, lows: Lows) -> None:
                 reading.failed.pop(key, None)
 
 
-def _place(node: Any, walk: Walk, places: _Places, *, whole: bool) -> None:
-    """Follow every path of walk down from node (all at node now), recording where each ends."""
+def _place(node: Any, walk: Walk, places: _Places, *, whole: bool, order: bool = False) -> None:
+    """Follow every path of walk down from node (all at node now), recording where each ends.
+
+    `order`: a list above held only the asked elements (by order, not by position): so must
+    every list below it.
+    """
     names: Walk = []
     indices: Walk = []
     for path, at in walk:
@@ -268,18 +272,20 @@ def _place(node: Any, walk: Walk, places: _Places, *, whole: bool) -> None:
         _by_name(node, names, places)
     if indices:
         if isinstance(node, list):
-            _by_position(node, indices, places, whole=whole)
+            _by_position(node, indices, places, whole=whole, order=order)
         elif isinstance(node, dict):
-            _by_index_key(node, indices, places, whole=whole)
+            _by_index_key(node, indices, places, whole=whole, order=order)
 
 
-def _descend(hits: list[tuple[Any, VariablePath, int]], places: _Places, whole: bool) -> None:
+def _descend(
+    hits: list[tuple[Any, VariablePath, int]], places: _Places, whole: bool, order: bool = False
+) -> None:
     """Continue each (child, path, at) below its child; siblings below one node go together."""
     groups: dict[int, tuple[Any, Walk]] = {}
     for child, path, at in hits:
         groups.setdefault(id(child), (child, []))[1].append((path, at))
     for child, walk in groups.values():
-        _place(child, walk, places, whole=whole)
+        _place(child, walk, places, whole=whole, order=order)
 
 
 def _by_name(node: dict[str, Any], walk: Walk, places: _Places) -> None:
@@ -325,7 +331,7 @@ def _spellings(name: str, indices: tuple[object, ...]) -> tuple[str, ...]:
     return brackets, f"{name}[{listed}]", f"{name}[{listed.replace(',', ', ')}]"
 
 
-def _by_position(node: list[Any], walk: Walk, places: _Places, *, whole: bool) -> None:
+def _by_position(node: list[Any], walk: Walk, places: _Places, *, whole: bool, order: bool) -> None:
     """Follow an index into a JSON array: by order when it holds only the asked, else by position.
 
     By order when it holds exactly as many items as indices were asked (the asked elements
@@ -337,8 +343,17 @@ def _by_position(node: list[Any], walk: Walk, places: _Places, *, whole: bool) -
     asked = sorted({_index(path, at) for path, at in walk})
     hits: list[tuple[Any, VariablePath, int]] = []
     if not whole and len(node) == len(asked):
-        order = {index: position for position, index in enumerate(asked)}
-        hits = [(node[order[_index(path, at)]], path, at + 1) for path, at in walk]
+        places_of = {index: position for position, index in enumerate(asked)}
+        hits = [(node[places_of[_index(path, at)]], path, at + 1) for path, at in walk]
+        low = _low(*walk[0], places.lows)
+        # By order and by position agree when the asked run from the first index on: a
+        # padded or whole list may go on below; else only lists of the asked elements may.
+        start = asked[0] if low is None else low
+        order = order or asked != list(range(start, start + len(asked)))
+        if low is None and not order:
+            _note_list(node, walk, places.lists)  # a list below may need the first index
+    elif order:
+        return  # longer than asked below a list of the asked elements only: no known shape
     else:
         unknown: Walk = []
         for path, at in walk:
@@ -349,7 +364,7 @@ def _by_position(node: list[Any], walk: Walk, places: _Places, *, whole: bool) -
                 hits.append((node[position], path, at + 1))
         if unknown and not whole:
             _note_list(node, unknown, places.lists)
-    _descend(hits, places, whole)
+    _descend(hits, places, whole, order)
 
 
 def _note_list(node: list[Any], walk: Walk, lists: Lists) -> None:
@@ -388,14 +403,16 @@ def _low(path: VariablePath, at: int, lows: Lows) -> int | None:
     return known_lows[dimension] if known_lows and dimension < len(known_lows) else None
 
 
-def _by_index_key(node: dict[str, Any], walk: Walk, places: _Places, *, whole: bool) -> None:
+def _by_index_key(
+    node: dict[str, Any], walk: Walk, places: _Places, *, whole: bool, order: bool
+) -> None:
     """Follow an index into an object keyed by indices ({"1": ...})."""
     hits = []
     for path, at in walk:
         value = node.get(str(path.segments[at]), _MISSING)
         if value is not _MISSING:
             hits.append((value, path, at + 1))
-    _descend(hits, places, whole)
+    _descend(hits, places, whole, order)
 
 
 def _index(path: VariablePath, at: int) -> int:

@@ -58,7 +58,7 @@ from .paths import (
     parse_path,
     plan,
 )
-from .reading import Plan, Reading, results
+from .reading import Plan, Reading, results, under
 from .unknown import UnknownVariables
 
 _LOGGER = logging.getLogger(__name__)
@@ -302,10 +302,18 @@ class TecomatClient(PlcClient):
         GetList's declared bounds first; then one request probes the corners of the rest, once
         a program (arrays.from_zero); one not confirmed keeps its points failed.
         """
+        unplaced = [
+            path
+            for _answer, asked in reading.answers
+            for path in asked
+            if path.key not in reading.found
+        ]
         todo = {
-            key: found
-            for key, found in reading.lists.items()
-            if key not in self._lows and key not in self._unconfirmed
+            key: (array, lengths)
+            for key, (array, lengths) in reading.lists.items()
+            if key not in self._lows
+            and key not in self._unconfirmed
+            and any(under(path, array) for path in unplaced)
         }
         if todo:
             await self._declare()
