@@ -46,9 +46,11 @@ async def test_several_elements_in_one_poll(
     """2-D, 3-level and 1-D elements in one poll: each shows its own value, or fails.
 
     An array that fits one answer is read whole, as 5.2 shows it: every element is right
-    whatever shape the PLC gives elements. One too big (413.004) has its elements asked; only a
-    flat list of the asked leaves cannot say where a multi-dimensional element goes: it fails.
-    Before, arr2[1][1] showed arr2[1][3]'s value when the PLC answered nested, partial arrays.
+    whatever shape the PLC gives elements. One too big (413.004) has its elements asked; a list
+    longer than asked (`whole`, `partial`) is placed by position once a probe of its corners
+    confirmed the array starts at 0; only a flat list of the asked leaves cannot say where a
+    multi-dimensional element goes: it fails. Before, arr2[1][1] showed arr2[1][3]'s value when
+    the PLC answered nested, partial arrays; then whole and partial lists failed every element.
     """
     tecomat_sim.array_answers = shape
     if not fits:
@@ -59,12 +61,8 @@ async def test_several_elements_in_one_poll(
             outcome = result.values[point]
             if outcome.ok:
                 assert outcome.value == held(tecomat_sim, point), point.address
-            else:  # a flat list of N-D leaves, or a list longer than asked: no known index
-                assert not fits, point.address
-                assert shape in ("whole", "partial") or (shape, point in SEVERAL) == (
-                    "flat",
-                    True,
-                ), point.address
+            else:  # a flat list of N-D leaves: no known index
+                assert (fits, shape, point in SEVERAL) == (False, "flat", True), point.address
     if fits:  # the first poll confirmed each array starts at 0 (READINGS.md row 18)
         assert tecomat_client.metrics.last_poll_requests == 1
         assert {"arr2", "arr3"} <= set(tecomat_sim.uris[-1].partition("?")[2].split("&"))
@@ -112,31 +110,51 @@ async def test_array_grown_too_big_is_read_by_elements(
     assert tecomat_sim.uris[-1].endswith("?big[3]&big[150]&big[199]")  # in index order
 
 
+@pytest.mark.parametrize("lows", [None, (0, 0)], ids=["first-index-unknown", "from-0"])
 @pytest.mark.parametrize(
-    ("answer", "value"),
+    ("answer", "value", "from_zero"),
     [
-        ({"arr2": [[1.1, 1.3]]}, None),  # compact: one row asked, two columns: by order
-        ({"arr2": [None, [0, 1.1, 0, 1.3]]}, "absent"),  # padded from which index? unknown
-        ({"arr2": {"1": {"1": 1.1, "3": 1.3}}}, 1.1),
-        ({"arr2[1][1]": 1.1, "arr2[1][3]": 1.3}, 1.1),
-        ({"ARR2[1,1]": 1.1, "arr2[1, 3]": 1.3}, 1.1),
-        ({"arr2[1]": [0, 1.1, 0, 1.3]}, "absent"),  # a row from an unknown first index
-        ({"arr2": [1.1, 1.3]}, "absent"),  # flat: a number cannot be indexed again
-        ({"arr2": [[1.1, 1.3, 5.0]]}, "absent"),  # three items for two asked: no known shape
-        ({"arr2": [[1.1]]}, "absent"),
+        ({"arr2": [[1.1, 1.3]]}, None, None),  # compact: one row asked, two columns: by order
+        ({"arr2": [None, [0, 1.1, 0, 1.3]]}, "absent", 1.1),  # padded from the first index
+        ({"arr2": {"1": {"1": 1.1, "3": 1.3}}}, 1.1, 1.1),
+        ({"arr2[1][1]": 1.1, "arr2[1][3]": 1.3}, 1.1, 1.1),
+        ({"ARR2[1,1]": 1.1, "arr2[1, 3]": 1.3}, 1.1, 1.1),
+        ({"arr2[1]": [0, 1.1, 0, 1.3]}, "absent", 1.1),  # a row by position from its first
+        ({"arr2": [1.1, 1.3]}, "absent", "absent"),  # flat: a number cannot be indexed again
+        ({"arr2": [[1.1, 1.3, 5.0]]}, "absent", "absent"),  # compact, then longer: no shape
+        ({"arr2": [[1.1]]}, "absent", "absent"),
     ],
 )
-def test_answer_shapes(answer: Any, value: Any) -> None:
-    """arr2[1][1] and arr2[1][3]: placed only where the shape names the index."""
+def test_answer_shapes(
+    answer: Any, value: Any, from_zero: Any, lows: tuple[int, ...] | None
+) -> None:
+    """arr2[1][1] and arr2[1][3]: placed only where the shape names the index.
+
+    A list longer than asked holds elements by position from the array's first index: placed
+    once it is known (here 0, as a probe or GetList gives it), never before.
+    """
     paths = [parse_path("arr2[1][1]"), parse_path("arr2[1][3]")]
-    found = answered(answer, paths)
-    if value == "absent":
+    found = answered(answer, paths, None if lows is None else {"arr2": lows})
+    expected = value if lows is None else from_zero
+    if expected == "absent":
         assert found == {}
-    elif value is None:
+    elif expected is None:
         assert found == {"arr2[1][1]": 1.1, "arr2[1][3]": 1.3}
     else:
-        assert found["arr2[1][1]"] == value
+        assert found["arr2[1][1]"] == expected
         assert found["arr2[1][3]"] == 1.3
+
+
+def test_lists_placed_from_a_first_index_not_0() -> None:
+    """ARRAY[1..5] asked for [2] and [4]: a padded or whole list placed from 1 once known."""
+    paths = [parse_path("arrB[2]"), parse_path("arrB[4]")]
+    for answer in ([None, 20, None, 40], [10, 20, 30, 40, 50]):
+        assert answered({"arrB": answer}, paths) == {}
+        assert answered({"arrB": answer}, paths, {"arrb": (1,)}) == {
+            "arrb[2]": 20,
+            "arrb[4]": 40,
+        }
+    assert answered({"arrB": [20, 40]}, paths, {"arrb": (1,)}) == {"arrb[2]": 20, "arrb[4]": 40}
 
 
 def test_a_list_of_no_known_shape_places_nobody() -> None:

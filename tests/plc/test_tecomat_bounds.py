@@ -99,6 +99,54 @@ async def test_write_read_back_stays_at_its_index(
             assert result.values[point].value == value
 
 
+DECLARED = [*ONE_D, *TWO_D]
+"""Arrays GetList declares with `list_types` (rec.arrS lies in a structure: not declared)."""
+
+
+@pytest.mark.parametrize("fits", [True, False], ids=["whole", "too-big"])
+@pytest.mark.parametrize("whole_arrays", WHOLE_ARRAYS)
+@pytest.mark.parametrize("shape", ARRAY_ANSWERS)
+async def test_declared_bounds_place_every_list(
+    sim: TecomatSimulator, tecomat_client: TecomatClient, shape: str, whole_arrays: str, fits: bool
+) -> None:
+    """GetList declares ARRAY[1..5], [1..2, 1..3], [-2..2]: polls index lists from them.
+
+    No corner is probed for a declared array (arrB[0], arrN[0] are never asked), GetList is
+    asked once a program. Before: lists answered to these arrays failed every point.
+    """
+    sim.array_answers, sim.whole_arrays, sim.list_types = shape, whole_arrays, True
+    if not fits:
+        sim.max_variables = 4
+    for _ in range(2):
+        result = await tecomat_client.read(POINTS)
+        for point in DECLARED:
+            outcome = result.values[point]
+            if shape == "flat" and point in TWO_D and not fits:
+                assert not outcome.ok, point.address  # N-D leaves of elements in a flat list
+            else:
+                assert outcome.value == held(sim, point), (point.address, outcome.error)
+        for point in MEMBER:  # not declared, from 1: placed only where the answer names it
+            assert result.values[point].value in (held(sim, point), None), point.address
+    assert sim.calls["GetList"] <= 1  # asked when a list needs a first index, once
+    assert not any(corner in uri for uri in sim.uris for corner in ("arrB[0]", "arrN[0]&"))
+
+
+@pytest.mark.parametrize("whole_arrays", WHOLE_ARRAYS)
+@pytest.mark.parametrize("shape", ARRAY_ANSWERS)
+async def test_declared_bounds_read_back_a_write(
+    sim: TecomatSimulator, tecomat_client: TecomatClient, shape: str, whole_arrays: str
+) -> None:
+    """Writing arrB[2] of a declared ARRAY[1..5] reads back 99 in every answer shape.
+
+    Before: a list answered to the read-back (`whole`, `partial`) left it not read back.
+    """
+    sim.array_answers, sim.whole_arrays, sim.list_types = shape, whole_arrays, True
+    second = Point("arrB[2]", "INT")
+    written = await tecomat_client.write({second: 99})
+    assert (written[second].value, written[second].error) == (99, None)
+    assert sim.get("arrB[1]") == 10
+
+
 BROWSED = {
     "arrB": [f"arrB[{index}]" for index in range(1, 6)],
     "arrC": [f"arrC[{i}][{j}]" for i in (1, 2) for j in (1, 2, 3)],
@@ -133,10 +181,7 @@ async def test_browse_offers_exactly_the_plcs_elements(
     assert "arr1[0]" in offered  # arrays from 0 as before
     result = await tecomat_client.read([Point(address, "INT") for address in BROWSED["arrC"]])
     values = [outcome.value for outcome in result.values.values()]
-    if shape == "flat" and whole_arrays == "list":  # N-D leaves in a flat list: none placed
-        assert values == [None] * 6
-    else:
-        assert values == [11, 12, 13, 21, 22, 23]
+    assert values == [11, 12, 13, 21, 22, 23]  # the bounds browse confirmed index the array
 
 
 def test_first_indices_of_a_declaration() -> None:

@@ -103,8 +103,9 @@ async def test_every_type_round_trip(
     before = tecomat_sim.requests
     result = await tecomat_client.read(list(values))
     assert {point: outcome.value for point, outcome in result.values.items()} == values
-    # and one request confirms arr3 starts at 0, once (READINGS.md row 18)
-    assert tecomat_sim.requests - before == TecomatClient.requests_for(list(values)) + 1 == 3
+    # GetList (no declared bounds) and one request confirm arr3 starts at 0, once a program
+    # (READINGS.md row 18)
+    assert tecomat_sim.requests - before == TecomatClient.requests_for(list(values)) + 2 == 4
     before = tecomat_sim.requests
     await tecomat_client.read(list(values))
     assert tecomat_sim.requests - before == 2

@@ -81,5 +81,6 @@ def test_names_found_as_spelled_are_placed_as_the_general_walk_places_them(
     """Paths of names found spelled exactly so take a shorter way, to the same values."""
     paths = list({path.key: path for path in map(parse_path, asked)}.values())
     general: dict[str, Any] = {}
-    arrays._place(answer, [(path, 0) for path in paths], general, whole=False)
+    walk = [(path, 0) for path in paths]
+    arrays._place(answer, walk, arrays._Places(general, {}, {}), whole=False)
     assert arrays.answered(answer, paths) == general

@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 import base64
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 import json
 import re
 from typing import Any
@@ -160,16 +160,20 @@ class TecoApi:
         except TecoError as err:
             raise request_error(err, self.auth) from None
 
-    async def get(self, groups: Sequence[Sequence[VariablePath]]) -> Reading:
+    async def get(
+        self,
+        groups: Sequence[Sequence[VariablePath]],
+        lows: Mapping[str, tuple[int, ...]] | None = None,
+    ) -> Reading:
         """Read groups of paths; return raw values and per-path errors.
 
         A variable found unknown is not asked again in later groups: every asked path inside it
-        fails with its error.
+        fails with its error. `lows` are the arrays' first indices known (arrays.answered).
         """
         reading = Reading()
         asked = [path for group in groups for path in group]
         for group in groups:
-            await self._get(self._left(group, reading), reading, asked)
+            await self._get(self._left(group, reading), reading, asked, lows)
         return reading
 
     @staticmethod
@@ -186,7 +190,11 @@ class TecoApi:
         return left
 
     async def _get(
-        self, pending: list[VariablePath], reading: Reading, asked: Sequence[VariablePath]
+        self,
+        pending: list[VariablePath],
+        reading: Reading,
+        asked: Sequence[VariablePath],
+        lows: Mapping[str, tuple[int, ...]] | None,
     ) -> None:
         """Read one group; drop an unknown variable (400.005) and ask for the rest again.
 
@@ -220,8 +228,8 @@ class TecoApi:
                     self.max_names = min(self.max_names or len(pending), len(pending) // 2)
                 if split and len(pending) > 1:
                     half = len(pending) // 2
-                    await self._get(pending[:half], reading, asked)
-                    await self._get(self._left(pending[half:], reading), reading, asked)
+                    await self._get(pending[:half], reading, asked, lows)
+                    await self._get(self._left(pending[half:], reading), reading, asked, lows)
                     return
                 if err.code == TOO_MANY_ITEMS:
                     reading.too_big.add(pending[0].key)
@@ -230,7 +238,8 @@ class TecoApi:
                     )
                     return
                 raise request_error(err, self.auth) from None
-            placed = answered(answer, pending)
+            placed = answered(answer, pending, lows, reading.lists)
+            reading.answers.append((answer, pending))
             for path in pending:
                 if path.key in placed:
                     reading.found[path.key] = placed[path.key]

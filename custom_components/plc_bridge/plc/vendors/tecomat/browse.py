@@ -29,7 +29,7 @@ class Listing:
     items: list[BrowseItem] = field(default_factory=list)
     unlisted: list[str] = field(default_factory=list)
     declared: dict[str, tuple[int, ...]] = field(default_factory=dict)  # GetList's first indices
-    from_zero: set[str] = field(default_factory=set)  # arrays confirmed to start at 0, by key
+    lows: dict[str, tuple[int, ...]] = field(default_factory=dict)  # confirmed first indices
     lows_by_shape: dict[tuple[object, ...], tuple[int, ...] | None] = field(default_factory=dict)
 
 
@@ -135,8 +135,8 @@ async def _first_indices(
             found = lows
             break
     listing.lows_by_shape[shape] = found
-    if found is not None and not any(found):
-        listing.from_zero.add(path.key)
+    if found is not None:
+        listing.lows[path.key] = found
     return found
 
 

@@ -16,6 +16,7 @@ from ...client import PlcClient
 from ...codec import clock_option
 from ...errors import (
     PlcAddressError,
+    PlcConnectionError,
     PlcError,
     PlcProtocolError,
     PlcValueError,
@@ -36,7 +37,16 @@ from ...types import (
     ValueKind,
 )
 from .api import AUTH_METHODS, TecoApi
-from .arrays import array_plan, elements_later, known, place_arrays, place_whole
+from .arrays import (
+    array_plan,
+    elements_later,
+    from_zero,
+    known,
+    list_corners,
+    place_again,
+    place_arrays,
+    place_whole,
+)
 from .browse import LIST_URI, Listing, expand, listed_names
 from .codec import KINDS, TYPES, check_value, data_type, decode, encode, same_value
 from .info import device_info, plc_status
@@ -48,7 +58,7 @@ from .paths import (
     parse_path,
     plan,
 )
-from .reading import Plan, Reading, results
+from .reading import Plan, Reading, results, under
 from .unknown import UnknownVariables
 
 _LOGGER = logging.getLogger(__name__)
@@ -95,10 +105,13 @@ class TecomatClient(PlcClient):
             None
         )
         self._unknown = UnknownVariables()
-        # Arrays by key: asked element by element (too big, 413.004, or not from 0), or
-        # confirmed to start at 0 in every dimension (read whole, indexed by position).
+        # Arrays by key: asked element by element (too big, 413.004, or not from 0); the first
+        # index of every dimension, confirmed or declared (JSON arrays indexed by position);
+        # lists answered to elements whose probe did not confirm them (not probed again).
         self._by_elements: set[str] = set()
-        self._from_zero: set[str] = set()
+        self._lows: dict[str, tuple[int, ...]] = {}
+        self._unconfirmed: set[str] = set()
+        self._declared = False  # GetList's declared bounds are in _lows (once a program)
         self._stamp: str | None = None  # the program's stamp (GetInfo, 3.2)
         self._parsed: dict[Point, tuple[VariablePath, str] | PlcError] = {}  # the last poll's
         self._poll: Plan | None = None
@@ -167,7 +180,9 @@ class TecomatClient(PlcClient):
         if stamp != self._stamp:
             self._unknown.clear()
             self._by_elements.clear()
-            self._from_zero.clear()
+            self._lows.clear()
+            self._unconfirmed.clear()
+            self._declared = False
             self._stamp = stamp
 
     async def _poll_status(self) -> PlcStatus:
@@ -236,30 +251,90 @@ class TecomatClient(PlcClient):
     async def _read_paths(self, paths: dict[str, VariablePath], poll: bool) -> Reading:
         """Read paths; an array holding several of them is read whole and indexed here (5.2).
 
-        A JSON array is indexed by position once the PLC confirmed it starts at 0 (its first
-        and last elements, one request, once a program); else, and for an array too big for
-        one answer (413.004), its elements are asked by their own index, from then on.
+        A JSON array is indexed by position from the first indices GetList declares, else once
+        the PLC confirmed it starts at 0 (its first and last elements, one request, once a
+        program); else, and for an array too big for one answer (413.004), its elements are
+        asked by their own index, from then on.
         """
         arrays = array_plan(paths, self._by_elements)
         reading = await self._get_paths(arrays.asked, poll)
-        placed = place_arrays(arrays, reading, self._by_elements, self._from_zero)
+        placed = place_arrays(arrays, reading, self._by_elements, self._lows)
+        if placed.unconfirmed:
+            await self._declare()
+        for key in [key for key in placed.unconfirmed if key in self._lows]:
+            del placed.unconfirmed[key]
+            place_whole(arrays, key, reading, self._lows)
         if placed.unconfirmed:
             ends = [path for pair in placed.unconfirmed.values() for path in pair]
             proof = await self._teco().get(plan(ends))
             for key, pair in placed.unconfirmed.items():
                 if known(proof, pair):
-                    self._from_zero.add(key)
-                    place_whole(arrays, key, reading)
+                    depth = len(pair[0].segments) - len(arrays.asked[key].segments)
+                    self._lows[key] = tuple(0 for _ in range(depth))
+                    place_whole(arrays, key, reading, self._lows)
                 else:
                     elements_later(key, arrays.inside[key], self._by_elements, placed)
         if placed.later:
             reading.merge(await self._get_paths(placed.later, poll))
         return reading
 
+    async def _declare(self) -> None:
+        """Take the arrays' first indices GetList declares (READINGS.md row 18), once a program.
+
+        A GetList that lists names only declares none; one the PLC refuses declares none either.
+        """
+        if self._declared:
+            return
+        declared: dict[str, tuple[int, ...]] = {}
+        try:
+            listed_names(await self._teco().ask("GET", LIST_URI), declared)
+        except PlcConnectionError:
+            raise
+        except PlcError as err:
+            _LOGGER.debug("GetList gave no array bounds: %s", err)
+        self._declared = True
+        for key, lows in declared.items():
+            self._lows.setdefault(key, lows)
+
+    async def _place_lists(self, reading: Reading) -> None:
+        """Place the lists answered to elements of arrays whose first index was not known.
+
+        GetList's declared bounds first; then one request probes the corners of the rest, once
+        a program (arrays.from_zero); one not confirmed keeps its points failed.
+        """
+        unplaced = [
+            path
+            for _answer, asked in reading.answers
+            for path in asked
+            if path.key not in reading.found
+        ]
+        todo = {
+            key: (array, lengths)
+            for key, (array, lengths) in reading.lists.items()
+            if key not in self._lows
+            and key not in self._unconfirmed
+            and any(under(path, array) for path in unplaced)
+        }
+        if todo:
+            await self._declare()
+            todo = {key: found for key, found in todo.items() if key not in self._lows}
+        if todo:
+            corners = [list_corners(array, lengths) for array, lengths in todo.values()]
+            proof = await self._teco().get(plan(path for pair in corners for path in pair))
+            for key, (array, lengths) in todo.items():
+                if from_zero(proof, array, lengths):
+                    self._lows[key] = tuple(0 for _ in lengths)
+                else:
+                    self._unconfirmed.add(key)
+        if any(key in self._lows for key in reading.lists):
+            place_again(reading, self._lows)
+
     async def _get_paths(self, paths: dict[str, VariablePath], poll: bool) -> Reading:
         """Read paths; a poll skips the variables found unknown, each asked again on its timer."""
         if not poll:
-            return await self._teco().get(plan(paths.values()))
+            reading = await self._teco().get(plan(paths.values()), self._lows)
+            await self._place_lists(reading)
+            return reading
         unknown, now = self._unknown, monotonic()
         skipped: dict[str, PlcError] = {}
         if unknown:
@@ -273,10 +348,11 @@ class TecomatClient(PlcClient):
                 else:
                     unknown.still_gone(gone.path.key, now)
             paths, skipped = unknown.skip(paths)
-        reading = await self._teco().get(self._planned(paths))
+        reading = await self._teco().get(self._planned(paths), self._lows)
         if any(key not in unknown for key in reading.gone):
             await self._new_program()  # the stamp as the variable went: a change then shows
         unknown.add(reading.gone.values(), now)
+        await self._place_lists(reading)
         reading.failed.update(skipped)
         return reading
 
@@ -324,7 +400,8 @@ class TecomatClient(PlcClient):
             return {}
         paths = {item.path.key: item.path for item in taken}
         try:
-            reading = await self._teco().get(plan(paths.values()))
+            reading = await self._teco().get(plan(paths.values()), self._lows)
+            await self._place_lists(reading)
         except PlcError as err:
             reading = Reading(failed=dict.fromkeys(paths, err))
         failures: dict[int, PlcError] = {}
@@ -363,7 +440,10 @@ class TecomatClient(PlcClient):
             paths.setdefault(path.key, path)
         await expand(self._teco(), list(paths.values()), listing)
         self.unlisted = listing.unlisted
-        self._from_zero |= listing.from_zero
+        self._lows |= listing.lows
+        for key, lows in listing.declared.items():  # this program's GetList: no need to ask
+            self._lows.setdefault(key, lows)
+        self._declared = True
         return listing.items
 
     @property

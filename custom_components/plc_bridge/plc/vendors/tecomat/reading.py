@@ -39,6 +39,9 @@ class Reading:
     failed: dict[str, PlcError] = field(default_factory=dict)
     gone: dict[str, Gone] = field(default_factory=dict)  # unknown variables (400.005), by key
     too_big: set[str] = field(default_factory=set)  # alone, more items than one answer holds
+    answers: list[tuple[Any, list[VariablePath]]] = field(default_factory=list)  # raw, with asked
+    # Arrays whose list answer placed nothing (first index unknown), with its lengths, by key.
+    lists: dict[str, tuple[VariablePath, tuple[int, ...]]] = field(default_factory=dict)
 
     def merge(self, other: Reading) -> None:
         """Take in another reading's results."""
@@ -46,6 +49,8 @@ class Reading:
         self.failed.update(other.failed)
         self.gone.update(other.gone)
         self.too_big |= other.too_big
+        self.answers += other.answers
+        self.lists |= other.lists
 
 
 def gone_for(path: VariablePath, gone: dict[str, Gone]) -> Gone | None:
