@@ -19,27 +19,33 @@ class WriteGuard:
     """The read-only points of one PLC, by what they cover, and the check of a write."""
 
     def __init__(self, client: type[PlcClient] | PlcClient, read_only: Iterable[Point]) -> None:
-        """Work out once what each read-only point covers."""
+        """Keep the read-only points; what they cover is asked at each check (reads tell more)."""
         self._client = client
-        self._covered: list[tuple[Point, Footprint | None]] = [
-            (point, _footprint(client, point)) for point in dict.fromkeys(read_only)
-        ]
+        self._read_only = list(dict.fromkeys(read_only))
 
     def check(self, point: Point) -> None:
         """Refuse the write of a (validated) point; raise ServiceValidationError, send nothing."""
         if not _writable(self._client, point):
             raise _refused("address_not_writable", point)
         covers = _footprint(self._client, point)
-        for other, footprint in self._covered:
+        for other in self._read_only:
+            footprint = _footprint(self._client, other, read=True)
             if other == point or (covers is not None and covers == footprint):
                 raise _refused("read_only", point)
             if covers is not None and footprint is not None and covers.overlaps(footprint):
                 raise _refused("covers_read_only", point, other)
 
 
-def _footprint(client: type[PlcClient] | PlcClient, point: Point) -> Footprint | None:
-    """What the point covers, or None for one its vendor cannot parse (compared as typed)."""
+def _footprint(
+    client: type[PlcClient] | PlcClient, point: Point, *, read: bool = False
+) -> Footprint | None:
+    """What the point covers, or None for one its vendor cannot parse (compared as typed).
+
+    `read`: as the connected client last read it (a read-only S7-200 SMART string its length).
+    """
     try:
+        if read and isinstance(client, PlcClient):
+            return client.covers(point)
         return client.footprint(point)
     except PlcError:
         return None
