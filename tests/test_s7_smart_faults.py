@@ -3,33 +3,54 @@ no entity its value (issue 19: both made every entity of the PLC unavailable).""
 
 from __future__ import annotations
 
+import asyncio
+from datetime import timedelta
+
 from freezegun.api import FrozenDateTimeFactory
 from homeassistant.config_entries import ConfigEntryState
 from homeassistant.core import HomeAssistant
 from homeassistant.helpers import issue_registry as ir
+from homeassistant.util import dt as dt_util
 import pytest
-from pytest_homeassistant_custom_component.common import MockConfigEntry
+from pytest_homeassistant_custom_component.common import MockConfigEntry, async_fire_time_changed
 
 from custom_components.plc_bridge.const import DOMAIN
+from custom_components.plc_bridge.plc.vendors.s7_smart import rpc
 from simulators.s7_smart import HttpFault, S7SmartSimulator
 
-from .ha_fixtures import make_entry, point, poll
+from .ha_fixtures import SCAN_INTERVAL, make_entry, point, poll
 
 TEMPERATURE = "sensor.s7_200_smart_temperature"
 
 
+@pytest.mark.parametrize("times", [1, 2, 3])
 @pytest.mark.parametrize("status", [500, 503, 404])
-async def test_one_busy_answer_costs_no_value(
+async def test_busy_answers_cost_no_value(  # noqa: PLR0917 - fixtures and parameters
     hass: HomeAssistant,
     s7_smart_sim: S7SmartSimulator,
     setup_integration: MockConfigEntry,
     freezer: FrozenDateTimeFactory,
+    monkeypatch: pytest.MonkeyPatch,
     status: int,
+    times: int,
 ) -> None:
-    s7_smart_sim.http_faults = [HttpFault(status, "<html>busy</html>")]
-    await poll(hass, freezer)
-    assert hass.states.get(TEMPERATURE).state == "21.5"
-    assert not s7_smart_sim.http_faults
+    """One busy answer (issue 19) or two or three in a row (issue 23): resent within the poll
+    interval, every entity keeps its value (the first resend after 10 ms here, 1 s in use)."""
+    monkeypatch.setattr(rpc, "BUSY_BACKOFF", 0.01)
+    s7_smart_sim.set("VD100", 22.3, "float")
+    s7_smart_sim.real_format = "double"
+    s7_smart_sim.busy, s7_smart_sim.busy_status = times, HttpFault(status, "<html>busy</html>")
+    before = s7_smart_sim.requests
+    freezer.tick(timedelta(seconds=SCAN_INTERVAL))
+    async_fire_time_changed(hass)
+    for _turn in range(2000):  # the poll's back-off waits run when their time has come
+        if hass.states.get(TEMPERATURE).state == "22.3":
+            break
+        await asyncio.sleep(0)
+        async_fire_time_changed(hass, dt_util.utcnow() + timedelta(seconds=0.5))
+    await hass.async_block_till_done()
+    assert hass.states.get(TEMPERATURE).state == "22.3"
+    assert s7_smart_sim.requests - before == times + 1
 
 
 async def test_smaller_node_limit_in_other_words(

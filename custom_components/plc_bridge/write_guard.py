@@ -43,11 +43,9 @@ class WriteGuard:
     """The read-only points of one PLC, by what they cover, and the check of a write."""
 
     def __init__(self, client: Client, read_only: Iterable[Point]) -> None:
-        """Work out once what each read-only point covers."""
+        """Keep the read-only points; what they cover is asked at each check (reads tell more)."""
         self._client = client
-        self._covered: list[tuple[Point, Footprint | None]] = [
-            (point, _footprint(client, point)) for point in dict.fromkeys(read_only)
-        ]
+        self._read_only = list(dict.fromkeys(read_only))
 
     def conflict(self, point: Point) -> Conflict | None:
         """Return why a write of the (validated) point would meet read-only data, if it would.
@@ -57,7 +55,8 @@ class WriteGuard:
         """
         covers = _footprint(self._client, point)
         writes = _footprint(self._client, point, write=True)
-        for other, footprint in self._covered:
+        for other in self._read_only:
+            footprint = _footprint(self._client, other, read=True)
             if other == point or (covers is not None and covers == footprint):
                 return Conflict("read_only", point)
             if footprint is None:
@@ -123,9 +122,16 @@ def _point(client: Client, data: Mapping[str, Any]) -> Point:
         return point
 
 
-def _footprint(client: Client, point: Point, *, write: bool = False) -> Footprint | None:
-    """What the point covers (or a write of it changes); None for one its vendor cannot parse."""
+def _footprint(
+    client: Client, point: Point, *, write: bool = False, read: bool = False
+) -> Footprint | None:
+    """What the point covers (or a write of it changes); None for one its vendor cannot parse.
+
+    `read`: as the connected client last read it (a read-only S7-200 SMART string its length).
+    """
     try:
+        if read and isinstance(client, PlcClient):
+            return client.covers(point)
         return client.write_footprint(point) if write else client.footprint(point)
     except PlcError:
         return None

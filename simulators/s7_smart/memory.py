@@ -45,6 +45,17 @@ def _single(value: float) -> float:
     return float(stored)  # pragma: no cover - 9 significant digits always round-trip
 
 
+REAL_FORMATS = ("shortest", "double", "fixed")
+"""How a firmware prints a REAL (READINGS.md row 18): the shortest decimal of the float32
+(22.3), its double expansion (22.299999237060547), or printf's six decimals (22.299999)."""
+
+
+def printed_real(value: float, real_format: str) -> float:
+    """Return a REAL (given as its shortest decimal) as a firmware with `real_format` prints it."""
+    double = struct.unpack(">f", struct.pack(">f", value))[0]
+    return double if real_format == "double" else float(f"{double:.6f}")
+
+
 class Memory:
     """The data areas (V sized as in an ST60/SR60) and the real-time clock of one CPU."""
 
@@ -109,6 +120,12 @@ class Memory:
         if mode == "float":
             return _single(struct.unpack(">f", data)[0])
         return int.from_bytes(data, "big", signed=mode == "signed")
+
+    def put_string(self, offset: int, data: bytes) -> None:
+        """Put a string into V memory as the user program does: a length byte, then any bytes."""
+        if len(data) > 254 or offset + 1 + len(data) > self.v_size:
+            raise ValueError(f"{len(data)} bytes do not fit a string at VB{offset}")
+        self.areas["V"][offset : offset + 1 + len(data)] = bytes([len(data)]) + data
 
     def store(self, where: Where, value: Any) -> None:
         """Encode a wire value into memory; refuse what does not fit (INVALID_VALUE)."""

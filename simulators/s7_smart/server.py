@@ -40,7 +40,7 @@ from .errors import (
     Fault,
     shown,
 )
-from .memory import DATE_FORMAT, READ_ONLY_SM, Memory, Value
+from .memory import DATE_FORMAT, READ_ONLY_SM, REAL_FORMATS, Memory, Value, printed_real
 
 DEFAULT_USER = "admin"
 DEFAULT_PASSWORD = "Smart-200"
@@ -49,6 +49,10 @@ API_LIST = ["login", "logout", "get_permission", "read", "write", "browse"]
 PAYLOAD_LIMIT = 15 * 1024
 MAX_NODES = 32
 MAX_USERS = 4
+STRINGS = ("escaped", "utf-8", "raw", "latin-1", "gbk", "gbk-declared")
+"""How a firmware puts a string's bytes into a reply (READINGS.md row 17): each byte as the
+character of its number, escaped (\u00b0) or in UTF-8; the bytes as they are, undeclared or
+declared ISO 8859-1; the bytes read as GBK text, sent in UTF-8 or as they are, declared GBK."""
 
 
 class HttpFault(NamedTuple):
@@ -67,7 +71,9 @@ class S7SmartSimulator(HttpSimulator):
     sent), `system_status`, `forced`, `clock` (stands still unless set, so tests stay
     deterministic), `http_faults` (HTTP answers given instead of the next requests'). Where the
     manual is silent, a switch per reading (READINGS.md): `codes`, `stop_refusal`, `max_nodes`
-    with `node_limit_error`, `max_write_nodes`, `error_status`, `cookie_name_in_token`, `version`.
+    with `node_limit_error`, `max_write_nodes`, `error_status`, `cookie_name_in_token`, `version`,
+    `strings` (how a string's bytes go into a reply), `real_format` (how a REAL is printed),
+    `busy` with `busy_status` (busy answers in a row). `arrivals` keeps when each request came.
     """
 
     tls = True
@@ -105,6 +111,11 @@ class S7SmartSimulator(HttpSimulator):
         self.http_faults: list[HttpFault] = []
         self.forced = False
         self.cookie_name_in_token = True
+        self.strings = "escaped"  # STRINGS: how the bytes of a string go into a reply
+        self.real_format = "shortest"  # REAL_FORMATS: how a REAL is printed in a reply
+        self.busy = 0  # the next requests answered busy (busy_status, no JSON-RPC), in a row
+        self.busy_status = HttpFault(503, "<html>Server busy</html>")
+        self.arrivals: list[float] = []  # time.monotonic() of each request, busy ones too
         self.rewrite: Callable[[dict[str, Any]], dict[str, Any]] | None = None
         self.calls: Counter[str] = Counter()
         self.memory = Memory()
@@ -141,6 +152,13 @@ class S7SmartSimulator(HttpSimulator):
             self.memory.store(self.memory.locate(address, mode), value)
         except Fault as fault:
             raise ValueError(f"{address}: {fault}") from None
+
+    def put_string(self, address: str, data: bytes) -> None:
+        """Put a string of any bytes at a VB address, as the user program does (`25°C`)."""
+        where = self.memory.locate(address, "string")
+        if where.area != "V":
+            raise ValueError(f"{address}: the program's strings go to V memory here")
+        self.memory.put_string(where.offset, data)
 
     def get(self, address: str, mode: str = "signed") -> Value:
         """Return a stored value as the PLC reports it (bits as bool, DATE as datetime)."""
@@ -182,11 +200,18 @@ class S7SmartSimulator(HttpSimulator):
 
     async def _handle(self, request: web.Request) -> web.StreamResponse:
         """Answer one JSON-RPC call (never a batch)."""
+        self.arrivals.append(time.monotonic())
+        if self.busy > 0:
+            self.busy -= 1
+            fault = self.busy_status
+            return web.Response(status=fault.status, text=fault.body, headers=fault.headers)
         if self.http_faults:
             fault = self.http_faults.pop(0)
             return web.Response(status=fault.status, text=fault.body, headers=fault.headers)
         if self.codes not in CODES:
             raise ValueError(f"codes must be one of {CODES}")
+        if self.strings not in STRINGS or self.real_format not in REAL_FORMATS:
+            raise ValueError(f"strings: one of {STRINGS}; real_format: one of {REAL_FORMATS}")
         if request.content_type != "application/json":
             return self._error(None, INVALID_REQUEST)
         body = await request.read()
@@ -214,7 +239,17 @@ class S7SmartSimulator(HttpSimulator):
         reply = {"jsonrpc": "2.0", "id": call_id, "result": result}
         if self.rewrite is not None:
             reply = self.rewrite(reply)
-        return web.json_response(reply, dumps=_compact)
+        return self._reply(reply)
+
+    def _reply(self, reply: dict[str, Any]) -> web.Response:
+        """Return a successful reply with its strings' bytes put in as `strings` says."""
+        if self.strings == "escaped":
+            return web.json_response(reply, dumps=_compact)
+        text = json.dumps(reply, separators=(",", ":"), ensure_ascii=False)
+        charset = {"latin-1": "iso-8859-1", "gbk-declared": "gbk"}.get(self.strings)
+        body = text.encode("utf-8" if self.strings in ("utf-8", "gbk") else "latin-1")
+        content_type = "application/json" + (f"; charset={charset}" if charset else "")
+        return web.Response(body=body, headers={"Content-Type": content_type})
 
     def _error(self, call_id: Any, code: int) -> web.Response:
         """Return a JSON-RPC error reply, in the code table and HTTP status the switches name."""
@@ -337,12 +372,20 @@ class S7SmartSimulator(HttpSimulator):
                     raise Fault(READ_ONLY)
                 self.memory.store(where, node["value"])
             else:
-                value = self.memory.load(where)
+                value = self._printed(where.mode, self.memory.load(where))
         except Fault as fault:
             code, message = shown(fault.code, self.codes)
             return {"code": code, "message": message, "var": var}
         done = {"code": 0, "message": "Success.", "var": var}
         return done if write else done | {"value": value}
+
+    def _printed(self, mode: str, value: Any) -> Any:
+        """Return a read value as this firmware prints it (`real_format`, `strings`)."""
+        if mode == "float" and self.real_format != "shortest":
+            return printed_real(value, self.real_format)
+        if mode == "string" and self.strings == "gbk":
+            return value.encode("latin-1").decode("gbk", errors="replace")
+        return value
 
 
 def _compact(value: Any) -> str:

@@ -4,8 +4,17 @@ from __future__ import annotations
 
 import pytest
 
-from custom_components.plc_bridge.plc import ConnectionConfig, Footprint, Point
+from custom_components.plc_bridge.plc import (
+    ConnectionConfig,
+    Footprint,
+    PlcAddressError,
+    PlcValueError,
+    Point,
+)
 from custom_components.plc_bridge.plc.vendors import client_class
+from custom_components.plc_bridge.plc.vendors.s7_smart import S7SmartClient
+from simulators.s7_smart import S7SmartSimulator
+from simulators.s7_smart.server import STRINGS
 
 
 def overlap(vendor: str, first: tuple[str, str], second: tuple[str, str]) -> bool:
@@ -24,7 +33,10 @@ def overlap(vendor: str, first: tuple[str, str], second: tuple[str, str]) -> boo
         ("s7_smart", ("VW100", "signed"), ("VB100", "unsigned")),
         ("s7_smart", ("VW100", "signed"), ("vb101", "raw")),
         ("s7_smart", ("VD100", "float"), ("V103.7", "signed")),
-        ("s7_smart", ("VB100", "string"), ("VW200", "signed")),  # a string's characters
+        ("s7_smart", ("VB100", "string"), ("VW200", "signed")),  # never read: all it may hold
+        ("s7_smart", ("VB500", "string[10]"), ("VB510", "unsigned")),  # its 10th character
+        ("s7_smart", ("VB500", "string[10]"), ("VW509", "signed")),
+        ("s7_smart", ("VB500", "String [ 10 ]"), ("VB500", "unsigned")),  # its length byte
         ("s7", ("DB1.DBW0", "INT"), ("DB1.DBB0", "BYTE")),
         ("s7", ("DB1.DBW0", "INT"), ("DB1.DBX1.3", "BOOL")),
         ("s7", ("DB1.DBB10", "STRING[20]"), ("DB1.DBW30", "INT")),
@@ -49,6 +61,9 @@ def test_overlapping_points(vendor: str, first: tuple[str, str], second: tuple[s
     ("vendor", "first", "second"),
     [
         ("s7_smart", ("VW100", "signed"), ("VB102", "unsigned")),
+        ("s7_smart", ("VB500", "string[10]"), ("VB511", "unsigned")),
+        ("s7_smart", ("VB500", "string[10]"), ("VW700", "signed")),  # issue 23: refused before
+        ("s7_smart", ("VB500", "string[20]"), ("VD704", "signed")),
         ("s7_smart", ("VW10", "signed"), ("MW10", "signed")),
         ("s7_smart", ("AIW16", "signed"), ("AQW16", "signed")),
         ("s7_smart", ("T37", "signed"), ("C37", "signed")),
@@ -167,3 +182,49 @@ def test_bits_beside_each_other_do_not_overlap(
     whole = "unsigned" if vendor == "s7_smart" else "BYTE"
     assert not overlap(vendor, (bit, kind), (neighbour, kind))
     assert overlap(vendor, (bit, kind), (byte, whole))
+
+
+def test_declared_string_length() -> None:
+    """`string[n]`: 1..254 characters, within its area; a longer value is refused unsent."""
+    declared = S7SmartClient.validate_point(Point("vb500", " String[ 12 ] "))
+    assert declared == Point("VB500", "string[12]")
+    assert S7SmartClient.footprint(declared) == Footprint("V", 500 * 8, 513 * 8)
+    assert S7SmartClient.validate_value(declared, "x" * 12) == "x" * 12
+    with pytest.raises(PlcValueError, match="longer than 12"):
+        S7SmartClient.validate_value(declared, "x" * 13)
+    for wrong in ("string[0]", "string[255]"):
+        with pytest.raises(PlcAddressError, match=r"1\.\.254 characters"):
+            S7SmartClient.validate_point(Point("VB500", wrong))
+    with pytest.raises(PlcAddressError, match="cannot hold a string of 20"):
+        S7SmartClient.validate_point(Point("VB20470", "string[20]"))
+    with pytest.raises(PlcAddressError, match="cannot hold a string"):
+        S7SmartClient.validate_point(Point("VW500", "string[10]"))
+
+
+def bytes_of(footprint: Footprint) -> tuple[int, int]:
+    """Return the [first, end) bytes a byte-aligned footprint covers."""
+    return footprint.start // 8, footprint.end // 8
+
+
+@pytest.mark.parametrize("strings", STRINGS)
+async def test_read_string_length(
+    s7_smart_sim: S7SmartSimulator, s7_smart_client: S7SmartClient, strings: str
+) -> None:
+    """An undeclared string covers its length byte and its longest read (issue 23: a read-only
+    VB500 blocked VW700 and VD704); a character beyond ASCII counts as in UTF-8; declared is
+    the least."""
+    s7_smart_sim.strings = strings
+    text, declared = Point("VB500", "string"), Point("VB500", "string[10]")
+    assert bytes_of(s7_smart_client.covers(text)) == (500, 755)  # never read: all it may hold
+    s7_smart_sim.put_string("VB500", b"25\xb0C")
+    await s7_smart_client.read([text])
+    assert bytes_of(s7_smart_client.covers(text)) == (500, 506)  # "25°C": 5 bytes in UTF-8
+    assert bytes_of(s7_smart_client.covers(declared)) == (500, 511)
+    assert S7SmartClient.footprint(text) == Footprint("V", 500 * 8, 755 * 8)  # no PLC, no read
+    s7_smart_sim.put_string("VB500", b"ok")
+    await s7_smart_client.read([text])
+    assert bytes_of(s7_smart_client.covers(text)) == (500, 506)  # the longest stays
+    s7_smart_sim.put_string("VB500", b"a longer text")
+    await s7_smart_client.read([declared])
+    assert bytes_of(s7_smart_client.covers(declared)) == (500, 514)  # longer than declared
+    assert s7_smart_client.covers(Point("VW700", "signed")) == Footprint("V", 5600, 5616)

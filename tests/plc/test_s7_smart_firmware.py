@@ -15,7 +15,7 @@ from custom_components.plc_bridge.plc import (
     PlcWriteRefusedError,
     Point,
 )
-from custom_components.plc_bridge.plc.vendors.s7_smart import S7SmartClient
+from custom_components.plc_bridge.plc.vendors.s7_smart import S7SmartClient, rpc
 from custom_components.plc_bridge.plc.vendors.s7_smart.errors import STOP_MESSAGE
 from simulators.s7_smart import CODES, HttpFault, S7SmartSimulator
 from simulators.s7_smart.errors import (
@@ -25,6 +25,7 @@ from simulators.s7_smart.errors import (
     PAYLOAD_TOO_LARGE,
     TOO_MANY_NODES,
 )
+from tests.loopback import connected
 
 from .conftest import ConfigFactory
 
@@ -81,19 +82,25 @@ async def test_refused_even_one_node(
 
 
 @pytest.mark.parametrize("status", [500, 502, 503, 504, 404])
-async def test_http_error_resent_once(
-    s7_smart_sim: S7SmartSimulator, s7_smart_client: S7SmartClient, status: int
+async def test_http_error_resent(
+    s7_smart_sim: S7SmartSimulator,
+    s7_smart_config: ConfigFactory,
+    monkeypatch: pytest.MonkeyPatch,
+    status: int,
 ) -> None:
-    """One HTTP 5xx or 404 (no JSON-RPC answer) costs a resend, not the poll."""
+    """HTTP 5xx or 404 answers (no JSON-RPC) cost resends, not the poll, while the resends fit
+    one poll interval (30, 60, 120 ms in 440 ms; READINGS.md row 19)."""
+    monkeypatch.setattr(rpc, "BUSY_BACKOFF", 0.03)
     s7_smart_sim.set("VW0", 3)
-    s7_smart_sim.http_faults = [HttpFault(status, "<html>busy</html>")]
-    before = s7_smart_sim.requests
-    assert (await s7_smart_client.read(POINTS[:2])).values[POINTS[0]].value == 3
-    assert s7_smart_sim.requests - before == 2
-    s7_smart_sim.http_faults = [HttpFault(status), HttpFault(status)]
-    with pytest.raises(PlcConnectionError, match=f"HTTP {status}"):
-        await s7_smart_client.read(POINTS[:2])
-    assert s7_smart_sim.requests - before == 4
+    async with connected(S7SmartClient(s7_smart_config(poll_interval=0.44))) as client:
+        s7_smart_sim.http_faults = [HttpFault(status, "<html>busy</html>")] * 3
+        before = s7_smart_sim.requests
+        assert (await client.read(POINTS[:2])).values[POINTS[0]].value == 3
+        assert s7_smart_sim.requests - before == 4
+        s7_smart_sim.http_faults = [HttpFault(status)] * 4
+        with pytest.raises(PlcConnectionError, match=f"HTTP {status} 4 times in a row"):
+            await client.read(POINTS[:2])
+        assert s7_smart_sim.requests - before == 8
 
 
 @pytest.mark.parametrize("status", [503, 404, 429])

@@ -23,35 +23,15 @@ from custom_components.plc_bridge.plc.vendors.s7_smart import (
     session as session_module,
 )
 from custom_components.plc_bridge.plc.vendors.s7_smart.errors import STOP_MESSAGE
-from simulators.s7_smart import CODES, S7SmartSimulator
+from simulators.s7_smart import S7SmartSimulator
 
 from .conftest import ConfigFactory
+from .s7_smart_fixtures import FIRMWARES, configure, firmware_id
 
 POINT = Point("VW0", "signed")
 
 
-FIRMWARES = [
-    {"codes": codes, "stop_refusal": stop, "error_status": status, "cookie_name_in_token": named}
-    for codes in CODES
-    for stop in ("request", "node")
-    for status, named in ((200, True), (500, False))  # each value of both, in pairs
-]
-
-
-def configure(sim: S7SmartSimulator, firmware: dict[str, Any]) -> None:
-    """Set the simulator's switches for the readings a firmware takes (READINGS.md)."""
-    for name, value in firmware.items():
-        setattr(sim, name, value)
-
-
-@pytest.fixture(
-    autouse=True,
-    params=FIRMWARES,
-    ids=lambda f: (
-        f"{f['codes']}-stop-{f['stop_refusal']}-http-{f['error_status']}"
-        + ("" if f["cookie_name_in_token"] else "-bare-token")
-    ),
-)
+@pytest.fixture(autouse=True, params=FIRMWARES, ids=firmware_id)
 def firmware(request: pytest.FixtureRequest, s7_smart_sim: S7SmartSimulator) -> dict[str, Any]:
     """Run every session, STOP and permission test under each reading the manual leaves open:
     codes of our table, foreign ones, or ours meaning other things; STOP refused for the whole

@@ -140,6 +140,14 @@ class PlcClient(ABC):
         """
         return Footprint(point.address, 0, 1)
 
+    def covers(self, point: Point) -> Footprint:
+        """What a valid point covers as this client has seen the PLC (the write guard's view).
+
+        `footprint` unless the vendor learns more from its reads (an S7-200 SMART string's
+        length, which only its length byte in the PLC tells).
+        """
+        return self.footprint(point)
+
     @classmethod
     def write_footprint(cls, point: Point) -> Footprint:
         """What a write of a valid point changes in the PLC: its footprint, or more.

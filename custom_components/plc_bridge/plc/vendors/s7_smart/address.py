@@ -9,6 +9,8 @@ from ...errors import PlcAddressError
 
 MODES = ("signed", "unsigned", "float", "string", "raw")
 """The Web API's data modes (manual 8.2), also the point form's data types."""
+MAX_STRING = 254  # an S7-200 SMART string: one length byte, then up to 254 characters
+_DECLARED = re.compile(r"string\[([0-9]{1,4})\]")
 
 BOOL = "bool"
 DATE = "date"
@@ -118,16 +120,44 @@ def _check_range(address: Address) -> None:
         )
 
 
-def covered(address: Address, kind: str) -> tuple[str, int, int]:
+def covered(address: Address, kind: str, length: int | None = None) -> tuple[str, int, int]:
     """Return the area and the [start, end) a point covers: its bytes, or a T, C, HC number.
 
-    A bit covers its byte; a string at VB100 up to 255 bytes (its length byte and at most 254
-    characters), as long as the area lasts.
+    A bit covers its byte; a string its length byte and `length` characters: those declared
+    (`string[20]`) or read, else as many as any string may hold (254), as long as the area
+    lasts.
     """
     if not address.is_byte_area and address.area not in ("AIW", "AQW"):
         return address.area, address.index, address.index + 1
-    size = 255 if kind == "string" else max(1, address.width // 8)
+    if kind == "string":
+        size = 1 + (MAX_STRING if length is None else length)
+    else:
+        size = max(1, address.width // 8)
     return address.area, address.index, min(address.index + size, SIZES[address.area])
+
+
+def parse_mode(data_type: str) -> tuple[str, int | None]:
+    """Return a data type's mode and declared string length (`string[20]`: "string", 20).
+
+    The CPU keeps no string's size (a length byte, then the characters the program wrote);
+    a declared length is the user's word for the room the program keeps for it.
+    """
+    mode = re.sub(r"\s+", "", data_type).lower()
+    if (declared := _DECLARED.fullmatch(mode)) is None:
+        return mode, None
+    length = int(declared[1])
+    if not 1 <= length <= MAX_STRING:
+        raise PlcAddressError(f"a string holds 1..{MAX_STRING} characters, not {length}")
+    return "string", length
+
+
+def check_declared(address: Address, length: int | None) -> None:
+    """Refuse a declared string length that runs past the end of the address's area."""
+    if length is not None and address.room < 1 + length:
+        raise PlcAddressError(
+            f"{address.text} cannot hold a string of {length} characters: "
+            f"{NAMES[address.area]} ends {address.room - 1} bytes after its length byte"
+        )
 
 
 READ_ONLY_SM = ((0, 30), (1000, 1536))
@@ -153,7 +183,9 @@ def point_kind(address: Address, mode: str) -> str:
     """
     mode = mode.strip().lower()
     if mode not in MODES:
-        raise PlcAddressError(f"unknown data type {mode!r}; use one of {', '.join(MODES)}")
+        raise PlcAddressError(
+            f"unknown data type {mode!r}; use one of {', '.join(MODES)} or string[n]"
+        )
     if address.area == "DATE":
         return DATE
     if address.bit is not None:

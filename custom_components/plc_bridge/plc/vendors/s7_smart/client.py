@@ -24,7 +24,7 @@ from ...types import (
     Value,
     ValueKind,
 )
-from .address import BOOL, DATE, MODES, covered, writable
+from .address import BOOL, DATE, MAX_STRING, MODES, Address, covered, writable
 from .codec import (
     MAX_NODES,
     Node,
@@ -52,6 +52,14 @@ _KINDS = {
     "string": ValueKind.TEXT,
     "raw": ValueKind.BYTES,
 }
+
+
+def _footprint(area: str, start: int, end: int, bit: int | None) -> Footprint:
+    """Return the bits a point covers: one bit, or its bytes [start, end)."""
+    if bit is not None:
+        first = start * 8 + bit
+        return Footprint(area, first, first + 1)
+    return Footprint(area, start * 8, end * 8)
 
 
 @dataclass(frozen=True, slots=True)
@@ -85,26 +93,39 @@ class S7SmartClient(WebSession):
         self._zone = ZoneInfo(self.config.time_zone)
         self._plan: _PollPlan | None = None
         self._max_nodes = MAX_NODES  # lowered, and kept, when the PLC refuses as many
+        self._string_bytes: dict[Address, int] = {}  # the longest each string was read
 
     @classmethod
     def validate_point(cls, point: Point) -> Point:
         """Return the point with its address in upper case; raise PlcAddressError."""
         node = node_for(point)
-        return Point(node.address.text, point.data_type.strip().lower())
+        mode = f"string[{node.length}]" if node.length else point.data_type.strip().lower()
+        return Point(node.address.text, mode)
 
     @classmethod
     def footprint(cls, point: Point) -> Footprint:
         """The memory area and bits a point covers (VW100 and VB101 overlap; V60.0, V60.2 not).
 
         Counted in bits: a write names a bit by its own address (§9.2: `V7000.0`), so a bit
-        beside a read-only bit of the same byte stays writable.
+        beside a read-only bit of the same byte stays writable. A string covers its declared
+        length (`string[20]`), else all a string may hold: only a read tells more (`covers`).
         """
         node = node_for(point)
-        area, start, end = covered(node.address, node.kind)
-        if node.address.bit is not None:
-            first = start * 8 + node.address.bit
-            return Footprint(area, first, first + 1)
-        return Footprint(area, start * 8, end * 8)
+        return _footprint(*covered(node.address, node.kind, node.length), node.address.bit)
+
+    def covers(self, point: Point) -> Footprint:
+        """What a point covers as the PLC has shown it: a string at least its longest read.
+
+        The CPU keeps no string's size, only its length byte: a string read covers that byte
+        and the characters read (each beyond ASCII counted as in UTF-8, never fewer bytes than
+        the PLC holds), or more where declared; one never read covers what `footprint` says.
+        """
+        node = node_for(point)
+        read = self._string_bytes.get(node.address) if node.kind == "string" else None
+        if read is None:
+            return self.footprint(point)
+        length = max(read, node.length or 0)
+        return _footprint(*covered(node.address, node.kind, length), None)
 
     @classmethod
     def address_writable(cls, point: Point) -> bool:
@@ -116,7 +137,7 @@ class S7SmartClient(WebSession):
     def validate_value(cls, point: Point, value: Value) -> Value:
         """Return the value checked for the point's address and mode; raise PlcValueError."""
         node = node_for(point)
-        return check_value(node.address, node.kind, value)
+        return check_value(node.address, node.kind, value, node.length)
 
     @classmethod
     def value_kind(cls, point: Point) -> ValueKind:
@@ -228,9 +249,13 @@ class S7SmartClient(WebSession):
         if code != 0:
             return PointResult(error=node_error(code, node.address.text, item.get("message")))
         try:
-            return PointResult(value=decode(node.address, node.kind, item.get("value"), self._zone))
+            value = decode(node.address, node.kind, item.get("value"), self._zone)
         except PlcProtocolError as err:
             return PointResult(error=err)
+        if isinstance(value, str) and node.kind == "string":
+            size = min(MAX_STRING, len(value.encode("utf-8", "surrogatepass")))
+            self._string_bytes[node.address] = max(size, self._string_bytes.get(node.address, 0))
+        return PointResult(value=value)
 
     async def _write(self, values: Mapping[Point, Value]) -> dict[Point, PointResult]:
         """Write the values, 32 nodes a request; a node's failure stays in its own result.

@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from datetime import datetime, tzinfo
 from functools import lru_cache
 import json
@@ -17,11 +17,22 @@ from ...codec import (
     check_integer,
     integer_range,
     local_time,
+    shortest_real,
 )
 from ...errors import PlcProtocolError, PlcValueError
 from ...planning import pack
 from ...types import PlcStatus, Point, Value
-from .address import BOOL, DATE, MODES, Address, parse_address, point_kind
+from .address import (
+    BOOL,
+    DATE,
+    MAX_STRING,
+    MODES,
+    Address,
+    check_declared,
+    parse_address,
+    parse_mode,
+    point_kind,
+)
 
 DATE_FORMAT = "%Y-%m-%d %H:%M:%S"
 MAX_NODES = 32  # "max to 32 nodes" (manual 8.1, 9.1)
@@ -29,20 +40,23 @@ PAYLOAD_LIMIT = 15 * 1024  # "The overall payload shall not exceed 15KB" (manual
 NODE_CACHE = 1 << 14
 """Points whose parsed node is kept (about 320 bytes each): above the largest poll planned for
 (10,000 points), since a poll past the cap parses every point again at each new plan."""
-MAX_STRING = 254  # an S7-200 SMART string: one length byte, then up to 254 ASCII characters
 
 
-def check_value(address: Address, kind: str, value: Value) -> Value:
-    """Return a value coerced for the point; raise PlcValueError when it cannot fit."""
+def check_value(address: Address, kind: str, value: Value, length: int | None = None) -> Value:
+    """Return a value coerced for the point; raise PlcValueError when it cannot fit.
+
+    A REAL comes back as the float32 it is stored as (22.3, not 22.299999237060547); a
+    string takes at most its declared `length` characters.
+    """
     what = address.text
     if kind == BOOL:
         return check_bool(value, what)
     if kind == DATE:
         return _check_date(value)
     if kind == "float":
-        return check_float(value, what=what)
+        return shortest_real(check_float(value, what=what))
     if kind == "string":
-        return check_ascii(value, min(MAX_STRING, address.room - 1), what)
+        return check_ascii(value, min(length or MAX_STRING, address.room - 1), what)
     if kind == "raw":
         return _check_raw(address, value)
     low, high = integer_range(address.width, signed=kind == "signed")
@@ -95,7 +109,7 @@ def decode(address: Address, kind: str, raw: Any, zone: tzinfo) -> Value:
         if kind == "string" and isinstance(raw, str):
             return raw
         if kind == "float" and number:
-            return float(raw)
+            return shortest_real(float(raw))
         if kind == "raw" and isinstance(raw, list):
             return _check_raw(address, raw)
         if kind in ("signed", "unsigned") and number:
@@ -146,6 +160,7 @@ class Node:
 
     address: Address
     kind: str
+    length: int | None = field(default=None, compare=False)  # a string's declared characters
 
     def request(self, value: Any = None, *, write: bool = False) -> dict[str, Any]:
         """Return the JSON node; "signed" is the device's default mode and is left out."""
@@ -161,7 +176,10 @@ class Node:
 def node_for(point: Point) -> Node:
     """Parse a point into its wire node (cached: polls ask again); raise PlcAddressError."""
     address = parse_address(point.address)
-    return Node(address, point_kind(address, point.data_type))
+    mode, length = parse_mode(point.data_type)
+    kind = point_kind(address, mode)
+    check_declared(address, length)
+    return Node(address, kind, length)
 
 
 def plan[T](

@@ -9,6 +9,7 @@ from email.utils import parsedate_to_datetime
 import itertools
 import json
 import logging
+import re
 import time
 from typing import Any
 
@@ -29,6 +30,10 @@ MAX_BACKOFF = 60.0
 """The longest Retry-After honoured: a PLC asking for more is asked again after a minute."""
 MAX_WAIT = 5.0
 """The longest back-off a call waits out; during a longer one, calls fail without sending."""
+BUSY_BACKOFF = 1.0
+"""Seconds before a read answered busy is sent again, doubled at each busy answer in a row:
+from the manual's pacing (4.2), as long as the resend leaves within one poll interval."""
+_CHARSET = re.compile(r";\s*charset\s*=\s*\"?([A-Za-z0-9._:-]+)", re.IGNORECASE)
 
 
 def cookie_header(token: str) -> str:
@@ -56,10 +61,34 @@ def retry_after(headers: Mapping[str, str], now: datetime | None = None) -> floa
     return min(max(seconds, 0.0), MAX_BACKOFF)
 
 
-def _json(raw: bytes) -> Any:
+def busy_delays(budget: float, first: float) -> list[float]:
+    """Return the waits before each resend of a read answered busy: doubling, within budget."""
+    delays: list[float] = []
+    delay = first
+    while delay > 0 and sum(delays) + delay <= budget:
+        delays.append(delay)
+        delay *= 2
+    return delays
+
+
+def decode_body(raw: bytes, content_type: str = "") -> tuple[str, bool]:
+    """Return the body's text, and True where it was read one character a byte (Latin-1).
+
+    The manual asks for UTF-8 (4.3), or the charset the reply declares; a firmware that puts a
+    string's bytes (>= 0x80) into the reply as they are sends neither. Read one character a
+    byte, the JSON still parses and every byte of such a string is kept (READINGS.md row 17).
+    """
+    declared = _CHARSET.search(content_type)
+    try:
+        return raw.decode(declared[1] if declared else "utf-8-sig"), False
+    except (UnicodeDecodeError, LookupError):
+        return raw.decode("latin-1"), True
+
+
+def _json(text: str) -> Any:
     """Return the parsed body, or None when it is no JSON (nor JSON this parser can nest)."""
     try:
-        return json.loads(raw)
+        return json.loads(text)
     except (ValueError, RecursionError):
         return None
 
@@ -67,18 +96,25 @@ def _json(raw: bytes) -> Any:
 class WebApi:
     """The client's JSON-RPC endpoint: call ids, the HTTP status of each answer, back-off."""
 
-    def __init__(self, transport: HttpTransport) -> None:
-        """Send through the client's one transport (its lock paces every request)."""
+    def __init__(self, transport: HttpTransport, host: str, poll_interval: float) -> None:
+        """Send through the client's one transport (its lock paces every request).
+
+        `poll_interval`: how long a read answered busy may be sent again for.
+        """
         self._transport = transport
+        self._host = host
+        self._poll_interval = poll_interval
         self._ids = itertools.count(1)
         self._not_before = 0.0
+        self._bytewise_told = False
 
     async def call(self, method: str, params: Any, token: str | None) -> dict[str, Any]:
         """Send one call (never a batch) and return its result object; raise RpcError.
 
-        An HTTP 5xx or 404 without a JSON-RPC answer (a busy web server, a proxy) is sent
-        again once for a method that only reads; a write never twice. A 429 is waited out
-        (its Retry-After, bounded) before a read is sent again, and before any later call.
+        An HTTP 5xx, 404 or 429 without a JSON-RPC answer (a busy web server, a proxy) is
+        sent again for a method that only reads, with back-off (`busy_delays`, at least a
+        429's Retry-After) as long as the resend leaves within one poll interval of the first
+        send; a write never twice. A 429 also holds back any later call.
         """
         call_id = next(self._ids)
         body = dumps({"jsonrpc": "2.0", "method": method, "id": call_id, "params": params})
@@ -86,22 +122,46 @@ class WebApi:
         if token is not None:
             headers["Cookie"] = cookie_header(token)
         reading = method in READING
-        for attempt in (1, 2):
+        delays = busy_delays(self._poll_interval, BUSY_BACKOFF)
+        deadline = time.monotonic() + self._poll_interval
+        for attempt in itertools.count(1):
             await self._wait(method)
             status, answer_headers, raw = await self._transport.request(
                 "POST", PATH, data=body.encode(), headers=headers, idempotent=reading
             )
-            reply = _json(raw)
+            text, bytewise = decode_body(raw, answer_headers.get("Content-Type", ""))
+            reply = _json(text)
             if 200 <= status < 300 or _answers(reply, call_id):
+                if bytewise and reply is not None:
+                    self._tell_bytewise()
                 return _result(method, call_id, status, reply)
+            wait = 0.0
             if status == 429:
-                self._not_before = time.monotonic() + retry_after(answer_headers)
+                wait = retry_after(answer_headers)
+                self._not_before = time.monotonic() + wait
             elif status < 500 and status != 404:
                 raise PlcProtocolError(f"the PLC answered {method} with HTTP {status}")
-            if not reading or attempt == 2:
-                raise PlcConnectionError(f"the PLC answered {method} with HTTP {status}")
-            _LOGGER.debug("%s answered HTTP %s: %s sent again", PATH, status, method)
+            if reading and attempt <= len(delays):
+                wait = max(wait, delays[attempt - 1])
+            if not reading or attempt > len(delays) or time.monotonic() + wait > deadline:
+                times = f" {attempt} times in a row" if attempt > 1 else ""
+                raise PlcConnectionError(f"the PLC answered {method} with HTTP {status}{times}")
+            _LOGGER.debug(
+                "%s answered HTTP %s: %s sent again in %.1f s", PATH, status, method, wait
+            )
+            await asyncio.sleep(wait)
         raise AssertionError  # pragma: no cover - the loop returns or raises
+
+    def _tell_bytewise(self) -> None:
+        """Log once that the PLC sends text that is not UTF-8, and how its strings are shown."""
+        if not self._bytewise_told:
+            self._bytewise_told = True
+            _LOGGER.warning(
+                "%s sends strings whose bytes are not UTF-8 (the Web API manual asks for UTF-8): "
+                "they are shown one character a byte (Latin-1), each byte kept; text in another "
+                "code page (GBK, Windows-1250) shows as Latin-1 letters",
+                self._host,
+            )
 
     async def _wait(self, method: str) -> None:
         """Wait out a short back-off a 429 asked for; refuse to send during a long one."""

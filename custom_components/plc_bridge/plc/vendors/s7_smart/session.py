@@ -59,7 +59,7 @@ class WebSession(PlcClient):
     async def _send(self, method: str, params: Any) -> dict[str, Any]:
         """Send one call with the token held; return its result, raise RpcError for a refusal."""
         if self._api is None:
-            self._api = WebApi(self._http())
+            self._api = WebApi(self._http(), self.config.host, self.config.poll_interval)
         return await self._api.call(method, params, self._token)
 
     async def close(self) -> None:
