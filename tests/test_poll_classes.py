@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from datetime import timedelta
+from typing import Any
 
 from freezegun.api import FrozenDateTimeFactory
 from homeassistant.components.number import ATTR_VALUE, SERVICE_SET_VALUE
@@ -34,11 +35,11 @@ def reads(monkeypatch: pytest.MonkeyPatch) -> list[list[Point]]:
     original = PlcClient.read
 
     async def recorded(
-        self: PlcClient, points: Sequence[Point], *, poll: bool = True
+        self: PlcClient, points: Sequence[Point], *, poll: bool = True, **kwargs: Any
     ) -> ReadResult:
         if poll:
             polls.append(list(points))
-        return await original(self, points, poll=poll)
+        return await original(self, points, poll=poll, **kwargs)
 
     monkeypatch.setattr(PlcClient, "read", recorded)
     return polls
