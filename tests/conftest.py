@@ -1,4 +1,4 @@
-"""Fixtures shared by every test: custom integrations on, loopback sockets, no request pacing.
+"""Fixtures shared by every test: custom integrations on, loopback sockets; pacing off on request.
 
 And no test passes while Home Assistant reports a deprecated use by the integration.
 """
@@ -37,9 +37,14 @@ def loopback(socket_enabled: None) -> None:
     """Tests talk to the simulators over real loopback sockets."""
 
 
-@pytest.fixture(autouse=True)
+@pytest.fixture
 def no_pacing(monkeypatch: pytest.MonkeyPatch) -> None:
-    """Drop the vendors' advised pause between requests so tests run at full speed."""
+    """Drop the vendors' advised pause between requests so the test runs at full speed.
+
+    Asked for by a module (`pytestmark = pytest.mark.usefixtures("no_pacing")`) or a test,
+    never for all: the tests that pin the pacing and those of paced behaviour see the real one.
+    A test under Home Assistant's frozen clock needs it where a paced vendor sends requests.
+    """
     for vendor in implemented():
         monkeypatch.setattr(client_class(vendor), "request_interval", 0.0)
 

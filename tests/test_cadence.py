@@ -36,6 +36,8 @@ from .ha_fixtures import (
     unload_all,
 )
 
+pytestmark = pytest.mark.usefixtures("no_pacing")
+
 
 def words(count: int, first: int = 0) -> list[PointData]:
     """Return `count` sensor points on consecutive V words from VW(2 * first)."""

@@ -27,6 +27,8 @@ from simulators.s7_smart import CODES, S7SmartSimulator
 
 from .conftest import ConfigFactory
 
+pytestmark = pytest.mark.usefixtures("no_pacing")
+
 POINT = Point("VW0", "signed")
 
 
