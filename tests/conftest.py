@@ -37,14 +37,24 @@ def loopback(socket_enabled: None) -> None:
     """Tests talk to the simulators over real loopback sockets."""
 
 
-@pytest.fixture
-def no_pacing(monkeypatch: pytest.MonkeyPatch) -> None:
-    """Drop the vendors' advised pause between requests so the test runs at full speed.
+def pytest_configure(config: pytest.Config) -> None:
+    """Register the `no_pacing` marker."""
+    config.addinivalue_line(
+        "markers", "no_pacing: the vendors' request pacing is off (the test runs at full speed)"
+    )
 
-    Asked for by a module (`pytestmark = pytest.mark.usefixtures("no_pacing")`) or a test,
-    never for all: the tests that pin the pacing and those of paced behaviour see the real one.
-    A test under Home Assistant's frozen clock needs it where a paced vendor sends requests.
+
+@pytest.fixture(autouse=True)
+def pacing_as_asked(request: pytest.FixtureRequest, monkeypatch: pytest.MonkeyPatch) -> None:
+    """Drop the vendors' advised pause between requests where the test or its module asks.
+
+    Asked with the `no_pacing` marker (`pytestmark = pytest.mark.no_pacing` in a module), never
+    for all: the tests that pin the pacing and those of paced behaviour see the real one. An
+    autouse fixture, so that it comes before any fixture that connects a client. A test under
+    Home Assistant's frozen clock needs it where a paced vendor sends requests.
     """
+    if request.node.get_closest_marker("no_pacing") is None:
+        return
     for vendor in implemented():
         monkeypatch.setattr(client_class(vendor), "request_interval", 0.0)
 

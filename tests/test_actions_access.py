@@ -14,7 +14,7 @@ from simulators.s7_smart import S7SmartSimulator
 
 from .ha_fixtures import POINTS, call, make_entry, point
 
-pytestmark = pytest.mark.usefixtures("no_pacing")
+pytestmark = pytest.mark.no_pacing
 
 
 @pytest.mark.parametrize(

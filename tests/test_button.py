@@ -17,7 +17,7 @@ from simulators.s7_smart import S7SmartSimulator
 
 from .ha_fixtures import ENTRY_ID, make_entry, point
 
-pytestmark = pytest.mark.usefixtures("no_pacing")
+pytestmark = pytest.mark.no_pacing
 
 POINTS = [
     point("start", "Start", "button", "VB60", "unsigned"),

@@ -36,7 +36,7 @@ from .ha_fixtures import (
     unload_all,
 )
 
-pytestmark = pytest.mark.usefixtures("no_pacing")
+pytestmark = pytest.mark.no_pacing
 
 
 def words(count: int, first: int = 0) -> list[PointData]:

@@ -31,7 +31,7 @@ from simulators.s7_smart import S7SmartSimulator
 
 from .ha_fixtures import make_entry, point, poll
 
-pytestmark = pytest.mark.usefixtures("no_pacing")
+pytestmark = pytest.mark.no_pacing
 
 MODES = "0=off;1=heat;2=cool;3=auto"
 BOILER = [

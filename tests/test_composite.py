@@ -19,7 +19,7 @@ from custom_components.plc_bridge.point_export import export_points
 from custom_components.plc_bridge.point_table import parse_points, point_order
 from custom_components.plc_bridge.points import PointConfig
 
-pytestmark = pytest.mark.usefixtures("no_pacing")
+pytestmark = pytest.mark.no_pacing
 
 SMART = client_class("s7_smart")
 TABLE = (

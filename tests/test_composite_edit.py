@@ -28,7 +28,7 @@ from .flow_fixtures import MACHINE, error_message, step, suggested
 from .ha_fixtures import DEVICE_ID, make_entry, point, poll, read_edits
 from .tecomat_ha_fixtures import make_tecomat_entry
 
-pytestmark = pytest.mark.usefixtures("no_pacing")
+pytestmark = pytest.mark.no_pacing
 
 RANGE = {"raw_min": 0, "raw_max": 27648, "shown_min": 0, "shown_max": 100}
 KEY = {"entity": "s0"}  # the entity's key: the id of a first part removed long ago

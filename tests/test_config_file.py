@@ -47,7 +47,7 @@ from .test_s7_composite import POINTS as S7_GATE
 from .test_softplc_composite import POINTS as SOFTPLC_LIGHT
 from .test_tecomat_composite import POINTS as TECOMAT_ROOM
 
-pytestmark = pytest.mark.usefixtures("no_pacing")
+pytestmark = pytest.mark.no_pacing
 
 CONFIG = ("config",)
 

@@ -32,7 +32,7 @@ from .flow_fixtures import suggested, translated
 from .ha_fixtures import DEVICE_ID, POINTS, device, legacy_point, point, sim_data
 from .test_config_file import CONFIG, VENDORS, export, original, paste
 
-pytestmark = pytest.mark.usefixtures("no_pacing")
+pytestmark = pytest.mark.no_pacing
 
 
 async def test_same_plc_already_configured(

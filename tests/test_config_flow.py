@@ -36,7 +36,7 @@ from tests.flow_fixtures import (
 )
 from tests.ha_fixtures import read_edits
 
-pytestmark = pytest.mark.usefixtures("no_pacing")
+pytestmark = pytest.mark.no_pacing
 
 CONFIG = ("config",)
 

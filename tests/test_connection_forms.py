@@ -21,7 +21,7 @@ from custom_components.plc_bridge.const import CONF_VENDOR, DOMAIN
 from custom_components.plc_bridge.plc.vendors import client_class, implemented
 from tests.flow_fixtures import strings_at
 
-pytestmark = pytest.mark.usefixtures("no_pacing")
+pytestmark = pytest.mark.no_pacing
 
 STEPS = ("config", "step")
 OTHERS = {

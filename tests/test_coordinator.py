@@ -20,7 +20,7 @@ from simulators.s7_smart import DEFAULT_USER, S7SmartSimulator
 
 from .ha_fixtures import make_entry, point, poll
 
-pytestmark = pytest.mark.usefixtures("no_pacing")
+pytestmark = pytest.mark.no_pacing
 
 
 def words(count: int) -> list:

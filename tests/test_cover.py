@@ -31,7 +31,7 @@ from simulators.s7_smart import S7SmartSimulator
 
 from .ha_fixtures import ENTRY_ID, edit_point, make_entry, point, poll, set_points
 
-pytestmark = pytest.mark.usefixtures("no_pacing")
+pytestmark = pytest.mark.no_pacing
 
 RANGE = {"raw_min": 0, "raw_max": 27648, "shown_min": 0, "shown_max": 100}
 SHUTTER = [

@@ -38,7 +38,7 @@ from .ha_fixtures import (
     sim_data,
 )
 
-pytestmark = pytest.mark.usefixtures("no_pacing")
+pytestmark = pytest.mark.no_pacing
 
 TEMPERATURE = "sensor.s7_200_smart_temperature"
 PRESSURE = "sensor.s7_200_smart_pressure"

@@ -14,7 +14,7 @@ from syrupy.filters import props
 
 from simulators.s7_smart import DEFAULT_PASSWORD, S7SmartSimulator
 
-pytestmark = pytest.mark.usefixtures("no_pacing")
+pytestmark = pytest.mark.no_pacing
 
 
 async def test_diagnostics(

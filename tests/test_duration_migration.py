@@ -20,7 +20,7 @@ from .ha_fixtures import DEVICE_ID, POINTS, PointData, device, point, set_up, si
 from .plcnext_ha_fixtures import PLCNEXT_ENTRY_ID, plcnext_data
 from .tecomat_ha_fixtures import TECOMAT_ENTRY_ID, TECOMAT_SERIAL, tecomat_data
 
-pytestmark = pytest.mark.usefixtures("no_pacing")
+pytestmark = pytest.mark.no_pacing
 
 MAIN = "Arp.Plc.Eclr/MainInstance."
 

@@ -11,7 +11,7 @@ from simulators.s7_smart import S7SmartSimulator
 
 from .ha_fixtures import add_entry, device, point, sim_data
 
-pytestmark = pytest.mark.usefixtures("no_pacing")
+pytestmark = pytest.mark.no_pacing
 
 PUMP = [
     point("p1", "Pump", "switch", "I0.3", "signed", role="state", read_only=True),

@@ -14,7 +14,7 @@ from simulators.s7_smart import DEFAULT_PASSWORD, DEFAULT_USER, S7SmartSimulator
 
 from .ha_fixtures import ENTRY_ID, edit_point, make_entry, plc_device
 
-pytestmark = pytest.mark.usefixtures("no_pacing")
+pytestmark = pytest.mark.no_pacing
 
 
 def registered(

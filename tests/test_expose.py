@@ -22,7 +22,7 @@ from tests.ha_fixtures import make_entry, point, set_up
 
 from .expose_fixtures import add_expose, settle
 
-pytestmark = pytest.mark.usefixtures("no_pacing")
+pytestmark = pytest.mark.no_pacing
 
 WEATHER = "weather.home"
 LEVEL = "input_number.level"

@@ -20,7 +20,7 @@ from .expose_fixtures import add_expose
 from .flow_fixtures import error_message, suggested, translated
 from .ha_fixtures import device, point
 
-pytestmark = pytest.mark.usefixtures("no_pacing")
+pytestmark = pytest.mark.no_pacing
 
 EXPOSE = ("config_subentries", SUBENTRY_EXPOSE)
 OUTDOOR = {"entity_id": "sensor.outdoor", "address": "vd400", "data_type": "float"}

@@ -18,7 +18,7 @@ from tests.ha_fixtures import set_up
 
 from .expose_fixtures import VENDORS, VendorCase, add_expose, burst, settle, shown
 
-pytestmark = pytest.mark.usefixtures("no_pacing")
+pytestmark = pytest.mark.no_pacing
 
 OUTDOOR = "sensor.outdoor_temperature"
 PRESENCE = "person.anna"

@@ -19,7 +19,7 @@ from simulators.s7_smart import S7SmartSimulator
 
 from .ha_fixtures import ENTRY_ID, make_entry, plc_device, poll
 
-pytestmark = pytest.mark.usefixtures("no_pacing")
+pytestmark = pytest.mark.no_pacing
 
 
 async def test_setup_and_unload(

@@ -15,7 +15,7 @@ from simulators.s7_smart import S7SmartSimulator
 
 from .ha_fixtures import make_entry
 
-pytestmark = pytest.mark.usefixtures("no_pacing")
+pytestmark = pytest.mark.no_pacing
 
 
 async def polls(hass: HomeAssistant, freezer: FrozenDateTimeFactory, interval: float) -> None:

@@ -33,7 +33,7 @@ from simulators.s7_smart import S7SmartSimulator
 from .conftest import current_release_only
 from .ha_fixtures import edit_point, make_entry, point, remove_point
 
-pytestmark = pytest.mark.usefixtures("no_pacing")
+pytestmark = pytest.mark.no_pacing
 
 MAP = "0=Off;1=Auto;2=Manual"
 POINTS = [

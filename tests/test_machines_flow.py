@@ -15,7 +15,7 @@ from simulators.s7_smart import S7SmartSimulator
 
 from .flow_fixtures import smart_data, translated
 
-pytestmark = pytest.mark.usefixtures("no_pacing")
+pytestmark = pytest.mark.no_pacing
 
 DEVICE = ("config_subentries", SUBENTRY_DEVICE)
 

@@ -26,7 +26,7 @@ from simulators.s7_smart import S7SmartSimulator
 
 from .ha_fixtures import DEVICE_ID, PointData, make_entry, point, poll, set_points
 
-pytestmark = pytest.mark.usefixtures("no_pacing")
+pytestmark = pytest.mark.no_pacing
 
 
 def words(count: int, first: int = 0) -> list[PointData]:

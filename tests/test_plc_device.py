@@ -14,7 +14,7 @@ from simulators.tecomat import TecomatSimulator
 from .ha_fixtures import ENTRY_ID, plc_device
 from .tecomat_ha_fixtures import TECOMAT_ENTRY_ID, make_tecomat_entry
 
-pytestmark = pytest.mark.usefixtures("no_pacing")
+pytestmark = pytest.mark.no_pacing
 
 
 async def test_link_to_the_plc_web_page(

@@ -21,7 +21,7 @@ from custom_components.plc_bridge.point_form import (
     suggested_platform,
 )
 
-pytestmark = pytest.mark.usefixtures("no_pacing")
+pytestmark = pytest.mark.no_pacing
 
 SMART = client_class("s7_smart")
 TECOMAT = client_class("tecomat")

@@ -16,7 +16,7 @@ from custom_components.plc_bridge.point_table import (
     point_order,
 )
 
-pytestmark = pytest.mark.usefixtures("no_pacing")
+pytestmark = pytest.mark.no_pacing
 
 SMART = client_class("s7_smart")
 S7 = client_class("s7")

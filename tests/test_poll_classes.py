@@ -24,7 +24,7 @@ from .ha_fixtures import PointData, edit_point, make_entry, point
 from .s7_ha_fixtures import make_s7_entry
 from .tecomat_ha_fixtures import make_tecomat_entry
 
-pytestmark = pytest.mark.usefixtures("no_pacing")
+pytestmark = pytest.mark.no_pacing
 
 SLOW_OPTIONS = {CONF_SCAN_INTERVAL: 10.0, "fast_interval": 1.0, "slow_interval": 30.0}
 """Fast every second, normal every 10 s (every 10th poll), slow every 30 s (every 30th)."""

@@ -13,7 +13,7 @@ import pytest
 from simulators.s7_smart import S7SmartSimulator
 from tests.ha_fixtures import make_entry, point, poll
 
-pytestmark = pytest.mark.usefixtures("no_pacing")
+pytestmark = pytest.mark.no_pacing
 
 
 async def test_quiet_poll_writes_nothing(

@@ -15,7 +15,7 @@ from simulators.s7_smart import HttpFault, S7SmartSimulator
 
 from .ha_fixtures import make_entry, point, poll
 
-pytestmark = pytest.mark.usefixtures("no_pacing")
+pytestmark = pytest.mark.no_pacing
 
 TEMPERATURE = "sensor.s7_200_smart_temperature"
 

@@ -19,7 +19,7 @@ from simulators.s7_smart import DEFAULT_USER, S7SmartSimulator
 
 from .ha_fixtures import call
 
-pytestmark = pytest.mark.usefixtures("no_pacing")
+pytestmark = pytest.mark.no_pacing
 
 
 async def test_write_in_one_request(

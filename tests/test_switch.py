@@ -22,7 +22,7 @@ from simulators.s7_smart import S7SmartSimulator
 from .conftest import current_release_only
 from .ha_fixtures import make_entry, point
 
-pytestmark = pytest.mark.usefixtures("no_pacing")
+pytestmark = pytest.mark.no_pacing
 
 PUMP = "switch.s7_200_smart_pump"
 

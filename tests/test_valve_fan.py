@@ -36,7 +36,7 @@ from simulators.s7_smart import S7SmartSimulator
 
 from .ha_fixtures import make_entry, point, poll
 
-pytestmark = pytest.mark.usefixtures("no_pacing")
+pytestmark = pytest.mark.no_pacing
 
 RANGE = {"raw_min": 0, "raw_max": 27648, "shown_min": 0, "shown_max": 100}
 POINTS = [

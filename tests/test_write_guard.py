@@ -32,7 +32,7 @@ from simulators.s7_smart import S7SmartSimulator
 
 from .ha_fixtures import POINTS, call, make_entry, point
 
-pytestmark = pytest.mark.usefixtures("no_pacing")
+pytestmark = pytest.mark.no_pacing
 
 LOCKED = point("locked", "Locked", "sensor", "VW50", "signed", read_only=True)
 NEIGHBOUR = point("neighbour", "Neighbour", "number", "VB51", "unsigned")

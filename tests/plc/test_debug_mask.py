@@ -11,7 +11,7 @@ from custom_components.plc_bridge.plc.http import shown
 from custom_components.plc_bridge.plc.vendors.s7_smart import S7SmartClient
 from simulators.s7_smart import DEFAULT_PASSWORD, DEFAULT_USER, S7SmartSimulator
 
-pytestmark = pytest.mark.usefixtures("no_pacing")
+pytestmark = pytest.mark.no_pacing
 
 
 def test_mask_runs_past_an_escaped_quote() -> None:

@@ -1,6 +1,6 @@
 """Each vendor's pacing as its manual advises, the points a paced read takes in a time, its poll.
 
-No `no_pacing` here: these tests see the pacing the vendors ship with.
+No `no_pacing` marker here: these tests see the pacing the vendors ship with.
 """
 
 from __future__ import annotations

@@ -18,7 +18,7 @@ from simulators.softplc import SoftplcSimulator
 from simulators.tecomat import TecomatSimulator
 from tests.loopback import Server, running
 
-pytestmark = pytest.mark.usefixtures("no_pacing")
+pytestmark = pytest.mark.no_pacing
 
 PROBED = ("s7_smart", "tecomat", "plcnext", "s7")
 

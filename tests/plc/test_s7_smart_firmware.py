@@ -28,7 +28,7 @@ from simulators.s7_smart.errors import (
 
 from .conftest import ConfigFactory
 
-pytestmark = pytest.mark.usefixtures("no_pacing")
+pytestmark = pytest.mark.no_pacing
 
 POINTS = [Point(f"VW{2 * index}", "signed") for index in range(40)]
 DEEP = "[" * 100_000 + "]" * 100_000

@@ -27,7 +27,7 @@ from simulators.s7_smart import CODES, S7SmartSimulator
 
 from .conftest import ConfigFactory
 
-pytestmark = pytest.mark.usefixtures("no_pacing")
+pytestmark = pytest.mark.no_pacing
 
 POINT = Point("VW0", "signed")
 

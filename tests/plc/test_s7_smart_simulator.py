@@ -20,7 +20,7 @@ from simulators.s7_smart import (
 )
 from simulators.s7_smart.errors import INVALID_PARAMS, SHUFFLED
 
-pytestmark = pytest.mark.usefixtures("no_pacing")
+pytestmark = pytest.mark.no_pacing
 
 type Reply = dict[str, Any]
 
