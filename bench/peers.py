@@ -23,7 +23,8 @@ import sys
 import time
 from typing import IO, Any
 
-from .poll import make_client, plcnext_points
+from .points import plcnext_points
+from .poll import make_client
 
 ROOT = Path(__file__).resolve().parent.parent
 PREFIX = "Arp.Plc.Eclr/"  # the component pyPLCn registers its names relative to

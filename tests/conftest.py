@@ -1,4 +1,4 @@
-"""Fixtures shared by every test: custom integrations on, loopback sockets, no request pacing.
+"""Fixtures shared by every test: custom integrations on, loopback sockets; pacing off on request.
 
 And no test passes while Home Assistant reports a deprecated use by the integration.
 """
@@ -37,9 +37,24 @@ def loopback(socket_enabled: None) -> None:
     """Tests talk to the simulators over real loopback sockets."""
 
 
+def pytest_configure(config: pytest.Config) -> None:
+    """Register the `no_pacing` marker."""
+    config.addinivalue_line(
+        "markers", "no_pacing: the vendors' request pacing is off (the test runs at full speed)"
+    )
+
+
 @pytest.fixture(autouse=True)
-def no_pacing(monkeypatch: pytest.MonkeyPatch) -> None:
-    """Drop the vendors' advised pause between requests so tests run at full speed."""
+def pacing_as_asked(request: pytest.FixtureRequest, monkeypatch: pytest.MonkeyPatch) -> None:
+    """Drop the vendors' advised pause between requests where the test or its module asks.
+
+    Asked with the `no_pacing` marker (`pytestmark = pytest.mark.no_pacing` in a module), never
+    for all: the tests that pin the pacing and those of paced behaviour see the real one. An
+    autouse fixture, so that it comes before any fixture that connects a client. A test under
+    Home Assistant's frozen clock needs it where a paced vendor sends requests.
+    """
+    if request.node.get_closest_marker("no_pacing") is None:
+        return
     for vendor in implemented():
         monkeypatch.setattr(client_class(vendor), "request_interval", 0.0)
 

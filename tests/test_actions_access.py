@@ -14,6 +14,8 @@ from simulators.s7_smart import S7SmartSimulator
 
 from .ha_fixtures import POINTS, call, make_entry, point
 
+pytestmark = pytest.mark.no_pacing
+
 
 @pytest.mark.parametrize(
     "service", ["write", "sync_clock", "read", "export_points", "export_config"]

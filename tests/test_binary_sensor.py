@@ -15,6 +15,8 @@ from simulators.s7_smart import S7SmartSimulator
 from .conftest import current_release_only
 from .ha_fixtures import poll
 
+pytestmark = pytest.mark.no_pacing
+
 
 @pytest.fixture
 def platforms() -> list[Platform]:

@@ -17,6 +17,8 @@ from simulators.s7_smart import S7SmartSimulator
 
 from .ha_fixtures import ENTRY_ID, make_entry, point
 
+pytestmark = pytest.mark.no_pacing
+
 POINTS = [
     point("start", "Start", "button", "VB60", "unsigned"),
     point("step", "Step", "button", "Q0.2", "signed", pulse=2.0),

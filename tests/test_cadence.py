@@ -36,6 +36,8 @@ from .ha_fixtures import (
     unload_all,
 )
 
+pytestmark = pytest.mark.no_pacing
+
 
 def words(count: int, first: int = 0) -> list[PointData]:
     """Return `count` sensor points on consecutive V words from VW(2 * first)."""
@@ -69,11 +71,11 @@ async def test_polls_start_an_interval_apart(
     lengths: Iterator[int] = iter([3, 3, 25, 3, 3, 3])
     starts: list[float] = []
 
-    async def taking_time(points: list[Point], *, poll: bool = True) -> ReadResult:
+    async def taking_time(points: list[Point], *, poll: bool = True, **kwargs: Any) -> ReadResult:
         if poll:  # the PLC answers `length` seconds later (its pacing, a slow link)
             starts.append(hass.loop.time())
             freezer.tick(timedelta(seconds=next(lengths, 3)))
-        return await real_read(points, poll=poll)
+        return await real_read(points, poll=poll, **kwargs)
 
     monkeypatch.setattr(client, "read", taking_time)
     await tick(hass, freezer, 80)

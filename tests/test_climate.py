@@ -31,6 +31,8 @@ from simulators.s7_smart import S7SmartSimulator
 
 from .ha_fixtures import make_entry, point, poll
 
+pytestmark = pytest.mark.no_pacing
+
 MODES = "0=off;1=heat;2=cool;3=auto"
 BOILER = [
     point(

@@ -19,6 +19,8 @@ from custom_components.plc_bridge.point_export import export_points
 from custom_components.plc_bridge.point_table import parse_points, point_order
 from custom_components.plc_bridge.points import PointConfig
 
+pytestmark = pytest.mark.no_pacing
+
 SMART = client_class("s7_smart")
 TABLE = (
     "name,address,data_type,platform,role,value_map,raw_min,raw_max,shown_min,shown_max,"

@@ -17,6 +17,7 @@ from homeassistant.const import ATTR_ENTITY_ID, SERVICE_TURN_OFF
 from homeassistant.core import HomeAssistant
 from homeassistant.data_entry_flow import FlowResultType
 from homeassistant.helpers import entity_registry as er
+import pytest
 from pytest_homeassistant_custom_component.common import MockConfigEntry
 
 from custom_components.plc_bridge.const import CONF_POINTS, SUBENTRY_DEVICE
@@ -26,6 +27,8 @@ from simulators.tecomat import TecomatSimulator
 from .flow_fixtures import MACHINE, error_message, step, suggested
 from .ha_fixtures import DEVICE_ID, make_entry, point, poll, read_edits
 from .tecomat_ha_fixtures import make_tecomat_entry
+
+pytestmark = pytest.mark.no_pacing
 
 RANGE = {"raw_min": 0, "raw_max": 27648, "shown_min": 0, "shown_max": 100}
 KEY = {"entity": "s0"}  # the entity's key: the id of a first part removed long ago

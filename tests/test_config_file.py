@@ -47,6 +47,8 @@ from .test_s7_composite import POINTS as S7_GATE
 from .test_softplc_composite import POINTS as SOFTPLC_LIGHT
 from .test_tecomat_composite import POINTS as TECOMAT_ROOM
 
+pytestmark = pytest.mark.no_pacing
+
 CONFIG = ("config",)
 
 

@@ -15,6 +15,7 @@ from homeassistant.const import (
 from homeassistant.core import HomeAssistant
 from homeassistant.data_entry_flow import FlowResultType
 from homeassistant.helpers import area_registry as ar, device_registry as dr
+import pytest
 from pytest_homeassistant_custom_component.common import MockConfigEntry
 
 from custom_components.plc_bridge.config_file import dump_config
@@ -30,6 +31,8 @@ from simulators.s7_smart import DEFAULT_PASSWORD as SMART_PASSWORD, DEFAULT_USER
 from .flow_fixtures import suggested, translated
 from .ha_fixtures import DEVICE_ID, POINTS, device, legacy_point, point, sim_data
 from .test_config_file import CONFIG, VENDORS, export, original, paste
+
+pytestmark = pytest.mark.no_pacing
 
 
 async def test_same_plc_already_configured(

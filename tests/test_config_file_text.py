@@ -33,6 +33,8 @@ from custom_components.plc_bridge.plc.vendors import client_class
 from .flow_fixtures import error_message, suggested, translated
 from .ha_fixtures import POINTS, PointData, device
 
+pytestmark = pytest.mark.no_pacing
+
 DATA = {
     CONF_VENDOR: "s7_smart",
     CONF_HOST: "192.0.2.10",

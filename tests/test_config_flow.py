@@ -36,6 +36,8 @@ from tests.flow_fixtures import (
 )
 from tests.ha_fixtures import read_edits
 
+pytestmark = pytest.mark.no_pacing
+
 CONFIG = ("config",)
 
 

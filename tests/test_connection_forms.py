@@ -21,6 +21,8 @@ from custom_components.plc_bridge.const import CONF_VENDOR, DOMAIN
 from custom_components.plc_bridge.plc.vendors import client_class, implemented
 from tests.flow_fixtures import strings_at
 
+pytestmark = pytest.mark.no_pacing
+
 STEPS = ("config", "step")
 OTHERS = {
     "s7_smart": r"TecoApi|Tecomat|Mosaic|TSAP|rack|slot|ISO-on-TCP|PUT/GET",

@@ -20,6 +20,8 @@ from simulators.s7_smart import DEFAULT_USER, S7SmartSimulator
 
 from .ha_fixtures import make_entry, point, poll
 
+pytestmark = pytest.mark.no_pacing
+
 
 def words(count: int) -> list:
     """Return `count` sensor points on consecutive V words."""

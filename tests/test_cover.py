@@ -31,6 +31,8 @@ from simulators.s7_smart import S7SmartSimulator
 
 from .ha_fixtures import ENTRY_ID, edit_point, make_entry, point, poll, set_points
 
+pytestmark = pytest.mark.no_pacing
+
 RANGE = {"raw_min": 0, "raw_max": 27648, "shown_min": 0, "shown_max": 100}
 SHUTTER = [
     point("s1", "Shutter", "cover", "VW40", "signed", role="position", read_only=True, **RANGE),

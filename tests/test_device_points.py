@@ -14,6 +14,7 @@ from homeassistant.helpers import (
     device_registry as dr,
     entity_registry as er,
 )
+import pytest
 from pytest_homeassistant_custom_component.common import MockConfigEntry, async_fire_time_changed
 
 from custom_components.plc_bridge.const import CONF_AREA, CONF_POINTS, DOMAIN, SUBENTRY_DEVICE
@@ -36,6 +37,8 @@ from .ha_fixtures import (
     set_points,
     sim_data,
 )
+
+pytestmark = pytest.mark.no_pacing
 
 TEMPERATURE = "sensor.s7_200_smart_temperature"
 PRESSURE = "sensor.s7_200_smart_pressure"

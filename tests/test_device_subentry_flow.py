@@ -19,6 +19,8 @@ from simulators.s7_smart import S7SmartSimulator
 from .flow_fixtures import error_message, smart_data, translated
 from .ha_fixtures import device, point
 
+pytestmark = pytest.mark.no_pacing
+
 DEVICE = ("config_subentries", SUBENTRY_DEVICE)
 TEMPERATURE = {"name": "Tank", "platform": "sensor", "address": "vd100", "data_type": "float"}
 CELSIUS = {"device_class": "temperature", "unit_of_measurement": "°C", "scale": 1.0}

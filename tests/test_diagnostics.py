@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from homeassistant.core import HomeAssistant
+import pytest
 from pytest_homeassistant_custom_component.common import MockConfigEntry
 from pytest_homeassistant_custom_component.components.diagnostics import (
     get_diagnostics_for_config_entry,
@@ -12,6 +13,8 @@ from syrupy.assertion import SnapshotAssertion
 from syrupy.filters import props
 
 from simulators.s7_smart import DEFAULT_PASSWORD, S7SmartSimulator
+
+pytestmark = pytest.mark.no_pacing
 
 
 async def test_diagnostics(

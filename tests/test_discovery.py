@@ -36,6 +36,8 @@ from .ha_fixtures import add_entry
 from .s7_ha_fixtures import SimFactory, s7_data
 from .tecomat_ha_fixtures import TECOMAT_SERIAL
 
+pytestmark = pytest.mark.no_pacing
+
 CONFIG = ("config",)
 SIEMENS_MAC = "28:63:36:a1:b2:c3"
 TECO_MAC = "00:0a:14:12:34:56"

@@ -7,6 +7,7 @@ from typing import Any
 from homeassistant.const import ATTR_DEVICE_CLASS, ATTR_UNIT_OF_MEASUREMENT
 from homeassistant.core import HomeAssistant
 from homeassistant.helpers import entity_registry as er, issue_registry as ir
+import pytest
 from pytest_homeassistant_custom_component.common import MockConfigEntry
 
 from custom_components.plc_bridge.const import DOMAIN
@@ -18,6 +19,8 @@ from simulators.tecomat import TecomatSimulator
 from .ha_fixtures import DEVICE_ID, POINTS, PointData, device, point, set_up, sim_data
 from .plcnext_ha_fixtures import PLCNEXT_ENTRY_ID, plcnext_data
 from .tecomat_ha_fixtures import TECOMAT_ENTRY_ID, TECOMAT_SERIAL, tecomat_data
+
+pytestmark = pytest.mark.no_pacing
 
 MAIN = "Arp.Plc.Eclr/MainInstance."
 

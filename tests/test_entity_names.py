@@ -5,10 +5,13 @@ from __future__ import annotations
 from homeassistant.components.button import DOMAIN as BUTTON_DOMAIN, SERVICE_PRESS
 from homeassistant.const import ATTR_ENTITY_ID, ATTR_FRIENDLY_NAME
 from homeassistant.core import HomeAssistant
+import pytest
 
 from simulators.s7_smart import S7SmartSimulator
 
 from .ha_fixtures import add_entry, device, point, sim_data
+
+pytestmark = pytest.mark.no_pacing
 
 PUMP = [
     point("p1", "Pump", "switch", "I0.3", "signed", role="state", read_only=True),

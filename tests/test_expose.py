@@ -22,6 +22,8 @@ from tests.ha_fixtures import make_entry, point, set_up
 
 from .expose_fixtures import add_expose, settle
 
+pytestmark = pytest.mark.no_pacing
+
 WEATHER = "weather.home"
 LEVEL = "input_number.level"
 REAL = ("VD400", "float")

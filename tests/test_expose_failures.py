@@ -24,6 +24,8 @@ from tests.ha_fixtures import make_entry, point, set_up
 
 from .expose_fixtures import add_expose, settle
 
+pytestmark = pytest.mark.no_pacing
+
 LEVEL = "input_number.level"
 WORD = ("VW120", "signed")
 

@@ -20,6 +20,8 @@ from .expose_fixtures import add_expose
 from .flow_fixtures import error_message, suggested, translated
 from .ha_fixtures import device, point
 
+pytestmark = pytest.mark.no_pacing
+
 EXPOSE = ("config_subentries", SUBENTRY_EXPOSE)
 OUTDOOR = {"entity_id": "sensor.outdoor", "address": "vd400", "data_type": "float"}
 

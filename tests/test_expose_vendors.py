@@ -18,6 +18,8 @@ from tests.ha_fixtures import set_up
 
 from .expose_fixtures import VENDORS, VendorCase, add_expose, burst, settle, shown
 
+pytestmark = pytest.mark.no_pacing
+
 OUTDOOR = "sensor.outdoor_temperature"
 PRESENCE = "person.anna"
 SUN = "sun.sun"

@@ -10,6 +10,7 @@ from homeassistant.core import HomeAssistant
 from homeassistant.data_entry_flow import FlowResultType
 from homeassistant.helpers import device_registry as dr, issue_registry as ir
 from homeassistant.setup import async_setup_component
+import pytest
 from pytest_homeassistant_custom_component.common import MockConfigEntry
 
 from custom_components.plc_bridge.const import CONF_FINGERPRINT, CONF_TLS, DOMAIN
@@ -17,6 +18,8 @@ from custom_components.plc_bridge.plc.http import format_fingerprint
 from simulators.s7_smart import S7SmartSimulator
 
 from .ha_fixtures import ENTRY_ID, make_entry, plc_device, poll
+
+pytestmark = pytest.mark.no_pacing
 
 
 async def test_setup_and_unload(

@@ -15,6 +15,8 @@ from simulators.s7_smart import S7SmartSimulator
 
 from .ha_fixtures import make_entry
 
+pytestmark = pytest.mark.no_pacing
+
 
 async def polls(hass: HomeAssistant, freezer: FrozenDateTimeFactory, interval: float) -> None:
     """Let ten poll intervals pass, one poll each."""

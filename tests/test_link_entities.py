@@ -20,6 +20,8 @@ from simulators.s7_smart import S7SmartSimulator
 from .ha_fixtures import make_entry, point, poll
 from .test_poll_classes import reads, set_up_classes, tick
 
+pytestmark = pytest.mark.no_pacing
+
 __all__ = ["reads"]  # the fixture, used by name
 
 CONNECTIVITY = "binary_sensor.s7_200_smart_connectivity"

@@ -30,6 +30,8 @@ from simulators.s7_smart import S7SmartSimulator
 from .flow_fixtures import error_message, smart_data, translated
 from .ha_fixtures import add_entry, device, point, poll, sim_data
 
+pytestmark = pytest.mark.no_pacing
+
 BOILER = [
     point("temperature", "Temperature", "sensor", "VW4", "signed"),
     point("p1", "Burner", "switch", "I0.3", "signed", role="state", read_only=True),

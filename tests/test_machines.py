@@ -33,6 +33,8 @@ from simulators.s7_smart import S7SmartSimulator
 from .conftest import current_release_only
 from .ha_fixtures import edit_point, make_entry, point, remove_point
 
+pytestmark = pytest.mark.no_pacing
+
 MAP = "0=Off;1=Auto;2=Manual"
 POINTS = [
     point("mode", "Mode", "select", "VW30", "signed", value_map=MAP),

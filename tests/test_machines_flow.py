@@ -15,6 +15,8 @@ from simulators.s7_smart import S7SmartSimulator
 
 from .flow_fixtures import smart_data, translated
 
+pytestmark = pytest.mark.no_pacing
+
 DEVICE = ("config_subentries", SUBENTRY_DEVICE)
 
 

@@ -20,6 +20,8 @@ from simulators.s7_smart import S7SmartSimulator
 from .conftest import current_release_only
 from .ha_fixtures import make_entry, point
 
+pytestmark = pytest.mark.no_pacing
+
 SETPOINT = "number.s7_200_smart_setpoint"
 
 

@@ -14,6 +14,8 @@ from simulators.s7_smart import S7SmartSimulator
 from tests.flow_fixtures import error_message, smart_data, suggested, translated
 from tests.ha_fixtures import PointData, device, point
 
+pytestmark = pytest.mark.no_pacing
+
 OPTIONS = ("options",)
 
 

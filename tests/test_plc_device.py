@@ -5,6 +5,7 @@ from __future__ import annotations
 from homeassistant.const import CONF_HOST, CONF_PORT
 from homeassistant.core import HomeAssistant
 from homeassistant.helpers import device_registry as dr, entity_registry as er
+import pytest
 from pytest_homeassistant_custom_component.common import MockConfigEntry
 
 from custom_components.plc_bridge.const import DOMAIN
@@ -12,6 +13,8 @@ from simulators.tecomat import TecomatSimulator
 
 from .ha_fixtures import ENTRY_ID, plc_device
 from .tecomat_ha_fixtures import TECOMAT_ENTRY_ID, make_tecomat_entry
+
+pytestmark = pytest.mark.no_pacing
 
 
 async def test_link_to_the_plc_web_page(

@@ -21,6 +21,8 @@ from custom_components.plc_bridge.point_form import (
     suggested_platform,
 )
 
+pytestmark = pytest.mark.no_pacing
+
 SMART = client_class("s7_smart")
 TECOMAT = client_class("tecomat")
 SELECTORS = json.loads(

@@ -12,6 +12,8 @@ from custom_components.plc_bridge.point_export import export_points
 from custom_components.plc_bridge.point_form import details_schema, point_data
 from custom_components.plc_bridge.point_table import parse_points, point_order
 
+pytestmark = pytest.mark.no_pacing
+
 SMART = client_class("s7_smart")
 TECOMAT = client_class("tecomat")
 

@@ -16,6 +16,8 @@ from custom_components.plc_bridge.point_table import (
     point_order,
 )
 
+pytestmark = pytest.mark.no_pacing
+
 SMART = client_class("s7_smart")
 S7 = client_class("s7")
 HEADER = ",".join(COLUMNS)

@@ -25,6 +25,8 @@ from simulators.tecomat import TecomatSimulator
 from .ha_fixtures import unload_all
 from .tecomat_ha_fixtures import make_tecomat_entry
 
+pytestmark = pytest.mark.no_pacing
+
 SMART = client_class("s7_smart")
 S7 = client_class("s7")
 

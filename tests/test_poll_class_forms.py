@@ -23,6 +23,8 @@ from simulators.s7_smart import S7SmartSimulator
 from .flow_fixtures import MACHINE, error_message, smart_data, translated
 from .ha_fixtures import PointData, device, point
 
+pytestmark = pytest.mark.no_pacing
+
 SMART = client_class("s7_smart")
 OPTIONS = ("options",)
 

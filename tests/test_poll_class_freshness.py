@@ -11,6 +11,7 @@ from homeassistant.const import (
     STATE_UNAVAILABLE,
 )
 from homeassistant.core import HomeAssistant
+import pytest
 
 from custom_components.plc_bridge.availability import (
     CONF_AVAILABILITY_ADDRESS,
@@ -21,6 +22,8 @@ from simulators.s7_smart import S7SmartSimulator
 
 from .ha_fixtures import add_entry, device, make_entry, point, sim_data
 from .test_poll_classes import reads, set_up_classes, tick
+
+pytestmark = pytest.mark.no_pacing
 
 __all__ = ["reads"]  # the fixture, used by name
 

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from datetime import timedelta
+from typing import Any
 
 from freezegun.api import FrozenDateTimeFactory
 from homeassistant.components.number import ATTR_VALUE, SERVICE_SET_VALUE
@@ -23,6 +24,8 @@ from .ha_fixtures import PointData, edit_point, make_entry, point
 from .s7_ha_fixtures import make_s7_entry
 from .tecomat_ha_fixtures import make_tecomat_entry
 
+pytestmark = pytest.mark.no_pacing
+
 SLOW_OPTIONS = {CONF_SCAN_INTERVAL: 10.0, "fast_interval": 1.0, "slow_interval": 30.0}
 """Fast every second, normal every 10 s (every 10th poll), slow every 30 s (every 30th)."""
 
@@ -34,11 +37,11 @@ def reads(monkeypatch: pytest.MonkeyPatch) -> list[list[Point]]:
     original = PlcClient.read
 
     async def recorded(
-        self: PlcClient, points: Sequence[Point], *, poll: bool = True
+        self: PlcClient, points: Sequence[Point], *, poll: bool = True, **kwargs: Any
     ) -> ReadResult:
         if poll:
             polls.append(list(points))
-        return await original(self, points, poll=poll)
+        return await original(self, points, poll=poll, **kwargs)
 
     monkeypatch.setattr(PlcClient, "read", recorded)
     return polls

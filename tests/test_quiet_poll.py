@@ -8,9 +8,12 @@ from freezegun.api import FrozenDateTimeFactory
 from homeassistant.core import HomeAssistant
 from homeassistant.helpers import entity_registry as er
 from homeassistant.helpers.entity import Entity
+import pytest
 
 from simulators.s7_smart import S7SmartSimulator
 from tests.ha_fixtures import make_entry, point, poll
+
+pytestmark = pytest.mark.no_pacing
 
 
 async def test_quiet_poll_writes_nothing(

@@ -28,6 +28,8 @@ from tests.flow_fixtures import (
 )
 from tests.ha_fixtures import make_entry, poll
 
+pytestmark = pytest.mark.no_pacing
+
 CONFIG = ("config",)
 flow_only = pytest.mark.usefixtures("mock_setup_entry")
 

@@ -20,6 +20,8 @@ from simulators.s7_smart import HttpFault, S7SmartSimulator
 
 from .ha_fixtures import SCAN_INTERVAL, make_entry, point, poll
 
+pytestmark = pytest.mark.no_pacing
+
 TEMPERATURE = "sensor.s7_200_smart_temperature"
 
 

@@ -27,6 +27,8 @@ from simulators.s7_smart import S7SmartSimulator
 from .conftest import current_release_only
 from .ha_fixtures import DEVICE_ID, make_entry, point, poll
 
+pytestmark = pytest.mark.no_pacing
+
 DRIFT = "sensor.s7_200_smart_clock_drift"
 
 

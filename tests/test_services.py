@@ -19,6 +19,8 @@ from simulators.s7_smart import DEFAULT_USER, S7SmartSimulator
 
 from .ha_fixtures import call
 
+pytestmark = pytest.mark.no_pacing
+
 
 async def test_write_in_one_request(
     hass: HomeAssistant, s7_smart_sim: S7SmartSimulator, setup_integration: MockConfigEntry

@@ -27,6 +27,8 @@ from simulators.s7_smart import S7SmartSimulator
 
 from .ha_fixtures import make_entry, point, poll
 
+pytestmark = pytest.mark.no_pacing
+
 RANGE = {"raw_min": 0, "raw_max": 27648, "shown_min": 0, "shown_max": 100}
 POINTS = [
     point("plain", "Plain", "switch", "Q0.0", "signed"),

@@ -22,6 +22,8 @@ from simulators.s7_smart import S7SmartSimulator
 from .conftest import current_release_only
 from .ha_fixtures import make_entry, point
 
+pytestmark = pytest.mark.no_pacing
+
 PUMP = "switch.s7_200_smart_pump"
 
 

@@ -21,6 +21,8 @@ from simulators.tecomat import TecomatSimulator
 from tests.ha_fixtures import DEVICE_ID, make_entry, point
 from tests.tecomat_ha_fixtures import TECOMAT_SERIAL, make_tecomat_entry
 
+pytestmark = pytest.mark.no_pacing
+
 GREETING = "text.fx2_cp2080_greeting"
 LABEL = "text.fx2_cp2080_label"
 POINTS = [

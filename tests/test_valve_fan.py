@@ -36,6 +36,8 @@ from simulators.s7_smart import S7SmartSimulator
 
 from .ha_fixtures import make_entry, point, poll
 
+pytestmark = pytest.mark.no_pacing
+
 RANGE = {"raw_min": 0, "raw_max": 27648, "shown_min": 0, "shown_max": 100}
 POINTS = [
     point("v1", "Mixer", "valve", "VW80", "signed", role="position", read_only=True, **RANGE),

@@ -32,6 +32,8 @@ from simulators.s7_smart import S7SmartSimulator
 
 from .ha_fixtures import POINTS, call, make_entry, point
 
+pytestmark = pytest.mark.no_pacing
+
 LOCKED = point("locked", "Locked", "sensor", "VW50", "signed", read_only=True)
 NEIGHBOUR = point("neighbour", "Neighbour", "number", "VB51", "unsigned")
 """A writable number over the second byte of the read-only word."""

@@ -120,6 +120,7 @@ class PlcCoordinator(PollingCoordinator):
         for config in points.values():
             self._machines.setdefault(config.subentry_id, set()).add(config.point)
         # Availability points first: a paced first poll reads them with the first points.
+        self._lead = frozenset(self.availability.points.values())
         self._poll = list(
             dict.fromkeys([*self.availability.points.values(), *self.points.values()])
         )

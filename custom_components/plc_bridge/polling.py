@@ -5,6 +5,10 @@ a setup waits for a bounded first poll, points added by edits are read once the 
 and after a poll only the entities whose point changed (and the PLC's own) are updated. A poll
 reads the points whose poll class is due (poll_classes.py); the others keep their results,
 except after a failed poll: the first good one reads every point.
+
+A paced PLC's poll takes a request interval per request: each request's values are shown as it
+returns. Points edits added join a poll that is running or due before a read of their own would
+end (read first in it), so that no point is read twice over the one paced transport.
 """
 
 from __future__ import annotations
@@ -74,7 +78,9 @@ class PollingCoordinator(DataUpdateCoordinator[ReadResult]):
         self.cycle: float | None = None
         """Seconds from the start of the poll before the last to the start of the last."""
         self._partial = False  # the last poll read only the first points (a paced setup)
+        self._again = False  # edited points wait for the poll after the running one: at once
         self._reading = False
+        self._lead: frozenset[Point] = frozenset()  # read first in every poll (availability)
         self._changed: set[Point] | None = None  # what the last poll changed (None: all)
         self._edited: set[Point] = set()  # points edits added, not read yet
         self._unsub_edit: CALLBACK_TYPE | None = None
@@ -115,7 +121,7 @@ class PollingCoordinator(DataUpdateCoordinator[ReadResult]):
         now = self.hass.loop.time()
         if self._started is not None:
             self.cycle = now - self._started
-        self._started, self._partial, self._changed = now, False, None
+        self._started, self._partial, self._again, self._changed = now, False, False, None
         # A scheduled poll keeps the grid (its lateness never adds up); another starts one,
         # staggered within its second as Home Assistant staggers coordinators.
         at = self._grid if self._grid is not None else int(now) + self._microsecond
@@ -125,9 +131,10 @@ class PollingCoordinator(DataUpdateCoordinator[ReadResult]):
             points, classes = self._schedule.due(self._poll, at, read, self._asked)
         else:  # a recovery reads every point: any may have changed while the link was down
             points, classes = self._poll, set(self._schedule.intervals)
+        points = self._edited_first(points)
         self._reading = True
         try:
-            result = await self.client.read(points)
+            result = await self.client.read(points, on_results=self._show_returned)
         finally:
             self._reading = False
         self._schedule.done(at, classes)
@@ -141,6 +148,34 @@ class PollingCoordinator(DataUpdateCoordinator[ReadResult]):
             if self.last_update_success:
                 self._changed = changes
         return result
+
+    def _edited_first(self, points: list[Point]) -> list[Point]:
+        """Return the points with those edits added read first (after `_lead`); they are read.
+
+        On a paced PLC their values then come with the poll's first requests.
+        """
+        if not self._edited:
+            return points
+        lead = [point for point in points if point in self._lead]
+        edited = [point for point in points if point in self._edited and point not in self._lead]
+        self._edited.difference_update(points)
+        if not edited:
+            return points
+        first = {*lead, *edited}
+        return [*lead, *edited, *(point for point in points if point not in first)]
+
+    @callback
+    def _show_returned(self, values: dict[Point, PointResult]) -> None:
+        """Show the results one request of a running read returned, where they changed.
+
+        The schedule is left as it is and the other points keep what they show.
+        """
+        data: ReadResult | None = self.data  # None until the first poll has ended
+        if data is None:
+            return
+        changed = {p: result for p, result in values.items() if data.values.get(p) != result}
+        if changed:
+            self._show(changed)
 
     def _carry_over(self, result: ReadResult) -> ReadResult:
         """Keep the results of the points this poll did not read (not due, or added since)."""
@@ -164,7 +199,7 @@ class PollingCoordinator(DataUpdateCoordinator[ReadResult]):
         interval = self.update_interval.total_seconds()
         if self._base is None:
             due = int(now) + self._microsecond + interval
-        elif self._partial:
+        elif self._partial or self._again:
             due = now
         else:
             due = max(now, self._base + interval)
@@ -182,7 +217,7 @@ class PollingCoordinator(DataUpdateCoordinator[ReadResult]):
         return self.hass.loop.call_at(due, target, job).cancel
 
     @callback
-    def _poll_due(self, _job: HassJob[..., None]) -> None:
+    def _poll_due(self, _job: HassJob[..., None] | None = None) -> None:
         """Start the due poll as a background task of the entry (cancelled when HA stops)."""
         self._unsub_refresh, self._grid = None, self._due
         self.config_entry.async_create_background_task(
@@ -202,12 +237,31 @@ class PollingCoordinator(DataUpdateCoordinator[ReadResult]):
 
     @callback
     def _edit_due(self, _job: HassJob[..., None]) -> None:
-        """Read the edited points in the background (cancelled when Home Assistant stops)."""
+        """Have the edited points read: by the poll running or due, else in a read of theirs.
+
+        A poll that started since the edit reads them already; one running from before is
+        followed at once by one that reads them first; a poll due before their own read would
+        end starts now and reads them first. A read of their own runs in the background
+        (cancelled when Home Assistant stops).
+        """
         self._unsub_edit = None
-        if not self.hass.is_stopping:
-            self.config_entry.async_create_background_task(
-                self.hass, self._async_read_edited(), f"{self.name} edited points"
-            )
+        self._edited.intersection_update(self._poll)
+        if self.hass.is_stopping or not self._edited or self.data is None:
+            return
+        if self._reading:
+            self._again = True
+            return
+        now = self.hass.loop.time()
+        own_read = self.client.min_scan_interval(list(self._edited))
+        due = self._due if self._unsub_refresh is not None else None
+        if due is not None and due <= now + own_read:
+            self._async_unsub_refresh()
+            self._due = now
+            self._poll_due()
+            return
+        self.config_entry.async_create_background_task(
+            self.hass, self._async_read_edited(), f"{self.name} edited points"
+        )
 
     async def _async_read_edited(self) -> None:
         """Read the points edits added, in one read, and show their values."""
@@ -217,7 +271,7 @@ class PollingCoordinator(DataUpdateCoordinator[ReadResult]):
         if not points or self.data is None:
             return
         try:
-            result = await self.client.read(points, poll=False)
+            result = await self.client.read(points, poll=False, on_results=self._show_returned)
         except PlcError as err:
             LOGGER.debug("%s: edited points wait for the next poll: %s", self.name, err)
             return

@@ -10,6 +10,8 @@ from custom_components.plc_bridge.plc import ConnectionConfig, PlcAddressError, 
 from custom_components.plc_bridge.plc.codec import check_float, check_integer
 from custom_components.plc_bridge.plc.vendors import client_class
 
+pytestmark = pytest.mark.no_pacing
+
 HUGE = "9" * 5000  # int() refuses more than 4,300 digits with a bare ValueError
 
 

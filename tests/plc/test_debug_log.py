@@ -12,6 +12,8 @@ from custom_components.plc_bridge.plc.http import shown
 from custom_components.plc_bridge.plc.vendors.s7_smart import S7SmartClient
 from simulators.s7_smart import DEFAULT_PASSWORD, DEFAULT_USER, S7SmartSimulator
 
+pytestmark = pytest.mark.no_pacing
+
 
 def test_shown_masks_credentials_and_cuts_long_bodies() -> None:
     """Passwords, user names and tokens are masked; a long body is cut with its length."""

@@ -11,6 +11,8 @@ from custom_components.plc_bridge.plc.http import shown
 from custom_components.plc_bridge.plc.vendors.s7_smart import S7SmartClient
 from simulators.s7_smart import DEFAULT_PASSWORD, DEFAULT_USER, S7SmartSimulator
 
+pytestmark = pytest.mark.no_pacing
+
 
 def test_mask_runs_past_an_escaped_quote() -> None:
     """A password holding `\\"` is masked whole, not up to its escaped quote."""

@@ -18,6 +18,8 @@ from simulators.softplc import SoftplcSimulator
 from simulators.tecomat import TecomatSimulator
 from tests.loopback import Server, running
 
+pytestmark = pytest.mark.no_pacing
+
 PROBED = ("s7_smart", "tecomat", "plcnext", "s7")
 
 

@@ -9,6 +9,8 @@ import pytest
 from custom_components.plc_bridge.plc import Point, http
 from custom_components.plc_bridge.plc.vendors.s7_smart import S7SmartClient
 
+pytestmark = pytest.mark.no_pacing
+
 
 async def test_no_masking_while_debug_is_off(
     s7_smart_client: S7SmartClient,

@@ -20,6 +20,8 @@ from custom_components.plc_bridge.plc import (
 from custom_components.plc_bridge.plc.vendors.s7_smart import S7SmartClient
 from simulators.s7_smart import S7SmartSimulator
 
+pytestmark = pytest.mark.no_pacing
+
 PRAGUE = ZoneInfo("Europe/Prague")
 
 ROUND_TRIPS: list[tuple[str, str, Value]] = [

@@ -29,6 +29,8 @@ from tests.loopback import connected
 
 from .conftest import ConfigFactory
 
+pytestmark = pytest.mark.no_pacing
+
 POINTS = [Point(f"VW{2 * index}", "signed") for index in range(40)]
 DEEP = "[" * 100_000 + "]" * 100_000
 

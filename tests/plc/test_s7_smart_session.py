@@ -28,6 +28,8 @@ from simulators.s7_smart import S7SmartSimulator
 from .conftest import ConfigFactory
 from .s7_smart_fixtures import FIRMWARES, configure, firmware_id
 
+pytestmark = pytest.mark.no_pacing
+
 POINT = Point("VW0", "signed")
 
 

@@ -20,6 +20,8 @@ from simulators.s7_smart import (
 )
 from simulators.s7_smart.errors import INVALID_PARAMS, SHUFFLED
 
+pytestmark = pytest.mark.no_pacing
+
 type Reply = dict[str, Any]
 
 

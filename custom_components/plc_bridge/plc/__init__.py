@@ -3,7 +3,7 @@
 Never imports Home Assistant; takes an injected `aiohttp.ClientSession` where the vendor is HTTP.
 """
 
-from .client import PlcClient
+from .client import PlcClient, ResultsCallback
 from .errors import (
     PlcAddressError,
     PlcAuthenticationError,
@@ -55,6 +55,7 @@ __all__ = [
     "Point",
     "PointResult",
     "ReadResult",
+    "ResultsCallback",
     "TlsMode",
     "Value",
     "ValueKind",

@@ -3,7 +3,8 @@
 from __future__ import annotations
 
 from abc import ABC, abstractmethod
-from collections.abc import Mapping, Sequence
+from collections.abc import Callable, Mapping, Sequence
+from contextvars import ContextVar
 from datetime import datetime
 import math
 import time
@@ -27,6 +28,10 @@ from .types import (
     Value,
     ValueKind,
 )
+
+ResultsCallback = Callable[[dict[Point, PointResult]], None]
+"""Takes the results of one request of a read, as soon as that request has returned."""
+_ON_RESULTS: ContextVar[ResultsCallback | None] = ContextVar("plc_bridge_results", default=None)
 
 
 class PlcClient(ABC):
@@ -202,21 +207,31 @@ class PlcClient(ABC):
         """
         return  # most vendors check everything in `connect`
 
-    async def read(self, points: Sequence[Point], *, poll: bool = True) -> ReadResult:
+    async def read(
+        self,
+        points: Sequence[Point],
+        *,
+        poll: bool = True,
+        on_results: ResultsCallback | None = None,
+    ) -> ReadResult:
         """Read every point in the fewest requests the vendor allows.
 
         A poll (the coordinator's) is counted in the metrics and may keep state for the next
         poll (plans, unknown names, the status); an on-demand read (`poll=False`, the read
-        action) touches none of that and reads no status.
+        action) touches none of that and reads no status. `on_results` is handed each
+        request's results as it returns, by a vendor that reads in several paced requests
+        (the others may hand nothing); the returned result holds every point all the same.
         """
         before = self.metrics.requests
         started = time.perf_counter()
+        token = _ON_RESULTS.set(on_results)
         try:
             return await self._read(points, poll=poll)
         except PlcError:
             self.metrics.errors += 1
             raise
         finally:
+            _ON_RESULTS.reset(token)
             if poll:
                 self.metrics.polls += 1
                 self.metrics.last_poll_requests = self.metrics.requests - before
@@ -234,6 +249,16 @@ class PlcClient(ABC):
     @abstractmethod
     async def _read(self, points: Sequence[Point], *, poll: bool) -> ReadResult:
         """Vendor part of `read`; keep poll state only when `poll` is true."""
+
+    @staticmethod
+    def _request_results(values: dict[Point, PointResult]) -> None:
+        """Hand one request's results to the `on_results` of the read running (if it has one).
+
+        Kept out of `_read`'s arguments: a vendor reading in one request has nothing to hand.
+        """
+        on_results = _ON_RESULTS.get()
+        if on_results is not None and values:
+            on_results(values)
 
     @abstractmethod
     async def _write(self, values: Mapping[Point, Value]) -> dict[Point, PointResult]:

@@ -3,8 +3,9 @@
 from __future__ import annotations
 
 import asyncio
+from collections import deque
 from collections.abc import Iterable, Iterator, Mapping
-from contextlib import contextmanager
+from contextlib import contextmanager, suppress
 from contextvars import ContextVar
 import hashlib
 import logging
@@ -182,6 +183,73 @@ async def _read_capped(response: aiohttp.ClientResponse, limit: int) -> bytes:
     return b"".join(chunks)
 
 
+class Turns:
+    """Whose turn the transport is: waiting urgent requests first, each kind in arrival order.
+
+    An `asyncio.Lock` serves strictly in arrival order; a pulse's off must not queue behind
+    a paced poll's remaining requests.
+    """
+
+    def __init__(self) -> None:
+        """Start free, with nobody waiting."""
+        self._busy = False
+        self._urgent: deque[asyncio.Future[None]] = deque()
+        self._others: deque[asyncio.Future[None]] = deque()
+        self._pause: asyncio.Future[None] | None = None
+
+    async def take(self, urgent: bool) -> None:
+        """Wait for the turn; an urgent request ends a pacing pause of the one holding it."""
+        if not self._busy:
+            self._busy = True
+            return
+        if urgent and self._pause is not None and not self._pause.done():
+            self._pause.set_result(None)
+        await self._wait(self._urgent if urgent else self._others, first=False)
+
+    def give(self) -> None:
+        """Hand the turn to the first urgent request waiting, else the first other one."""
+        for queue in (self._urgent, self._others):
+            while queue:
+                waiter = queue.popleft()
+                if not waiter.done():
+                    waiter.set_result(None)
+                    return  # still busy: the turn was handed on
+        self._busy = False
+
+    async def pause(self, seconds: float) -> None:
+        """Wait out pacing holding the turn, unless an urgent request comes: it goes first.
+
+        The turn comes back after every urgent request waiting, before any other request.
+        """
+        self._pause = asyncio.get_running_loop().create_future()
+        try:
+            if not self._urgent:
+                await asyncio.wait((self._pause,), timeout=seconds)
+        finally:
+            self._pause.cancel()
+            self._pause = None
+        if self._urgent:
+            self.give()
+            await self._wait(self._others, first=True)
+
+    async def _wait(self, queue: deque[asyncio.Future[None]], *, first: bool) -> None:
+        """Queue up and wait until `give` hands the turn over."""
+        waiter = asyncio.get_running_loop().create_future()
+        if first:
+            queue.appendleft(waiter)
+        else:
+            queue.append(waiter)
+        try:
+            await waiter
+        except asyncio.CancelledError:
+            if waiter.cancelled():
+                with suppress(ValueError):
+                    queue.remove(waiter)
+            else:  # handed the turn as the wait was cancelled: pass it on
+                self.give()
+            raise
+
+
 class HttpTransport:
     """Sends every request of one client: one lock, one timeout, pacing and error mapping."""
 
@@ -214,7 +282,7 @@ class HttpTransport:
         self._secret = secret_fields((*SECRET_FIELDS, *extra)) if extra else SECRET
         self._url = base_url(config)
         self._timeout = aiohttp.ClientTimeout(total=config.timeout)
-        self._lock = asyncio.Lock()
+        self._turns = Turns()
         self._interval = request_interval
         self._last = 0.0
 
@@ -238,11 +306,16 @@ class HttpTransport:
         """
         url: str | URL = URL(self._url + path, encoded=True) if encoded else self._url + path
         arguments = {"data": data, "headers": headers, **kwargs}
-        async with self._lock:
+        is_urgent = URGENT.get()
+        await self._turns.take(is_urgent)
+        try:
             # Capped: a clock that moved back (suspend, a frozen test clock) never stalls a poll.
-            wait = min(self._interval, self._last + self._interval - time.monotonic())
-            if wait > 0:
-                await asyncio.sleep(wait)
+            while (
+                not is_urgent
+                and (wait := min(self._interval, self._last + self._interval - time.monotonic()))
+                > 0
+            ):
+                await self._turns.pause(wait)
             try:
                 try:
                     return await self._send(method, url, path, arguments)
@@ -274,6 +347,8 @@ class HttpTransport:
                 raise PlcConnectionError(f"cannot reach {self._config.host}: {err}") from err
             finally:
                 self._last = time.monotonic()
+        finally:
+            self._turns.give()
 
     async def _send(
         self, method: str, url: str | URL, path: str, arguments: dict[str, Any]

@@ -196,25 +196,31 @@ class S7SmartClient(WebSession):
         return self._plan
 
     async def _read(self, points: Sequence[Point], *, poll: bool) -> ReadResult:
-        """Read every distinct point once, 32 nodes a request; status from the last reply."""
+        """Read every distinct point once, 32 nodes a request; status from the last reply.
+
+        Each request's values are handed on as it returns: a paced poll takes a second each.
+        """
         while True:
             planned = self._poll_plan(points, keep=poll)
-            replies: list[dict[str, Any]] = []
+            values = dict(planned.invalid)
+            status = PlcStatus()
+            sent = 0
             try:
-                for _group, params in planned.groups:
-                    replies.append(await self._call("read", params))
+                for group, params in planned.groups:
+                    result = await self._call("read", params)
+                    sent += 1
+                    status = decode_status(result.get("status"), self._zone)
+                    returned: dict[Point, PointResult] = {}
+                    for node, item in zip(group, reply_nodes(result, group), strict=True):
+                        outcome = self._outcome(node, item)
+                        for point in planned.wanted[node]:
+                            returned[point] = outcome
+                    values |= returned
+                    self._request_results(returned)
                 break
             except RequestRefused:
-                if not await self._fewer_nodes(planned.groups[len(replies)][1]):
+                if not await self._fewer_nodes(planned.groups[sent][1]):
                     raise
-        values = dict(planned.invalid)
-        status = PlcStatus()
-        for (group, _params), result in zip(planned.groups, replies, strict=True):
-            status = decode_status(result.get("status"), self._zone)
-            for node, item in zip(group, reply_nodes(result, group), strict=True):
-                outcome = self._outcome(node, item)
-                for point in planned.wanted[node]:
-                    values[point] = outcome
         return ReadResult(values=values, status=status)
 
     async def _fewer_nodes(self, params: list[dict[str, Any]]) -> bool:
