@@ -32,6 +32,8 @@ from .ha_fixtures import PointData, call, point
 from .softplc_ha_fixtures import make_softplc_entry, softplc_data
 from .test_config_file import CONFIG, paste
 
+pytestmark = pytest.mark.no_pacing
+
 SOFTPLC = client_class("softplc")
 SMART = client_class("s7_smart")
 COMMAND = point("cmd", "Lamp", "switch", "B3:3/0", "BOOL")

@@ -36,6 +36,8 @@ from custom_components.plc_bridge.cover import DEFAULT_TRAVEL_TIME, STOP_HOLD
 from .ha_fixtures import SCAN_INTERVAL
 from .outputs_plcs import Faults, Plc, faults_fixture, plc_fixture, wait  # noqa: F401
 
+pytestmark = pytest.mark.no_pacing
+
 COMMANDS = ("open", "close", "stop")
 
 

@@ -20,6 +20,8 @@ from custom_components.plc_bridge.const import DOMAIN
 from .ha_fixtures import point
 from .outputs_plcs import Faults, Plc, faults_fixture, plc_fixture, wait  # noqa: F401
 
+pytestmark = pytest.mark.no_pacing
+
 PULSE = 2.0
 
 

@@ -12,6 +12,8 @@ from simulators.s7_smart import S7SmartSimulator
 
 from .ha_fixtures import POINTS, call, make_entry, point
 
+pytestmark = pytest.mark.no_pacing
+
 LABEL = point("status_text", "Status text", "sensor", "VB500", "string", read_only=True)
 NAME = point("recipe_name", "Recipe name", "sensor", "VB600", "string[20]", read_only=True)
 

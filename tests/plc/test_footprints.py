@@ -16,6 +16,8 @@ from custom_components.plc_bridge.plc.vendors.s7_smart import S7SmartClient
 from simulators.s7_smart import S7SmartSimulator
 from simulators.s7_smart.server import STRINGS
 
+pytestmark = pytest.mark.no_pacing
+
 
 def overlap(vendor: str, first: tuple[str, str], second: tuple[str, str]) -> bool:
     """True when the two (validated) points of the vendor cover some of the same data."""

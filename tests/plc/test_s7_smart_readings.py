@@ -22,6 +22,8 @@ from tests.loopback import connected
 from .conftest import ConfigFactory
 from .s7_smart_fixtures import FIRMWARES, configure, fast_backoff, firmware_id
 
+pytestmark = pytest.mark.no_pacing
+
 WORD = Point("VW0", "signed")
 STRING = Point("VB500", "string")
 REAL = Point("VD4", "float")
