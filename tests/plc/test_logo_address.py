@@ -75,10 +75,12 @@ def test_refused_with_a_hint(address: str, data_type: str, message: str) -> None
 def test_footprints_in_block_terms() -> None:
     """Blocks by number, VM by bit: a VW covers its bytes' bits, not a block's image."""
     assert LogoClient.footprint(Point("AI2", "INT")) == LogoClient.footprint(Point("ai2", "WORD"))
-    word, bit = LogoClient.footprint(Point("VW10", "INT")), LogoClient.footprint(
-        Point("V11.0", "BOOL")
+    word, bit = (
+        LogoClient.footprint(Point("VW10", "INT")),
+        LogoClient.footprint(Point("V11.0", "BOOL")),
     )
-    assert word.area == bit.area == "logo:V" and word.start <= bit.start < word.end
+    assert word.area == bit.area == "logo:V"
+    assert word.start <= bit.start < word.end
     assert LogoClient.footprint(Point("I1", "BOOL")).area == "logo:I"
 
 
@@ -103,9 +105,10 @@ def test_options_default_per_generation() -> None:
         "local_tsap": "10.01",
         "remote_tsap": "10.00",
     }
-    assert LogoClient.validate_options({"generation": "8_x", "remote_tsap": "0x0200"})[
-        "remote_tsap"
-    ] == "02.00"
+    assert (
+        LogoClient.validate_options({"generation": "8_x", "remote_tsap": "0x0200"})["remote_tsap"]
+        == "02.00"
+    )
     with pytest.raises(PlcOptionError) as err:
         LogoClient.validate_options({"generation": "0ba6"})
     assert err.value.option == "generation"

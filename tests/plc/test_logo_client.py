@@ -136,9 +136,7 @@ async def test_an_output_write_is_refused_before_sending(
     assert logo_sim.calls["write"] == before
 
 
-async def test_another_tsap_is_refused(
-    logo_sim: LogoSimulator, logo_config: ConfigFactory
-) -> None:
+async def test_another_tsap_is_refused(logo_sim: LogoSimulator, logo_config: ConfigFactory) -> None:
     """A TSAP the LOGO! has no server connection for: the session is refused."""
     options = {"generation": logo_sim.generation, "remote_tsap": "03.01"}
     with pytest.raises(PlcSessionRefusedError):

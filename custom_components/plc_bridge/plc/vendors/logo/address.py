@@ -26,15 +26,14 @@ import re
 
 from ...errors import PlcAddressError
 from ...types import Point
-from ..s7.address import AREA_DB, Variable, normalize_type
-from ..s7.address import variable as s7_variable
+from ..s7.address import AREA_DB, Variable, normalize_type, variable as s7_variable
 
 VM_DB = 1
 VM_USER = 850
-"""Bytes of VM a program's parameters use (V0..V849): sources disagree on V850 (READINGS row 3)."""
+"""Bytes of VM a program's parameters use (V0..V849); sources disagree on V850 (READINGS row 3)."""
 
 GENERATIONS: tuple[str, ...] = ("0ba7", "0ba8", "8_x")
-"""0BA7; the first LOGO! 8 (…-0BA8); LOGO! 8.FS4 and later (8.1 to 8.4: …-0BA8 FS4, -0BA1, -0BA2)."""
+"""0BA7; the first LOGO! 8 (…-0BA8); LOGO! 8.FS4 and later (8.1 to 8.4)."""
 
 MODELS = {"0ba7": "LOGO! 0BA7", "0ba8": "LOGO! 8 (0BA8)", "8_x": "LOGO! 8.x"}
 

@@ -30,7 +30,11 @@ async def answers(
                 local, remote = DEFAULT_TSAPS[generation]
                 with contextlib.suppress(asyncio.IncompleteReadError, ConnectionError):
                     if await confirms(host, port, parse_tsap(remote, "remote_tsap")):
-                        return {"generation": generation, "local_tsap": local, "remote_tsap": remote}
+                        return {
+                            "generation": generation,
+                            "local_tsap": local,
+                            "remote_tsap": remote,
+                        }
     except OSError:  # TimeoutError is one; so is a refused connection
         return None
     return None
