@@ -43,6 +43,7 @@ SIMULATORS = (
     Entry("plcnext", "simulators.plcnext", "PlcnextSimulator", 5050),
     Entry("softplc", "simulators.softplc", "SoftplcSimulator", 8081),
     Entry("s7", "simulators.s7", "S7Simulator", 10102),
+    Entry("logo", "simulators.logo", "LogoSimulator", 10103),
 )
 
 

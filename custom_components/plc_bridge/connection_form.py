@@ -38,6 +38,8 @@ from .plc import (
     TlsMode,
 )
 from .plc.vendors import implemented
+from .plc.vendors.logo.address import GENERATIONS
+from .plc.vendors.logo.options import DEFAULT_TSAPS
 
 
 @dataclass(frozen=True, slots=True)
@@ -93,6 +95,7 @@ VENDOR_FIELDS: dict[str, tuple[VendorField, ...]] = {
         VendorField("family", _choice("family", ["s7_300_1500", "s7_200"]), "s7_300_1500"),
         VendorField("connection", _choice("connection", ["rack_slot", "tsap"]), "rack_slot"),
     ),
+    "logo": (VendorField("generation", _choice("generation", list(GENERATIONS)), "0ba8"),),
 }
 """Extra fields of a vendor's connection page, shown after the credentials.
 
@@ -114,6 +117,17 @@ SECOND_PAGES: dict[str, SecondPage] = {
             ),
         },
         {"rack_slot": "slot", "tsap": "remote_tsap"},
+    ),
+    "logo": SecondPage(
+        "generation",
+        {
+            generation: (
+                VendorField("local_tsap", TextSelector(), local),
+                VendorField("remote_tsap", TextSelector(), remote),
+            )
+            for generation, (local, remote) in DEFAULT_TSAPS.items()
+        },
+        dict.fromkeys(DEFAULT_TSAPS, "remote_tsap"),
     ),
 }
 """Vendors whose connection takes a second page: only the fields of the way chosen are asked."""

@@ -19,7 +19,7 @@ class Family:
 
 FAMILIES: dict[str, Family] = {
     # An S7-200 SMART also answers S7comm: its Web API, where it answers, is the one preferred.
-    "siemens": Family("Siemens", ("s7_smart", "s7")),
+    "siemens": Family("Siemens", ("s7_smart", "s7", "logo")),
     "phoenix_contact": Family("Phoenix Contact", ("plcnext",)),
     "teco": Family("Teco", ("tecomat",)),
 }

@@ -7,7 +7,7 @@ import importlib
 from ..client import PlcClient
 from ..probe import Probe
 
-VENDORS: tuple[str, ...] = ("s7_smart", "tecomat", "plcnext", "softplc", "s7")
+VENDORS: tuple[str, ...] = ("s7_smart", "tecomat", "plcnext", "softplc", "s7", "logo")
 """Every vendor key, in the order the config flow lists them."""
 
 

@@ -25,7 +25,7 @@ def connection_request(called_tsap: int) -> bytes:
     return bytes((3, 0)) + (4 + len(frame)).to_bytes(2, "big") + frame
 
 
-async def _confirms(host: str, port: int, called_tsap: int) -> bool:
+async def confirms(host: str, port: int, called_tsap: int) -> bool:
     """Send one connection request on a new TCP connection; True when a confirm comes back."""
     reader, writer = await asyncio.open_connection(host, port)
     try:
@@ -54,7 +54,7 @@ async def answers(
         async with asyncio.timeout(timeout):
             for slot in SLOTS:
                 with contextlib.suppress(asyncio.IncompleteReadError, ConnectionError):
-                    if await _confirms(host, port, PG << 8 | slot):
+                    if await confirms(host, port, PG << 8 | slot):
                         return {"rack": 0, "slot": slot}
     except OSError:  # TimeoutError is one; so is a refused connection
         return None
