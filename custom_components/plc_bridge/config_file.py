@@ -13,7 +13,7 @@ import json
 from typing import Any, NoReturn
 
 from homeassistant.config_entries import ConfigEntry, ConfigSubentry, ConfigSubentryData
-from homeassistant.const import CONF_ENTITY_ID, CONF_HOST, CONF_NAME, CONF_PORT
+from homeassistant.const import CONF_ENTITY_ID, CONF_HOST, CONF_NAME, CONF_PORT, CONF_SCAN_INTERVAL
 import yaml
 
 from .availability import CONF_AVAILABILITY_ADDRESS, CONF_AVAILABILITY_DATA_TYPE
@@ -34,6 +34,7 @@ from .config_keys import (
 from .const import (
     CONF_ADDRESS,
     CONF_DATA_TYPE,
+    CONF_MAC,
     CONF_OPTIONS,
     CONF_PLATFORM,
     CONF_POINTS,
@@ -44,10 +45,14 @@ from .const import (
     SUBENTRY_DEVICE,
     SUBENTRY_EXPOSE,
 )
+from .expose_config import CONF_SEND, check_expose
+from .options_flow import INTERVALS, interval_errors, unset
 from .plc import PlcClient, PlcError, Point, TlsMode
 from .plc.vendors import implemented
 from .point_form import read_only_errors
 from .point_table import point_order
+from .points import PointConfig, point_classes
+from .poll_classes import CONF_FAST_INTERVAL, FAST, NORMAL, class_minimums
 from .write_guard import layout_conflicts
 from .yaml_text import Path, YamlText, YamlTextError, read_yaml
 
@@ -108,7 +113,11 @@ class ConfigFile:
 
 def dump_config(entry: ConfigEntry[Any]) -> str:
     """Return an entry as a YAML file, secrets left out, ordered to diff well in git."""
-    data = {key: value for key, value in entry.data.items() if not _secret(key, value)}
+    data = {
+        key: value
+        for key, value in entry.data.items()
+        if not _secret(key, value) and key != CONF_MAC  # a discovery's, of this installation
+    }
     options = dict(entry.data.get(CONF_OPTIONS) or {})
     data[CONF_OPTIONS] = {key: value for key, value in options.items() if not _secret(key, value)}
     removed = [key for key in SECRETS if entry.data.get(key) or options.get(key)]
@@ -353,3 +362,72 @@ def _addressed(value: Any, name: str) -> Iterator[tuple[str, Point]]:
     elif isinstance(value, list):
         for item in value:
             yield from _addressed(item, name)
+
+
+def check_intervals(client: type[PlcClient], pasted: ConfigFile) -> None:
+    """Raise ConfigFileError for a poll interval the options form would refuse, on its line."""
+    configs = {
+        point_id: PointConfig(point_id, str(index), data)
+        for index, subentry in enumerate(pasted.subentries)
+        if subentry["subentry_type"] == SUBENTRY_DEVICE
+        for point_id, data in (subentry["data"].get(CONF_POINTS) or {}).items()
+    }
+    every_poll = [
+        Point(str(data[CONF_AVAILABILITY_ADDRESS]), str(data[CONF_AVAILABILITY_DATA_TYPE]))
+        for subentry in pasted.subentries
+        if (data := subentry["data"]).get(CONF_AVAILABILITY_ADDRESS)
+        and CONF_AVAILABILITY_DATA_TYPE in data
+    ]
+    points = list(dict.fromkeys(config.point for config in configs.values()))
+    polled = list(dict.fromkeys([*every_poll, *points]))
+    minimums = class_minimums(client, point_classes(configs, every_poll), polled)
+    given = {key: float(value) for key, value in pasted.options.items() if key in INTERVALS}
+    for key in interval_errors(unset(client, given, minimums), minimums):
+        line = pasted.line(("options", key if key in given else CONF_SCAN_INTERVAL))
+        least = minimums[FAST if key == CONF_FAST_INTERVAL else NORMAL]
+        raise ConfigFileError("config_interval", line=line, name=key, minimum=f"{least:g}")
+
+
+def check_exposes(client: type[PlcClient], pasted: ConfigFile) -> list[ConfigSubentryData]:
+    """Return the subentries with each expose as its form stores it, sending off.
+
+    Each expose passes the one validation of an expose (`check_expose`); the first refused
+    raises ConfigFileError on the line of its field. Its feedback is checked when the user
+    turns sending on: the entities it would follow do not exist yet.
+    """
+    read_only = [
+        Point(str(data[CONF_ADDRESS]), str(data[CONF_DATA_TYPE]))
+        for subentry in pasted.subentries
+        for data in (subentry["data"].get(CONF_POINTS) or {}).values()
+        if isinstance(data, Mapping) and data.get(CONF_READ_ONLY)
+    ]
+    exposes = {
+        index: Point(str(subentry["data"][CONF_ADDRESS]), str(subentry["data"][CONF_DATA_TYPE]))
+        for index, subentry in enumerate(pasted.subentries)
+        if subentry["subentry_type"] == SUBENTRY_EXPOSE
+    }
+    subentries: list[ConfigSubentryData] = []
+    for index, subentry in enumerate(pasted.subentries):
+        if index not in exposes:
+            subentries.append(subentry)
+            continue
+        taken = [point for other, point in exposes.items() if other < index]
+        data, errors, words = check_expose(
+            client, subentry["data"], read_only=read_only, taken=taken
+        )
+        for field, key in errors.items():
+            raise ConfigFileError(
+                f"config_expose_{key}",
+                line=pasted.line(("subentries", index, "data", field)),
+                point=subentry["title"],
+                **words,
+            )
+        subentries.append(
+            ConfigSubentryData(
+                data=data | {CONF_SEND: False},
+                subentry_type=SUBENTRY_EXPOSE,
+                title=subentry["title"],
+                unique_id=subentry["unique_id"],
+            )
+        )
+    return subentries
