@@ -197,7 +197,7 @@ async def confirm(hass: HomeAssistant, result: Any, secrets: dict[str, str]) -> 
     """
     while result["type"] is FlowResultType.FORM and not result.get("errors"):
         values: dict[str, Any] = {}
-        for marker in (result["data_schema"].schema if result["data_schema"] else {}):
+        for marker in result["data_schema"].schema if result["data_schema"] else {}:
             field = str(marker)
             if field in secrets:
                 values[field] = secrets[field]

@@ -27,9 +27,9 @@ from custom_components.plc_bridge.const import (
 )
 from simulators.s7_smart import DEFAULT_PASSWORD as SMART_PASSWORD, DEFAULT_USER, S7SmartSimulator
 
-from .flow_fixtures import suggested, translated
+from .flow_fixtures import suggested
 from .ha_fixtures import DEVICE_ID, POINTS, device, legacy_point, point, sim_data
-from .test_config_file import CONFIG, VENDORS, confirm, export, original, paste
+from .test_config_file import VENDORS, confirm, export, original, paste
 
 
 async def test_same_plc_already_configured(

@@ -171,7 +171,11 @@ ALIASES = dump_config(plc()).replace(
         (edited(vendor="modbus"), "config_unknown_vendor", "family modbus"),
         (BAD_ADDRESS, "config_bad_address", "The point Temperature has an address"),
         (BAD_AVAILABILITY, "config_bad_address", "The point Annex has an address"),
-        (dump_config(plc()).replace("type: device", "type: sensor"), "config_bad_value", "type must be"),
+        (
+            dump_config(plc()).replace("type: device", "type: sensor"),
+            "config_bad_value",
+            "type must be",
+        ),
         (ALIASES, "config_alias", "line 24"),
     ],
     ids=[

@@ -46,7 +46,7 @@ from .const import (
     SUBENTRY_EXPOSE,
 )
 from .expose_config import CONF_SEND, check_expose
-from .options_flow import INTERVALS, interval_errors, unset
+from .options_flow import INTERVALS, SECONDS_MAX, SECONDS_MIN, interval_errors, unset
 from .plc import PlcClient, PlcError, Point, TlsMode
 from .plc.vendors import implemented
 from .point_form import read_only_errors
@@ -382,6 +382,12 @@ def check_intervals(client: type[PlcClient], pasted: ConfigFile) -> None:
     polled = list(dict.fromkeys([*every_poll, *points]))
     minimums = class_minimums(client, point_classes(configs, every_poll), polled)
     given = {key: float(value) for key, value in pasted.options.items() if key in INTERVALS}
+    for key, value in given.items():
+        if not SECONDS_MIN <= value <= SECONDS_MAX:  # the form's own field bounds
+            line = pasted.line(("options", key))
+            raise ConfigFileError(
+                "config_interval", line=line, name=key, minimum=f"{SECONDS_MIN:g}"
+            )
     for key in interval_errors(unset(client, given, minimums), minimums):
         line = pasted.line(("options", key if key in given else CONF_SCAN_INTERVAL))
         least = minimums[FAST if key == CONF_FAST_INTERVAL else NORMAL]
