@@ -12,9 +12,7 @@ from typing import Any
 
 from freezegun.api import FrozenDateTimeFactory
 from homeassistant.config_entries import SOURCE_USER, ConfigEntry
-from homeassistant.const import (
-    CONF_PASSWORD,
-)
+from homeassistant.const import CONF_HOST, CONF_PASSWORD, CONF_PORT
 from homeassistant.core import HomeAssistant
 from homeassistant.data_entry_flow import FlowResultType
 from homeassistant.helpers import entity_registry as er
@@ -24,7 +22,13 @@ from pytest_homeassistant_custom_component.common import MockConfigEntry
 from custom_components.plc_bridge.config_file_flow import CONF_CONFIGURATION, PASTE
 from custom_components.plc_bridge.config_flow import device_unique_id
 from custom_components.plc_bridge.connection import create_client
-from custom_components.plc_bridge.const import CONF_SEND_ON_START, CONF_VENDOR, DOMAIN
+from custom_components.plc_bridge.const import (
+    CONF_SEND_ON_START,
+    CONF_VENDOR,
+    DOMAIN,
+    SUBENTRY_EXPOSE,
+)
+from custom_components.plc_bridge.expose_config import CONF_SEND
 from custom_components.plc_bridge.poll_classes import (
     CONF_FAST_INTERVAL,
     CONF_POLL,
@@ -35,7 +39,7 @@ from simulators.s7_smart import DEFAULT_PASSWORD as SMART_PASSWORD
 from simulators.tecomat import DEFAULT_PASSWORD as TECOMAT_PASSWORD
 
 from .expose_fixtures import add_expose, settle
-from .flow_fixtures import translated
+from .flow_fixtures import suggested, translated
 from .ha_fixtures import POINTS, PointData, add_entry, device, sim_data
 from .plcnext_ha_fixtures import PLCNEXT_POINTS, plcnext_data
 from .s7_ha_fixtures import S7_POINTS, S7_TITLE, fill, s7_data
@@ -187,6 +191,26 @@ async def paste(hass: HomeAssistant, text: str) -> Any:
     )
 
 
+async def confirm(hass: HomeAssistant, result: Any, secrets: dict[str, str]) -> Any:
+    """Take the pages after the paste as the file filled them in, adding the secrets.
+
+    The connection page (and a second one), the certificate page where TLS is pinned, the list
+    of exposes: each is submitted as suggested, until the entry is made or a page shows errors.
+    """
+    while result["type"] is FlowResultType.FORM and not result.get("errors"):
+        values: dict[str, Any] = {}
+        for marker in result["data_schema"].schema if result["data_schema"] else {}:
+            field = str(marker)
+            if field in secrets:
+                values[field] = secrets[field]
+            elif (value := suggested(result, field)) is not None:
+                values[field] = value
+        result = translated(
+            await hass.config_entries.flow.async_configure(result["flow_id"], values), *CONFIG
+        )
+    return result
+
+
 @pytest.fixture
 def vendor_sim(request: pytest.FixtureRequest) -> tuple[Vendor, Any]:
     """The vendor the test is parametrized with, and its started simulator holding values."""
@@ -213,10 +237,10 @@ async def test_round_trip(hass: HomeAssistant, vendor_sim: tuple[Vendor, Any]) -
     assert await hass.config_entries.async_remove(entry.entry_id)
     await hass.async_block_till_done()
     result = await paste(hass, text)
-    if secrets:
-        assert result["step_id"] == "paste_secrets"
-        assert {str(marker) for marker in result["data_schema"].schema} == set(secrets)
-        result = await hass.config_entries.flow.async_configure(result["flow_id"], secrets)
+    assert result["step_id"].startswith("connection")  # the host and port, shown first
+    assert suggested(result, CONF_HOST) == entry.data[CONF_HOST]
+    assert suggested(result, CONF_PORT) == entry.data[CONF_PORT]
+    result = await confirm(hass, result, secrets)
     assert result["type"] is FlowResultType.CREATE_ENTRY
     await hass.async_block_till_done()
     new = result["result"]
@@ -263,10 +287,16 @@ async def test_round_trip_carries_exposes_and_poll_classes(
     await hass.async_block_till_done()
     s7_smart_sim.set("VD200", 0.0, "float")
     result = await paste(hass, text)
-    result = await hass.config_entries.flow.async_configure(
-        result["flow_id"], vendor.secrets(s7_smart_sim)
-    )
+    result = await confirm(hass, result, vendor.secrets(s7_smart_sim))
     assert result["type"] is FlowResultType.CREATE_ENTRY
     await settle(hass, freezer)
-    assert contents(result["result"]) == kept
-    assert s7_smart_sim.get("VD200", "float") == pytest.approx(21.5)  # the expose runs again
+    new = result["result"]
+    (expose,) = [s for s in new.subentries.values() if s.subentry_type == SUBENTRY_EXPOSE]
+    assert expose.data[CONF_SEND] is False  # pasted: sends nothing until turned on
+    assert contents(new)[:3] == kept[:3]
+    assert s7_smart_sim.get("VD200", "float") == 0.0
+    sending = {key: value for key, value in expose.data.items() if key != CONF_SEND}
+    hass.config_entries.async_update_subentry(new, expose, data=sending)
+    await settle(hass, freezer)
+    assert contents(new) == kept
+    assert s7_smart_sim.get("VD200", "float") == pytest.approx(21.5)  # turned on: it runs

@@ -28,9 +28,9 @@ from custom_components.plc_bridge.const import (
 )
 from simulators.s7_smart import DEFAULT_PASSWORD as SMART_PASSWORD, DEFAULT_USER, S7SmartSimulator
 
-from .flow_fixtures import suggested, translated
+from .flow_fixtures import suggested
 from .ha_fixtures import DEVICE_ID, POINTS, device, legacy_point, point, sim_data
-from .test_config_file import CONFIG, VENDORS, export, original, paste
+from .test_config_file import VENDORS, confirm, export, original, paste
 
 pytestmark = pytest.mark.no_pacing
 
@@ -42,10 +42,7 @@ async def test_same_plc_already_configured(
     vendor = VENDORS["s7_smart"]
     entry = await original(hass, vendor, s7_smart_sim, {})
     result = await paste(hass, await export(hass, entry))
-    result = await hass.config_entries.flow.async_configure(
-        result["flow_id"], {CONF_PASSWORD: SMART_PASSWORD}
-    )
-    translated(result, *CONFIG)
+    result = await confirm(hass, result, {CONF_PASSWORD: SMART_PASSWORD})
     assert (result["type"], result["reason"]) == (FlowResultType.ABORT, "already_configured")
     assert hass.config_entries.async_entries(DOMAIN) == [entry]
 
@@ -72,12 +69,8 @@ async def test_moved_plc_asks_its_address(
     )
     ar.async_get(hass).async_create("Cellar")  # and no attic
     result = await paste(hass, dump_config(entry))
-    result = translated(
-        await hass.config_entries.flow.async_configure(
-            result["flow_id"], {CONF_PASSWORD: SMART_PASSWORD}
-        ),
-        *CONFIG,
-    )
+    assert suggested(result, CONF_PORT) == gone  # shown before anything is sent
+    result = await confirm(hass, result, {CONF_PASSWORD: SMART_PASSWORD})
     assert (result["step_id"], result["errors"]) == (
         "connection_s7_smart",
         {CONF_HOST: "cannot_connect"},
@@ -93,6 +86,8 @@ async def test_moved_plc_asks_its_address(
             CONF_PASSWORD: SMART_PASSWORD,
         },
     )
+    assert result["step_id"] == "certificate"  # the file's fingerprint is not trusted up front
+    result = await confirm(hass, result, {})
     assert result["type"] is FlowResultType.CREATE_ENTRY
     await hass.async_block_till_done()
     new = result["result"]
@@ -120,9 +115,7 @@ async def test_older_file_migrated(hass: HomeAssistant, s7_smart_sim: S7SmartSim
         version=1,
     )
     result = await paste(hass, dump_config(legacy))
-    result = await hass.config_entries.flow.async_configure(
-        result["flow_id"], {CONF_PASSWORD: SMART_PASSWORD}
-    )
+    result = await confirm(hass, result, {CONF_PASSWORD: SMART_PASSWORD})
     assert result["type"] is FlowResultType.CREATE_ENTRY
     await hass.async_block_till_done()
     new = result["result"]

@@ -167,14 +167,18 @@ ALIASES = dump_config(plc()).replace(
     [
         ("plc_bridge: 1\ntitle: [Boiler\n", "config_malformed", "line 3"),
         ("title: Boiler house\n", "config_not_ours", "plc_bridge, is missing"),
-        (edited(port="https"), "config_invalid", "port"),
+        (edited(port="https"), "config_bad_value", "port must be whole number"),
         (edited(version=3), "config_newer", "newer release"),
         (edited(plc_bridge=2), "config_newer", "newer release"),
         (edited(vendor="modbus"), "config_unknown_vendor", "family modbus"),
         (BAD_ADDRESS, "config_bad_address", "The point Temperature has an address"),
         (BAD_AVAILABILITY, "config_bad_address", "The point Annex has an address"),
-        (dump_config(plc()).replace("type: device", "type: sensor"), "config_invalid", "type"),
-        (ALIASES, "config_alias", "line 25"),
+        (
+            dump_config(plc()).replace("type: device", "type: sensor"),
+            "config_bad_value",
+            "type must be",
+        ),
+        (ALIASES, "config_alias", "line 24"),
     ],
     ids=[
         "yaml",

@@ -10,19 +10,31 @@ from __future__ import annotations
 from collections.abc import Iterator, Mapping
 from dataclasses import dataclass
 import json
-from typing import Any
+from typing import Any, NoReturn
 
 from homeassistant.config_entries import ConfigEntry, ConfigSubentry, ConfigSubentryData
-from homeassistant.const import CONF_HOST, CONF_NAME, CONF_PORT
-import voluptuous as vol
-from voluptuous.humanize import humanize_error
+from homeassistant.const import CONF_ENTITY_ID, CONF_HOST, CONF_NAME, CONF_PORT, CONF_SCAN_INTERVAL
 import yaml
 
 from .availability import CONF_AVAILABILITY_ADDRESS, CONF_AVAILABILITY_DATA_TYPE
 from .composite import as_platform, travel_data
+from .config_keys import (
+    CONNECTION,
+    FILE,
+    MAPPING,
+    OPTIONS,
+    POINT,
+    SUBENTRY,
+    SUBENTRY_DATA,
+    TEXT,
+    Keys,
+    kind_error,
+    vendor_option_keys,
+)
 from .const import (
     CONF_ADDRESS,
     CONF_DATA_TYPE,
+    CONF_MAC,
     CONF_OPTIONS,
     CONF_PLATFORM,
     CONF_POINTS,
@@ -32,13 +44,17 @@ from .const import (
     CONF_VENDOR,
     SUBENTRY_DEVICE,
     SUBENTRY_EXPOSE,
-    SUBENTRY_POINT,
 )
+from .expose_config import CONF_SEND, check_expose
+from .options_flow import INTERVALS, SECONDS_MAX, SECONDS_MIN, interval_errors, unset
 from .plc import PlcClient, PlcError, Point, TlsMode
 from .plc.vendors import implemented
 from .point_form import read_only_errors
 from .point_table import point_order
+from .points import PointConfig, point_classes
+from .poll_classes import CONF_FAST_INTERVAL, FAST, NORMAL, class_minimums
 from .write_guard import layout_conflicts
+from .yaml_text import Path, YamlText, YamlTextError, read_yaml
 
 FORMAT_KEY = "plc_bridge"
 FORMAT = 1
@@ -60,38 +76,6 @@ ADDRESS_KEYS = (
     (CONF_AVAILABILITY_ADDRESS, CONF_AVAILABILITY_DATA_TYPE),
 )
 """The keys of an address and its data type, wherever they stand in a subentry's data."""
-
-SUBENTRY_SCHEMA = vol.Schema(
-    {
-        # A type this release neither handles nor migrates (a version 1 file's points) would be
-        # a subentry nobody can edit.
-        vol.Required("type"): vol.In([SUBENTRY_DEVICE, SUBENTRY_EXPOSE, SUBENTRY_POINT]),
-        vol.Required("title"): str,
-        vol.Optional("unique_id", default=None): vol.Any(None, str),
-        vol.Optional("data", default={}): dict,
-    }
-)
-FILE_SCHEMA = vol.Schema(
-    {
-        vol.Required(FORMAT_KEY): vol.All(int, vol.Range(min=1)),
-        vol.Required("version"): vol.All(int, vol.Range(min=1)),
-        vol.Optional("minor_version", default=1): vol.All(int, vol.Range(min=1)),
-        vol.Required("title"): vol.All(str, vol.Length(min=1)),
-        vol.Required("connection"): vol.Schema(
-            {
-                vol.Required(CONF_VENDOR): str,
-                vol.Required(CONF_HOST): vol.All(str, vol.Length(min=1)),
-                vol.Required(CONF_PORT): vol.All(int, vol.Range(min=1, max=65535)),
-                vol.Required(CONF_TLS): vol.In([mode.value for mode in TlsMode]),
-                vol.Optional(CONF_OPTIONS, default={}): dict,
-            },
-            extra=vol.ALLOW_EXTRA,
-        ),
-        vol.Optional("secrets", default=[]): [vol.In(SECRETS)],
-        vol.Optional("options", default={}): dict,
-        vol.Optional("subentries", default=[]): [SUBENTRY_SCHEMA],
-    }
-)
 
 
 class ConfigFileError(Exception):
@@ -115,6 +99,11 @@ class ConfigFile:
     secrets: tuple[str, ...]
     options: dict[str, Any]
     subentries: list[ConfigSubentryData]
+    source: YamlText | None = None  # the text it was read from: the line of each key
+
+    def line(self, path: Path) -> str:
+        """Return the line of a path of the file, as text ("?" for a file not read from text)."""
+        return str(self.source.line(path)) if self.source is not None else "?"
 
     @property
     def vendor(self) -> str:
@@ -124,7 +113,11 @@ class ConfigFile:
 
 def dump_config(entry: ConfigEntry[Any]) -> str:
     """Return an entry as a YAML file, secrets left out, ordered to diff well in git."""
-    data = {key: value for key, value in entry.data.items() if not _secret(key, value)}
+    data = {
+        key: value
+        for key, value in entry.data.items()
+        if not _secret(key, value) and key != CONF_MAC  # a discovery's, of this installation
+    }
     options = dict(entry.data.get(CONF_OPTIONS) or {})
     data[CONF_OPTIONS] = {key: value for key, value in options.items() if not _secret(key, value)}
     removed = [key for key in SECRETS if entry.data.get(key) or options.get(key)]
@@ -193,56 +186,111 @@ def _plain(value: Any) -> Any:
 def load_config(text: str, version: int) -> ConfigFile:
     """Return the PLC a pasted file describes; raise ConfigFileError on what cannot be used.
 
+    Blocking (an executor's work): the text is read as plain YAML data only, every key checked
+    against the keys its level may hold and every value against its key's kind, on its line.
     `version` is the newest entry version this release knows: a file of a newer one is
     refused, an older one is created at its own version and migrated as stored entries are.
     """
     try:
-        if (alias := _first_alias(text)) is not None:
-            raise ConfigFileError("config_alias", line=str(alias))
-        document = yaml.safe_load(text)
-    except yaml.YAMLError as err:
-        mark = getattr(err, "problem_mark", None)
-        line = str(mark.line + 1) if mark is not None else "?"
-        raise ConfigFileError("config_malformed", line=line) from err
+        read = read_yaml(text)
+    except YamlTextError as err:
+        raise ConfigFileError(err.key, **err.placeholders) from err
+    document = read.data
     if not isinstance(document, dict) or FORMAT_KEY not in document:
         raise ConfigFileError("config_not_ours")
-    try:
-        document = FILE_SCHEMA(document)
-    except vol.Invalid as err:
-        raise ConfigFileError("config_invalid", problem=humanize_error(document, err)) from err
+    _check_level(read, (), FILE, ("plc_bridge", "version", "title", "connection"))
     if document[FORMAT_KEY] > FORMAT or document["version"] > version:
         raise ConfigFileError("config_newer")
+    _check_level(read, ("connection",), CONNECTION, (CONF_VENDOR, CONF_HOST, CONF_PORT, CONF_TLS))
     data: dict[str, Any] = document["connection"]
     if data[CONF_VENDOR] not in implemented():
         raise ConfigFileError("config_unknown_vendor", vendor=data[CONF_VENDOR])
+    _check_connection(read, data)
+    if "options" in document:
+        _check_level(read, ("options",), OPTIONS, ())
+    secrets = document.get("secrets", [])
+    for index, secret in enumerate(secrets):
+        if secret not in SECRETS:
+            _refuse(read, ("secrets", index), "config_bad_value", str(secret), "secret")
+    for index, _ in enumerate(document.get("subentries", [])):
+        _check_subentry(read, ("subentries", index))
     return ConfigFile(
         title=document["title"],
         version=document["version"],
-        minor_version=document["minor_version"],
-        data=data,
-        secrets=tuple(dict.fromkeys(document["secrets"])),
-        options=document["options"],
+        minor_version=document.get("minor_version", 1),
+        data={CONF_OPTIONS: {}, **data},
+        secrets=tuple(dict.fromkeys(secrets)),
+        options=document.get("options", {}),
         subentries=[
             ConfigSubentryData(
-                data=subentry["data"],
+                data=subentry.get("data", {}),
                 subentry_type=subentry["type"],
                 title=subentry["title"],
-                unique_id=subentry["unique_id"],
+                unique_id=subentry.get("unique_id"),
             )
-            for subentry in document["subentries"]
+            for subentry in document.get("subentries", [])
         ],
+        source=read,
     )
 
 
-def _first_alias(text: str) -> int | None:
-    """Return the line of the text's first alias of an anchor, None when it has none.
+def _check_connection(read: YamlText, data: Mapping[str, Any]) -> None:
+    """Raise ConfigFileError for a connection value the connection page would not take."""
+    if not data[CONF_HOST].strip():
+        _refuse(read, ("connection", CONF_HOST), "config_bad_value", CONF_HOST, TEXT)
+    if not 1 <= data[CONF_PORT] <= 65535:
+        _refuse(read, ("connection", CONF_PORT), "config_bad_value", CONF_PORT, "1 to 65535")
+    if data[CONF_TLS] not in [mode.value for mode in TlsMode]:
+        modes = ", ".join(mode.value for mode in TlsMode)
+        _refuse(read, ("connection", CONF_TLS), "config_bad_value", CONF_TLS, modes)
+    if CONF_OPTIONS in data:
+        keys = vendor_option_keys(data[CONF_VENDOR])
+        _check_level(read, ("connection", CONF_OPTIONS), keys, ())
 
-    An export never writes one; a few lines of them stand for a tree no memory holds.
-    """
-    for event in yaml.parse(text, Loader=yaml.SafeLoader):
-        if isinstance(event, yaml.AliasEvent):
-            return int(event.start_mark.line) + 1
-    return None
+
+def _check_subentry(read: YamlText, path: Path) -> None:
+    """Raise ConfigFileError for a subentry's key or value the forms never store, on its line."""
+    _check_level(read, path, SUBENTRY, ("type", "title"))
+    subentry = _at(read, path)
+    kind = subentry["type"]
+    if kind not in SUBENTRY_DATA:
+        _refuse(read, (*path, "type"), "config_bad_value", "type", ", ".join(SUBENTRY_DATA))
+    if "data" not in subentry:
+        return
+    required = (CONF_ENTITY_ID, CONF_ADDRESS, CONF_DATA_TYPE) if kind == SUBENTRY_EXPOSE else ()
+    _check_level(read, (*path, "data"), SUBENTRY_DATA[kind], required)
+    if kind == SUBENTRY_DEVICE:
+        for point_id in subentry["data"].get(CONF_POINTS, {}):
+            point = (*path, "data", CONF_POINTS, point_id)
+            _check_level(read, point, POINT, (CONF_NAME, CONF_ADDRESS, CONF_DATA_TYPE))
+
+
+def _at(read: YamlText, path: Path) -> Any:
+    """Return the value at a path of the document."""
+    value = read.data
+    for step in path:
+        value = value[step]
+    return value
+
+
+def _check_level(read: YamlText, path: Path, keys: Keys, required: tuple[str, ...]) -> None:
+    """Raise ConfigFileError for an unknown key, a missing one or a value of the wrong kind."""
+    level = _at(read, path)
+    if not isinstance(level, dict):
+        _refuse(read, path, "config_bad_value", str(path[-1]) if path else "", MAPPING)
+    for key, value in level.items():
+        if key not in keys:
+            _refuse(read, (*path, key), "config_unknown_key", key, "")
+        if kind_error(keys[key], value):
+            _refuse(read, (*path, key), "config_bad_value", key, keys[key])
+    for key in required:
+        if key not in level:
+            _refuse(read, path, "config_missing_key", key, "")
+
+
+def _refuse(read: YamlText, path: Path, key: str, name: str, kind: str) -> NoReturn:
+    """Raise the error of a key, on the line it stands on."""
+    raise ConfigFileError(key, line=str(read.line(path)), name=name, kind=kind)
 
 
 def check_addresses(client: type[PlcClient], pasted: ConfigFile) -> None:
@@ -314,3 +362,78 @@ def _addressed(value: Any, name: str) -> Iterator[tuple[str, Point]]:
     elif isinstance(value, list):
         for item in value:
             yield from _addressed(item, name)
+
+
+def check_intervals(client: type[PlcClient], pasted: ConfigFile) -> None:
+    """Raise ConfigFileError for a poll interval the options form would refuse, on its line."""
+    configs = {
+        point_id: PointConfig(point_id, str(index), data)
+        for index, subentry in enumerate(pasted.subentries)
+        if subentry["subentry_type"] == SUBENTRY_DEVICE
+        for point_id, data in (subentry["data"].get(CONF_POINTS) or {}).items()
+    }
+    every_poll = [
+        Point(str(data[CONF_AVAILABILITY_ADDRESS]), str(data[CONF_AVAILABILITY_DATA_TYPE]))
+        for subentry in pasted.subentries
+        if (data := subentry["data"]).get(CONF_AVAILABILITY_ADDRESS)
+        and CONF_AVAILABILITY_DATA_TYPE in data
+    ]
+    points = list(dict.fromkeys(config.point for config in configs.values()))
+    polled = list(dict.fromkeys([*every_poll, *points]))
+    minimums = class_minimums(client, point_classes(configs, every_poll), polled)
+    given = {key: float(value) for key, value in pasted.options.items() if key in INTERVALS}
+    for key, value in given.items():
+        if not SECONDS_MIN <= value <= SECONDS_MAX:  # the form's own field bounds
+            line = pasted.line(("options", key))
+            raise ConfigFileError(
+                "config_interval", line=line, name=key, minimum=f"{SECONDS_MIN:g}"
+            )
+    for key in interval_errors(unset(client, given, minimums), minimums):
+        line = pasted.line(("options", key if key in given else CONF_SCAN_INTERVAL))
+        least = minimums[FAST if key == CONF_FAST_INTERVAL else NORMAL]
+        raise ConfigFileError("config_interval", line=line, name=key, minimum=f"{least:g}")
+
+
+def check_exposes(client: type[PlcClient], pasted: ConfigFile) -> list[ConfigSubentryData]:
+    """Return the subentries with each expose as its form stores it, sending off.
+
+    Each expose passes the one validation of an expose (`check_expose`); the first refused
+    raises ConfigFileError on the line of its field. Its feedback is checked when the user
+    turns sending on: the entities it would follow do not exist yet.
+    """
+    read_only = [
+        Point(str(data[CONF_ADDRESS]), str(data[CONF_DATA_TYPE]))
+        for subentry in pasted.subentries
+        for data in (subentry["data"].get(CONF_POINTS) or {}).values()
+        if isinstance(data, Mapping) and data.get(CONF_READ_ONLY)
+    ]
+    exposes = {
+        index: Point(str(subentry["data"][CONF_ADDRESS]), str(subentry["data"][CONF_DATA_TYPE]))
+        for index, subentry in enumerate(pasted.subentries)
+        if subentry["subentry_type"] == SUBENTRY_EXPOSE
+    }
+    subentries: list[ConfigSubentryData] = []
+    for index, subentry in enumerate(pasted.subentries):
+        if index not in exposes:
+            subentries.append(subentry)
+            continue
+        taken = [point for other, point in exposes.items() if other < index]
+        data, errors, words = check_expose(
+            client, subentry["data"], read_only=read_only, taken=taken
+        )
+        for field, key in errors.items():
+            raise ConfigFileError(
+                f"config_expose_{key}",
+                line=pasted.line(("subentries", index, "data", field)),
+                point=subentry["title"],
+                **words,
+            )
+        subentries.append(
+            ConfigSubentryData(
+                data=data | {CONF_SEND: False},
+                subentry_type=SUBENTRY_EXPOSE,
+                title=subentry["title"],
+                unique_id=subentry["unique_id"],
+            )
+        )
+    return subentries

@@ -1,26 +1,38 @@
 """The config flow's way to add a PLC from a file the `export_config` action wrote.
 
-The pasted text is checked before anything else (format, vendor, every point's address with
-the vendor's parser); only the secrets the file left out are asked for; then the normal flow's
-checks connect, and the entry is created with the file's devices, exposes and options.
+The pasted text is checked before anything else, off the event loop: plain YAML only, keys the
+model knows, values of their kind, every point's address with the vendor's parser, the forms'
+rules, the poll intervals' floors, every expose through the expose's one validation and files
+inside the configuration folder; each refusal names its line. Then the normal connection page,
+filled in from the file (host, port, and the certificate page where TLS is pinned: a pasted
+fingerprint is never trusted), takes the secrets; a last page lists what each expose would
+write, and every expose starts with sending off: nothing is written while the file is applied.
 """
 
 from __future__ import annotations
 
 from collections.abc import Mapping
+from dataclasses import replace
 from typing import Any
 
 from homeassistant.config_entries import ConfigFlow, ConfigFlowResult, ConfigSubentryData
-from homeassistant.const import CONF_PASSWORD
 from homeassistant.helpers import area_registry as ar
 from homeassistant.helpers.selector import TextSelector, TextSelectorConfig
 import voluptuous as vol
 
-from .config_file import ConfigFile, ConfigFileError, check_addresses, load_config
-from .connection_form import CREDENTIALS_SCHEMA, VENDOR_FIELDS, on_form, option_error
-from .const import CONF_AREA, CONF_FINGERPRINT, CONF_OPTIONS
-from .plc import PlcOptionError
+from .config_file import (
+    ConfigFile,
+    ConfigFileError,
+    check_addresses,
+    check_exposes,
+    check_intervals,
+    load_config,
+)
+from .const import CONF_AREA, CONF_FINGERPRINT, CONF_OPTIONS, SUBENTRY_EXPOSE
+from .expose_config import expose_config
+from .plc import PlcError, PlcOptionError
 from .plc.vendors import client_class
+from .yaml_text import YamlTextError, check_size
 
 PASTE = "paste_configuration"
 """The first page's choice (beside the vendors) and the step taking the pasted file."""
@@ -28,7 +40,10 @@ CONF_CONFIGURATION = "configuration"
 PASTE_SCHEMA = vol.Schema(
     {vol.Required(CONF_CONFIGURATION): TextSelector(TextSelectorConfig(multiline=True))}
 )
-PLACEHOLDERS = ("line", "problem", "vendor", "point", "address")
+PLACEHOLDERS = (
+    *("line", "problem", "vendor", "point", "address", "other", "name", "kind"),
+    *("limit", "depth", "tag", "value", "minimum", "error", "pair"),
+)
 """What the pasted file's errors name; each form passes them all (empty where unused)."""
 
 
@@ -37,20 +52,21 @@ class ConfigFileSteps(ConfigFlow):
 
     _vendor: str
     _data: dict[str, Any]
-    _trusted: set[str]
-    _problem: str
     _pasted: ConfigFile | None = None
 
     async def async_step_paste_configuration(
         self, user_input: dict[str, Any] | None = None
     ) -> ConfigFlowResult:
-        """Take the pasted file; refuse it on its field when it cannot become a PLC."""
+        """Take the pasted file; refuse it on its field (and line) when it cannot become a PLC.
+
+        Then the connection page, filled in from the file: its host and port (and, pinned, the
+        certificate the PLC presents) are shown and checked before any secret is sent.
+        """
         errors: dict[str, str] = {}
         placeholders = dict.fromkeys(PLACEHOLDERS, "")
         if user_input is not None:
             try:
-                pasted = load_config(user_input[CONF_CONFIGURATION], self.VERSION)
-                check_addresses(client_class(pasted.vendor), pasted)
+                pasted = await self._pasted_file(user_input[CONF_CONFIGURATION])
             except ConfigFileError as err:
                 errors[CONF_CONFIGURATION] = err.key
                 placeholders |= err.placeholders
@@ -58,10 +74,8 @@ class ConfigFileSteps(ConfigFlow):
                 self._pasted = pasted
                 self._vendor = pasted.vendor
                 self._data = {**pasted.data, CONF_OPTIONS: dict(pasted.data[CONF_OPTIONS])}
-                if pin := pasted.data.get(CONF_FINGERPRINT):
-                    # Trusted where the file was made: the same certificate is not asked again.
-                    self._trusted.add(str(pin))
-                return await self.async_step_paste_secrets()
+                self._data.pop(CONF_FINGERPRINT, None)  # trusted only once the user has seen it
+                return self._connection_form({})
         return self.async_show_form(
             step_id=PASTE,
             data_schema=self.add_suggested_values_to_schema(PASTE_SCHEMA, user_input or {}),
@@ -69,52 +83,73 @@ class ConfigFileSteps(ConfigFlow):
             description_placeholders=placeholders,
         )
 
-    async def async_step_paste_secrets(
+    async def _pasted_file(self, text: str) -> ConfigFile:
+        """Return the pasted file read (off the event loop) and checked as every form checks."""
+        try:
+            check_size(text)
+        except YamlTextError as err:
+            raise ConfigFileError(err.key, **err.placeholders) from err
+        pasted = await self.hass.async_add_executor_job(load_config, text, self.VERSION)
+        client = client_class(pasted.vendor)
+        check_addresses(client, pasted)
+        check_intervals(client, pasted)
+        subentries = check_exposes(client, pasted)
+        options = pasted.data[CONF_OPTIONS]
+        try:
+            await self._resolved(pasted.vendor, options, {})
+        except PlcOptionError as err:
+            line = pasted.line(("connection", CONF_OPTIONS, err.option))
+            raise ConfigFileError(
+                "config_option", line=line, name=err.option, problem=str(err)
+            ) from err
+        return replace(pasted, subentries=subentries)
+
+    async def async_step_paste_exposes(
         self, user_input: dict[str, Any] | None = None
     ) -> ConfigFlowResult:
-        """Ask for the secrets the file left out (none: connect at once), then connect."""
+        """List what each pasted expose would write; all start with sending off."""
         assert self._pasted is not None
-        schema = self._secrets_schema(self._pasted)
-        errors: dict[str, str] = {}
-        if not schema.schema:
-            return await self._check_and_connect()
         if user_input is not None:
-            options = {key: value for key, value in user_input.items() if key != CONF_PASSWORD}
-            try:
-                files = await self._resolved(self._vendor, options, {})
-            except PlcOptionError as err:
-                self._problem, errors = str(err), option_error(err)
-            else:
-                if CONF_PASSWORD in user_input:
-                    self._data[CONF_PASSWORD] = user_input[CONF_PASSWORD]
-                self._data[CONF_OPTIONS] |= options | files
-                return await self._check_and_connect()
-        return self.async_show_form(
-            step_id="paste_secrets",
-            data_schema=schema,
-            errors=on_form(errors, schema),
-            description_placeholders={"title": self._pasted.title, "problem": self._problem},
-        )
+            return self._create_pasted(self._pasted)
+        return self._exposes_form(self._pasted)
 
-    def _secrets_schema(self, pasted: ConfigFile) -> vol.Schema:
-        """Return the fields of the secrets the file left out: the password, the key material."""
-        fields: dict[vol.Marker, Any] = {}
-        if CONF_PASSWORD in pasted.secrets:
-            fields[vol.Required(CONF_PASSWORD)] = CREDENTIALS_SCHEMA.schema[CONF_PASSWORD]
-        for field in VENDOR_FIELDS.get(pasted.vendor, ()):
-            if field.credential and field.key in pasted.secrets:
-                fields[vol.Required(field.key)] = field.selector
-        return vol.Schema(fields)
+    def _exposes_form(self, pasted: ConfigFile) -> ConfigFlowResult:
+        """Show each pasted expose: its entity, its address, the value it would write now."""
+        client = client_class(self._vendor)
+        lines = []
+        for subentry in pasted.subentries:
+            if subentry["subentry_type"] != SUBENTRY_EXPOSE:
+                continue
+            expose = expose_config("", subentry["title"], subentry["data"])
+            source = expose.source(self.hass.states.get(expose.entity_id))
+            try:
+                value = "—" if source is None else repr(expose.plc_value(client, source))
+            except PlcError:
+                value = "—"
+            lines.append(f"- {expose.entity_id} → {expose.point.address}: {value}")
+        return self.async_show_form(
+            step_id="paste_exposes",
+            description_placeholders={"exposes": "\n".join(lines)},
+        )
 
     def _create_entry(self, title: str) -> ConfigFlowResult:
         """Create the entry: named as the PLC reports, or as the pasted file with its contents.
 
-        A file of an older entry version makes an entry of that version: Home Assistant then
-        migrates it as it migrates a stored one, before it is set up.
+        A pasted file with exposes shows first what each would write (none writes yet).
         """
         pasted = self._pasted
         if pasted is None:
             return self.async_create_entry(title=title, data=self._data)
+        if any(sub["subentry_type"] == SUBENTRY_EXPOSE for sub in pasted.subentries):
+            return self._exposes_form(pasted)
+        return self._create_pasted(pasted)
+
+    def _create_pasted(self, pasted: ConfigFile) -> ConfigFlowResult:
+        """Create the entry of the pasted file with its machines, exposes and options.
+
+        A file of an older entry version makes an entry of that version: Home Assistant then
+        migrates it as it migrates a stored one, before it is set up.
+        """
         result = self.async_create_entry(
             title=pasted.title,
             data=self._data,
@@ -137,6 +172,10 @@ class ConfigFileSteps(ConfigFlow):
             title=subentry["title"],
             unique_id=subentry["unique_id"],
         )
+
+    def _connection_form(self, errors: dict[str, str]) -> ConfigFlowResult:
+        """Show the vendor's connection page with the values so far (the config flow's own)."""
+        raise NotImplementedError
 
     async def _check_and_connect(self) -> ConfigFlowResult:
         """Check the options, then connect and create the entry (the config flow's own)."""

@@ -5,10 +5,12 @@ than its cooldown ago: then the latest value goes when the cooldown ends. Every 
 becomes due within BATCH_WINDOW goes out in one write of the coordinator (the checks every
 write passes), which the vendor packs into its fewest requests. A periodic resend writes the
 last value again; send-on-start writes the current states once Home Assistant has started,
-after every setup of the entry. A value that cannot be written is logged once and not sent; a
-failing write is logged once (and once when it works again), and after FAILURE_LIMIT failures
-in a row raises a repair issue naming the expose, cleared by its next write that works. A value
-that failed is not lost: every RETRY_INTERVAL the values that failed go out again, in one write.
+after every setup of the entry. An expose whose sending is off (pasted from a file, until the
+user turns it on in its form) is not followed at all: it writes nothing, not even at start.
+A value that cannot be written is logged once and not sent; a failing write is logged once
+(and once when it works again), and after FAILURE_LIMIT failures in a row raises a repair
+issue naming the expose, cleared by its next write that works. A value that failed is not
+lost: every RETRY_INTERVAL the values that failed go out again, in one write.
 """
 
 from __future__ import annotations
@@ -49,6 +51,11 @@ RETRY_INTERVAL = 30.0
 """Seconds after a failed write before the values that failed are written again."""
 
 
+def sending(configs: dict[str, ExposeConfig]) -> dict[str, ExposeConfig]:
+    """Return the exposes that send: one pasted from a file writes nothing until turned on."""
+    return {subentry_id: config for subentry_id, config in configs.items() if config.send}
+
+
 class PlcExposes:
     """The exposes of one loaded PLC entry, kept in step with its expose subentries."""
 
@@ -66,7 +73,7 @@ class PlcExposes:
     def async_start(self) -> None:
         """Follow every expose; send the current states once Home Assistant has started."""
         unreadable: list[str] = []
-        for config in entry_exposes(self._entry, unreadable).values():
+        for config in sending(entry_exposes(self._entry, unreadable)).values():
             self._start(config)
         for why in unreadable:
             LOGGER.warning("%s: an expose is left out: %s", self._entry.title, why)
@@ -118,7 +125,7 @@ class PlcExposes:
 
     async def _async_entry_updated(self, hass: HomeAssistant, entry: PlcBridgeConfigEntry) -> None:
         """Follow added, edited and removed exposes; an unchanged one goes on as it was."""
-        configs = entry_exposes(entry)
+        configs = sending(entry_exposes(entry))
         for subentry_id, expose in list(self._exposes.items()):
             if configs.get(subentry_id) != expose.config:
                 expose.stop()

@@ -8,13 +8,16 @@ number × scale + offset. Without a map, `on`/`off` and `true`/`false` mean 1 an
 
 from __future__ import annotations
 
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
 import math
+import re
 from typing import Any
 
+from homeassistant.config_entries import ConfigEntry
 from homeassistant.const import CONF_ATTRIBUTE, CONF_ENTITY_ID, STATE_UNAVAILABLE, STATE_UNKNOWN
 from homeassistant.core import CALLBACK_TYPE, Event, HomeAssistant, State, callback
+from homeassistant.exceptions import HomeAssistantError
 from homeassistant.helpers import entity_registry as er
 
 from .const import (
@@ -22,16 +25,22 @@ from .const import (
     CONF_COOLDOWN,
     CONF_DATA_TYPE,
     CONF_DEFAULT,
+    CONF_ENTITY,
     CONF_OFFSET,
     CONF_RESEND,
     CONF_SCALE,
     CONF_SEND_ON_START,
     CONF_VALUE_MAP,
+    CONF_VENDOR,
+    DOMAIN,
     SUBENTRY_EXPOSE,
 )
 from .conversion import InvalidPairs, pair_parts, scaled
 from .models import PlcBridgeConfigEntry
-from .plc import PlcClient, PlcValueError, Point, Value, ValueKind
+from .plc import PlcAddressError, PlcClient, PlcError, PlcValueError, Point, Value, ValueKind
+from .plc.vendors import client_class
+from .points import PointConfig, entry_points
+from .write_guard import WriteGuard
 
 type StateMap = tuple[tuple[str, int | float], ...]
 """States (as typed) and the PLC value each is written as."""
@@ -40,6 +49,8 @@ SWITCHED = {"on": 1, "off": 0, "true": 1, "false": 0}
 """What the states of a switch or binary sensor write where no value map is given."""
 DEFAULT_COOLDOWN = 1.0
 """Seconds between two writes of one expose unless the user sets otherwise."""
+CONF_SEND = "send"
+"""Expose data: false while the expose must not write (one pasted from a file); absent: true."""
 SENDABLE = frozenset({ValueKind.BOOL, ValueKind.INTEGER, ValueKind.FLOAT, ValueKind.TEXT})
 """Kinds of PLC value an expose can write (not times, durations or raw bytes)."""
 
@@ -93,6 +104,7 @@ class ExposeConfig:
     cooldown: float = DEFAULT_COOLDOWN
     resend: float = 0.0
     send_on_start: bool = True
+    send: bool = True
     default: str | None = None
 
     def source(self, state: State | None) -> Any:
@@ -166,14 +178,154 @@ def expose_config(subentry_id: str, title: str, data: Mapping[str, Any]) -> Expo
             cooldown=max(0.0, _finite(data.get(CONF_COOLDOWN, DEFAULT_COOLDOWN))),
             resend=max(0.0, _finite(data.get(CONF_RESEND, 0.0))),
             send_on_start=bool(data.get(CONF_SEND_ON_START, True)),
+            send=bool(data.get(CONF_SEND, True)),
             default=None if default in (None, "") else str(default),
         )
     except (InvalidPairs, KeyError, TypeError, ValueError) as err:
         raise ValueError(f"{title}: its settings cannot be read ({err!r})") from err
 
 
+COOLDOWN_MIN = 0.1
+"""The shortest cooldown, in seconds: a cooldown of 0 would write at every change of the state."""
+RESEND_MIN = 1.0
+"""The shortest periodic resend, in seconds (0: no resend)."""
+
+type Checked = tuple[dict[str, Any], dict[str, str], dict[str, str]]
+"""The data to store, the errors by field, and the words their messages name."""
+
+
+def check_expose(
+    client: type[PlcClient],
+    values: Mapping[str, Any],
+    *,
+    read_only: Sequence[Point] = (),
+    taken: Sequence[Point] = (),
+    feeds_back: Callable[[Point, str], bool] | None = None,
+) -> Checked:
+    """Check an expose as every door must (form, file, action): the one validation of an expose.
+
+    `read_only`: the PLC's points marked read only; `taken`: the addresses of its other
+    exposes; `feeds_back(point, entity_id)`: whether writing the point comes back to the
+    entity through our entities and exposes (None where the entities do not exist yet).
+    """
+    placeholders = {"error": "", CONF_ADDRESS: str(values.get(CONF_ADDRESS, ""))}
+    try:
+        point = client.validate_point(
+            Point(str(values[CONF_ADDRESS]).strip(), str(values[CONF_DATA_TYPE]).strip())
+        )
+    except PlcAddressError as err:
+        return {}, {CONF_ADDRESS: "invalid_address"}, placeholders | {"error": str(err)}
+    placeholders[CONF_ADDRESS] = point.address
+    errors: dict[str, str] = {}
+    if client.value_kind(point) not in SENDABLE:
+        errors[CONF_DATA_TYPE] = "expose_data_type"
+    elif not client.address_writable(point):
+        errors[CONF_ADDRESS] = "address_not_writable"
+    elif _covers(client, read_only, point):
+        errors[CONF_ADDRESS] = "expose_read_only"
+    elif _covers(client, taken, point):
+        errors[CONF_ADDRESS] = "already_configured"
+    elif feeds_back is not None and feeds_back(point, str(values[CONF_ENTITY_ID])):
+        errors[CONF_ADDRESS] = "expose_feeds_back"
+    data: dict[str, Any] = {
+        CONF_ENTITY_ID: str(values[CONF_ENTITY_ID]),
+        CONF_ADDRESS: point.address,
+        CONF_DATA_TYPE: point.data_type,
+        CONF_SCALE: float(values.get(CONF_SCALE, 1.0)),
+        CONF_OFFSET: float(values.get(CONF_OFFSET, 0.0)),
+        CONF_COOLDOWN: float(values.get(CONF_COOLDOWN, DEFAULT_COOLDOWN)),
+        CONF_RESEND: float(values.get(CONF_RESEND, 0.0)),
+        CONF_SEND_ON_START: bool(values.get(CONF_SEND_ON_START, True)),
+    }
+    if not bool(values.get(CONF_SEND, True)):
+        data[CONF_SEND] = False
+    if attribute := str(values.get(CONF_ATTRIBUTE) or "").strip():
+        data[CONF_ATTRIBUTE] = attribute
+    if data[CONF_SCALE] == 0:
+        errors[CONF_SCALE] = "scale_zero"
+    if not data[CONF_COOLDOWN] >= COOLDOWN_MIN:
+        errors[CONF_COOLDOWN] = "cooldown_too_short"
+    if data[CONF_RESEND] != 0 and not data[CONF_RESEND] >= RESEND_MIN:
+        errors[CONF_RESEND] = "resend_too_short"
+    if text := str(values.get(CONF_VALUE_MAP) or "").strip():
+        try:
+            data[CONF_VALUE_MAP] = format_state_map(parse_state_map(text))
+        except InvalidPairs as err:
+            errors[CONF_VALUE_MAP] = err.key
+            placeholders["pair"] = err.text
+    if (default := str(values.get(CONF_DEFAULT) or "").strip()) and not errors:
+        data[CONF_DEFAULT] = default
+        try:
+            expose_config("", "", data).plc_value(client, default)
+        except PlcError as err:
+            errors[CONF_DEFAULT] = "invalid_default"
+            placeholders["error"] = str(err)
+    return data, errors, placeholders
+
+
+def _covers(client: type[PlcClient], points: Sequence[Point], point: Point) -> bool:
+    """True when writing the point would meet one of the points (as the write guard sees it)."""
+    try:
+        WriteGuard(client, list(points)).check(point)
+    except HomeAssistantError:
+        return True
+    return False
+
+
+def entity_key(config: PointConfig) -> str:
+    """Return the end of the unique id of the entity that shows a point (its entity's key)."""
+    return str(config.data.get(CONF_ENTITY) or config.point_id)
+
+
+def readers(hass: HomeAssistant, entry: ConfigEntry[Any], point: Point) -> set[str]:
+    """Return the entity ids of the entry's entities that show data the point covers."""
+    client = client_class(entry.data[CONF_VENDOR])
+    keys = {
+        entity_key(config)
+        for config in entry_points(entry).values()
+        if _covers(client, [config.point], point)
+    }
+    if not keys:
+        return set()
+    registered = er.async_entries_for_config_entry(er.async_get(hass), entry.entry_id)
+    return {
+        reg.entity_id
+        for reg in registered
+        if any(re.sub(r"_bit\d+$", "", reg.unique_id).endswith(f"_{key}") for key in keys)
+    }
+
+
+def feeds_back(
+    hass: HomeAssistant, entry: ConfigEntry[Any], point: Point, entity_id: str, editing: str | None
+) -> bool:
+    """True when writing the point of the entry comes back to the entity, at any depth.
+
+    The graph: a written address -> our entities (of any PLC entry) showing it -> the exposes
+    that send those entities (and send) -> the addresses they write -> ... An expose closing a
+    cycle would write again at each change, never settling (a scale runs away).
+    """
+    entries = {item.entry_id: item for item in hass.config_entries.async_entries(DOMAIN)}
+    entries[entry.entry_id] = entry
+    sending = [
+        (item, config)
+        for item in entries.values()
+        for sid, config in entry_exposes(item).items()
+        if config.send and not (item.entry_id == entry.entry_id and sid == editing)
+    ]
+    todo, seen = [(entry, point)], set[str]()
+    while todo:
+        written_entry, written = todo.pop()
+        for reader in readers(hass, written_entry, written):
+            if reader == entity_id:
+                return True
+            if reader not in seen:
+                seen.add(reader)
+                todo += [(item, c.point) for item, c in sending if c.entity_id == reader]
+    return False
+
+
 def entry_exposes(
-    entry: PlcBridgeConfigEntry, unreadable: list[str] | None = None
+    entry: ConfigEntry[Any], unreadable: list[str] | None = None
 ) -> dict[str, ExposeConfig]:
     """Return the entry's readable exposes by subentry id; why the others are not: `unreadable`."""
     exposes: dict[str, ExposeConfig] = {}

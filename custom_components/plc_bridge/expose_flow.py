@@ -2,19 +2,18 @@
 
 One form, for a new expose and for editing one: the entity (and optionally an attribute), the
 address and data type (checked by the vendor's parser, as a point's), the conversion, the
-cooldown, the periodic resend, send-on-start and the value written while the entity is
-unavailable.
+cooldown, the periodic resend, send-on-start, the value written while the entity is
+unavailable, and whether it sends at all (turning on one pasted from a file runs the checks,
+feedback included, now that its entities exist). Every check is `check_expose`'s.
 """
 
 from __future__ import annotations
 
-import re
+from functools import partial
 from typing import Any
 
 from homeassistant.config_entries import ConfigSubentryFlow, SubentryFlowResult
 from homeassistant.const import CONF_ATTRIBUTE, CONF_ENTITY_ID
-from homeassistant.exceptions import HomeAssistantError
-from homeassistant.helpers import entity_registry as er
 from homeassistant.helpers.selector import (
     BooleanSelector,
     EntitySelector,
@@ -28,13 +27,11 @@ from homeassistant.helpers.selector import (
 )
 import voluptuous as vol
 
-from .composite import group_key
 from .const import (
     CONF_ADDRESS,
     CONF_COOLDOWN,
     CONF_DATA_TYPE,
     CONF_DEFAULT,
-    CONF_ENTITY,
     CONF_OFFSET,
     CONF_RESEND,
     CONF_SCALE,
@@ -42,20 +39,18 @@ from .const import (
     CONF_VALUE_MAP,
     CONF_VENDOR,
 )
-from .conversion import InvalidPairs
 from .expose_config import (
+    CONF_SEND,
     DEFAULT_COOLDOWN,
-    SENDABLE,
+    Checked,
+    check_expose,
     entry_exposes,
-    expose_config,
     expose_title,
-    format_state_map,
-    parse_state_map,
+    feeds_back,
 )
-from .plc import PlcAddressError, PlcClient, PlcError, Point
+from .plc import PlcClient
 from .plc.vendors import client_class
-from .points import PointConfig, entry_points
-from .write_guard import WriteGuard
+from .points import entry_points
 
 _NUMBER = NumberSelector(NumberSelectorConfig(mode=NumberSelectorMode.BOX, step="any"))
 RESEND_MAX = 86400.0
@@ -92,14 +87,10 @@ def expose_schema(client: type[PlcClient]) -> vol.Schema:
             vol.Required(CONF_COOLDOWN, default=DEFAULT_COOLDOWN): _seconds(3600.0),
             vol.Required(CONF_RESEND, default=0.0): _seconds(RESEND_MAX),
             vol.Required(CONF_SEND_ON_START, default=True): BooleanSelector(),
+            vol.Required(CONF_SEND, default=True): BooleanSelector(),
             vol.Optional(CONF_DEFAULT): TextSelector(),
         }
     )
-
-
-def entity_key(config: PointConfig) -> str:
-    """Return the end of the unique id of the entity that shows a point (its entity's key)."""
-    return str(config.data.get(CONF_ENTITY) or config.point_id)
 
 
 class ExposeSubentryFlowHandler(ConfigSubentryFlow):
@@ -154,54 +145,18 @@ class ExposeSubentryFlowHandler(ConfigSubentryFlow):
             description_placeholders=placeholders,
         )
 
-    def _check(
-        self, values: dict[str, Any]
-    ) -> tuple[dict[str, Any], dict[str, str], dict[str, str]]:
-        """Check the form; return the data to store, the errors by field and their words."""
-        client = self._client
-        placeholders = {"error": "", CONF_ADDRESS: str(values.get(CONF_ADDRESS, ""))}
-        try:
-            point = client.validate_point(
-                Point(str(values[CONF_ADDRESS]).strip(), str(values[CONF_DATA_TYPE]).strip())
-            )
-        except PlcAddressError as err:
-            return {}, {CONF_ADDRESS: "invalid_address"}, placeholders | {"error": str(err)}
-        placeholders[CONF_ADDRESS] = point.address
-        errors: dict[str, str] = {}
-        if client.value_kind(point) not in SENDABLE:
-            errors[CONF_DATA_TYPE] = "expose_data_type"
-        elif error := self._address_error(client, point):
-            errors[CONF_ADDRESS] = error
-        elif self._feeds_back(client, point, str(values[CONF_ENTITY_ID])):
-            errors[CONF_ADDRESS] = "expose_feeds_back"
-        data: dict[str, Any] = {
-            CONF_ENTITY_ID: str(values[CONF_ENTITY_ID]),
-            CONF_ADDRESS: point.address,
-            CONF_DATA_TYPE: point.data_type,
-            CONF_SCALE: float(values.get(CONF_SCALE, 1.0)),
-            CONF_OFFSET: float(values.get(CONF_OFFSET, 0.0)),
-            CONF_COOLDOWN: float(values.get(CONF_COOLDOWN, DEFAULT_COOLDOWN)),
-            CONF_RESEND: float(values.get(CONF_RESEND, 0.0)),
-            CONF_SEND_ON_START: bool(values.get(CONF_SEND_ON_START, True)),
-        }
-        if attribute := str(values.get(CONF_ATTRIBUTE) or "").strip():
-            data[CONF_ATTRIBUTE] = attribute
-        if data[CONF_SCALE] == 0:
-            errors[CONF_SCALE] = "scale_zero"
-        if text := str(values.get(CONF_VALUE_MAP) or "").strip():
-            try:
-                data[CONF_VALUE_MAP] = format_state_map(parse_state_map(text))
-            except InvalidPairs as err:
-                errors[CONF_VALUE_MAP] = err.key
-                placeholders["pair"] = err.text
-        if (default := str(values.get(CONF_DEFAULT) or "").strip()) and not errors:
-            data[CONF_DEFAULT] = default
-            try:
-                expose_config("", "", data).plc_value(client, default)
-            except PlcError as err:
-                errors[CONF_DEFAULT] = "invalid_default"
-                placeholders["error"] = str(err)
-        return data, errors, placeholders
+    def _check(self, values: dict[str, Any]) -> Checked:
+        """Check the form through the one validation of an expose; its errors by field."""
+        entry = self._get_entry()
+        editing = self._reconfigure_subentry_id if self.source == "reconfigure" else None
+        points = entry_points(entry).values()
+        return check_expose(
+            self._client,
+            values,
+            read_only=[config.point for config in points if config.read_only],
+            taken=[c.point for sid, c in entry_exposes(entry).items() if sid != editing],
+            feeds_back=partial(feeds_back, self.hass, entry, editing=editing),
+        )
 
     def _missing_attribute(self, data: dict[str, Any]) -> dict[str, str] | None:
         """Return what to tell when the entity has no such attribute now; None when it has.
@@ -219,42 +174,3 @@ class ExposeSubentryFlowHandler(ConfigSubentryFlow):
         self._asked = asked
         names = ", ".join(f"`{name}`" for name in sorted(state.attributes)) or "none"
         return {"entity": state.entity_id, "attribute": str(attribute), "attributes": names}
-
-    def _feeds_back(self, client: type[PlcClient], point: Point, entity_id: str) -> bool:
-        """True when the entity is one of this PLC's and reads the address itself.
-
-        Its value would come back converted at each change (a scale runs away), never settling.
-        """
-        registered = er.async_get(self.hass).async_get(entity_id)
-        entry = self._get_entry()
-        if registered is None or registered.config_entry_id != entry.entry_id:
-            return False
-        configs = entry_points(entry).values()
-        tail = re.sub(r"_bit\d+$", "", registered.unique_id)  # an alarm word's bit: the word
-        keys = {group_key(c) or c.point_id for c in configs if tail.endswith(f"_{entity_key(c)}")}
-        shown = [c.point for c in configs if (group_key(c) or c.point_id) in keys]
-        try:
-            WriteGuard(client, shown).check(point)
-        except HomeAssistantError:
-            return True
-        return False
-
-    def _address_error(self, client: type[PlcClient], point: Point) -> str | None:
-        """Return why no expose may write the address, if none may."""
-        if not client.address_writable(point):
-            return "address_not_writable"
-        entry = self._get_entry()
-        points = entry_points(entry).values()
-        guard = WriteGuard(client, [config.point for config in points if config.read_only])
-        try:
-            guard.check(point)
-        except HomeAssistantError:
-            return "expose_read_only"
-        editing = self._reconfigure_subentry_id if self.source == "reconfigure" else None
-        # Another expose's address, under any data type or overlapping it, as the guard sees one.
-        others = [other.point for sid, other in entry_exposes(entry).items() if sid != editing]
-        try:
-            WriteGuard(client, others).check(point)
-        except HomeAssistantError:
-            return "already_configured"
-        return None

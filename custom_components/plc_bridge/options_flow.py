@@ -28,10 +28,13 @@ from .poll_classes import (
     class_minimums,
 )
 
+SECONDS_MIN = 0.1
+SECONDS_MAX = 86400.0
+"""The bounds of every poll interval, in seconds: the form's fields and the pasted file's."""
 SECONDS = NumberSelector(
     NumberSelectorConfig(
-        min=0.1,
-        max=86400,
+        min=SECONDS_MIN,
+        max=SECONDS_MAX,
         step=0.1,
         mode=NumberSelectorMode.BOX,
         unit_of_measurement=UnitOfTime.SECONDS,
