@@ -18,10 +18,11 @@ from homeassistant.helpers.selector import NumberSelector, TextSelector
 import pytest
 from pytest_homeassistant_custom_component.common import MockConfigEntry
 
-from custom_components.plc_bridge import config_flow, connection_form
-from custom_components.plc_bridge.config_file_flow import PASTE
-from custom_components.plc_bridge.connection_form import VendorField
+from custom_components.plc_bridge import config_flow
 from custom_components.plc_bridge.const import CONF_TLS, CONF_VENDOR, DOMAIN
+from custom_components.plc_bridge.flows import connection_form
+from custom_components.plc_bridge.flows.config_file_flow import PASTE
+from custom_components.plc_bridge.model.vendor_fields import VendorField
 from custom_components.plc_bridge.plc import DeviceInfo
 from custom_components.plc_bridge.plc.http import format_fingerprint
 from custom_components.plc_bridge.plc.vendors import VENDORS, implemented

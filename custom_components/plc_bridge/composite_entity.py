@@ -19,16 +19,16 @@ from homeassistant.helpers.device_registry import DeviceInfo
 from homeassistant.helpers.entity import Entity
 from homeassistant.helpers.entity_platform import AddConfigEntryEntitiesCallback
 
-from .composite import Composite, composites, group_key
 from .const import DOMAIN
-from .conversion import Conversion
 from .coordinator import PlcBridgeConfigEntry
 from .entity import PlcEntity, entity_name, point_fields
-from .outputs import Output, async_send
+from .model.composite import Composite, composites, group_key
+from .model.conversion import Conversion
+from .model.points import PointConfig, entry_points, pulse_seconds
 from .plc import Point, PointResult, Value, ValueKind
-from .points import PointConfig, PointFactory, entry_points
-from .pulse import pulse_seconds
-from .repairs import COMMAND_NOT_RELEASED, PULSE_FAILED
+from .runtime.entities import PointFactory
+from .runtime.issues import COMMAND_NOT_RELEASED, PULSE_FAILED
+from .runtime.outputs import Output, async_send
 
 
 @dataclass(frozen=True, slots=True)

@@ -17,11 +17,18 @@ from homeassistant.core import callback
 from homeassistant.helpers.device_registry import format_mac
 import voluptuous as vol
 
-from .config_file_flow import PASTE, ConfigFileSteps
-from .connection import create_client
-from .connection_form import (
-    SECOND_PAGES,
-    VENDOR_FIELDS,
+from .const import (
+    CONF_FINGERPRINT,
+    CONF_OPTIONS,
+    CONF_TLS,
+    CONF_VENDOR,
+    DOMAIN,
+    LOGGER,
+    SUBENTRY_DEVICE,
+    SUBENTRY_EXPOSE,
+)
+from .flows.config_file_flow import PASTE, ConfigFileSteps
+from .flows.connection_form import (
     connection_data,
     connection_schema,
     connection_step,
@@ -35,25 +42,17 @@ from .connection_form import (
     vendor_options,
     vendor_schema,
 )
-from .const import (
-    CONF_FINGERPRINT,
-    CONF_OPTIONS,
-    CONF_TLS,
-    CONF_VENDOR,
-    DOMAIN,
-    LOGGER,
-    SUBENTRY_DEVICE,
-    SUBENTRY_EXPOSE,
-)
-from .discovery import DiscoveryFlow
-from .expose_flow import ExposeSubentryFlowHandler
-from .options_flow import PlcBridgeOptionsFlow
+from .flows.discovery import DiscoveryFlow
+from .flows.expose_flow import ExposeSubentryFlowHandler
+from .flows.options_flow import PlcBridgeOptionsFlow
+from .flows.reauth_flow import ReauthSteps
+from .flows.subentry_flow import DeviceSubentryFlowHandler
+from .flows.vendor_steps import Input, with_vendor_steps
+from .model.vendor_fields import SECOND_PAGES, VENDOR_FIELDS
 from .plc import DeviceInfo, PlcError, PlcOptionError, PlcValueError, TlsMode
 from .plc.http import fetch_fingerprint, format_fingerprint
 from .plc.vendors import client_class
-from .reauth_flow import ReauthSteps
-from .subentry_flow import DeviceSubentryFlowHandler
-from .vendor_steps import Input, with_vendor_steps
+from .runtime.connection import create_client
 
 CERTIFICATE_TIMEOUT = 10.0
 """Seconds to wait for the PLC's TLS handshake when fetching its certificate."""
