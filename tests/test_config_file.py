@@ -19,13 +19,13 @@ from homeassistant.helpers import entity_registry as er
 import pytest
 from pytest_homeassistant_custom_component.common import MockConfigEntry
 
-from custom_components.plc_bridge.config_flow import device_unique_id
 from custom_components.plc_bridge.const import (
     CONF_SEND_ON_START,
     CONF_VENDOR,
     DOMAIN,
     SUBENTRY_EXPOSE,
 )
+from custom_components.plc_bridge.flows.base import device_unique_id
 from custom_components.plc_bridge.flows.config_file_flow import CONF_CONFIGURATION, PASTE
 from custom_components.plc_bridge.model.expose import CONF_SEND
 from custom_components.plc_bridge.model.poll_classes import (

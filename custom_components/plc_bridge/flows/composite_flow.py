@@ -14,7 +14,7 @@ from collections.abc import Iterable, Mapping
 import secrets
 from typing import Any
 
-from homeassistant.config_entries import ConfigSubentryFlow, SubentryFlowResult
+from homeassistant.config_entries import SubentryFlowResult
 from homeassistant.const import CONF_NAME
 from homeassistant.helpers.selector import (
     BooleanSelector,
@@ -52,6 +52,7 @@ from ..model.points import CONTROLS, check_point, point_key
 from ..model.poll_classes import CONF_POLL, NORMAL, poll_field
 from ..model.write_rules import layout_conflicts
 from ..plc import PlcAddressError, PlcClient, Point
+from .base import DeviceFlowBase
 from .point_form import BASE_FIELDS, details_schema
 
 SHARED = (CONF_POLL, CONF_TRAVEL_TIME)
@@ -62,32 +63,8 @@ TYPE_SUFFIX = "_data_type"
 """A part's data type field: its role's name and this."""
 
 
-class CompositeSteps(ConfigSubentryFlow):
+class CompositeSteps(DeviceFlowBase):
     """Steps of the device flow for an entity of several points (its handler's base)."""
-
-    _points: dict[str, dict[str, Any]]
-    _composite: dict[str, Any]
-    _parts: list[dict[str, Any]]
-    _made: list[dict[str, Any]]
-    _part_ids: list[str]
-    _editing: str | None
-
-    @property
-    def _client(self) -> type[PlcClient]:
-        """The client class of the entry's vendor (the handler's)."""
-        raise NotImplementedError
-
-    def _taken(self) -> set[Point]:
-        """Points of the PLC already used (the handler's)."""
-        raise NotImplementedError
-
-    def _plc_points(self) -> list[dict[str, Any]]:
-        """The stored data of the PLC's points, outside the one being edited (the handler's)."""
-        raise NotImplementedError
-
-    async def async_step_menu(self, user_input: dict[str, Any] | None = None) -> SubentryFlowResult:
-        """The device flow's menu (the handler's)."""
-        raise NotImplementedError
 
     async def async_step_composite(
         self, user_input: dict[str, Any] | None = None

@@ -11,11 +11,10 @@ write, and every expose starts with sending off: nothing is written while the fi
 
 from __future__ import annotations
 
-from collections.abc import Mapping
 from dataclasses import replace
 from typing import Any
 
-from homeassistant.config_entries import ConfigFlow, ConfigFlowResult, ConfigSubentryData
+from homeassistant.config_entries import ConfigFlowResult, ConfigSubentryData
 from homeassistant.helpers import area_registry as ar
 from homeassistant.helpers.selector import TextSelector, TextSelectorConfig
 import voluptuous as vol
@@ -33,6 +32,7 @@ from ..model.expose import expose_config
 from ..model.yaml_text import YamlTextError, check_size
 from ..plc import PlcError, PlcOptionError
 from ..plc.vendors import client_class
+from .base import PlcFlowBase
 
 PASTE = "paste_configuration"
 """The first page's choice (beside the vendors) and the step taking the pasted file."""
@@ -47,11 +47,9 @@ PLACEHOLDERS = (
 """What the pasted file's errors name; each form passes them all (empty where unused)."""
 
 
-class ConfigFileSteps(ConfigFlow):
+class ConfigFileSteps(PlcFlowBase):
     """The steps that add a PLC from a pasted file; the config flow proper inherits them."""
 
-    _vendor: str
-    _data: dict[str, Any]
     _pasted: ConfigFile | None = None
 
     async def async_step_paste_configuration(
@@ -139,7 +137,7 @@ class ConfigFileSteps(ConfigFlow):
         """
         pasted = self._pasted
         if pasted is None:
-            return self.async_create_entry(title=title, data=self._data)
+            return super()._create_entry(title)
         if any(sub["subentry_type"] == SUBENTRY_EXPOSE for sub in pasted.subentries):
             return self._exposes_form(pasted)
         return self._create_pasted(pasted)
@@ -172,17 +170,3 @@ class ConfigFileSteps(ConfigFlow):
             title=subentry["title"],
             unique_id=subentry["unique_id"],
         )
-
-    def _connection_form(self, errors: dict[str, str]) -> ConfigFlowResult:
-        """Show the vendor's connection page with the values so far (the config flow's own)."""
-        raise NotImplementedError
-
-    async def _check_and_connect(self) -> ConfigFlowResult:
-        """Check the options, then connect and create the entry (the config flow's own)."""
-        raise NotImplementedError
-
-    async def _resolved(
-        self, vendor: str, user_input: Mapping[str, Any], stored: Mapping[str, Any]
-    ) -> dict[str, str]:
-        """Return the submitted options that name files, resolved (the config flow's own)."""
-        raise NotImplementedError

@@ -9,7 +9,7 @@ from __future__ import annotations
 import asyncio
 from typing import Any
 
-from homeassistant.config_entries import ConfigEntry, ConfigFlow, ConfigFlowResult
+from homeassistant.config_entries import ConfigEntry, ConfigFlowResult
 from homeassistant.const import CONF_HOST, CONF_PASSWORD, CONF_PORT, CONF_USERNAME
 from homeassistant.core import HomeAssistant, callback
 from homeassistant.helpers import device_registry as dr
@@ -20,6 +20,7 @@ import voluptuous as vol
 
 from ..const import CONF_MAC, CONF_VENDOR, DOMAIN
 from ..plc.vendors import client_class, implemented, probe_of
+from .base import PlcFlowBase
 from .connection_form import vendor_schema
 from .mac_prefixes import Family, family_of
 
@@ -71,19 +72,12 @@ def entry_of_mac(hass: HomeAssistant, mac: str) -> ConfigEntry | None:
     return None
 
 
-class DiscoveryFlow(ConfigFlow):
+class DiscoveryFlow(PlcFlowBase):
     """The config flow's DHCP steps; the vendor's connection page and checks follow as usual."""
 
-    _vendor: str
-    _data: dict[str, Any]
-    _entered: dict[str, Any]
     _found: dict[str, dict[str, Any]]  # the vendors that answered, with what they answered
     _family: Family
     _host: str
-
-    def _connection_form(self, errors: dict[str, str]) -> ConfigFlowResult:
-        """Show the vendor's connection page (the config flow's own)."""
-        raise NotImplementedError
 
     async def async_step_dhcp(self, discovery_info: DhcpServiceInfo) -> ConfigFlowResult:
         """Take a DHCP sighting: move a known PLC, else probe its maker's interfaces and offer."""

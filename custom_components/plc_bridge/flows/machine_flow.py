@@ -4,31 +4,18 @@ from __future__ import annotations
 
 from typing import Any
 
-from homeassistant.config_entries import ConfigSubentryFlow, SubentryFlowResult
+from homeassistant.config_entries import SubentryFlowResult
 from homeassistant.const import CONF_NAME
 from homeassistant.helpers.selector import AreaSelector, TextSelector
 import voluptuous as vol
 
 from ..const import CONF_AREA
 from ..model.availability import availability_fields, check_availability, shown_availability
-from ..plc import PlcClient
+from .base import DeviceFlowBase
 
 
-class MachineStep(ConfigSubentryFlow):
+class MachineStep(DeviceFlowBase):
     """The machine page of the device flow (a base of its handler)."""
-
-    _name: str
-    _area: str | None
-    _availability: dict[str, Any]  # the availability fields, as stored
-
-    @property
-    def _client(self) -> type[PlcClient]:
-        """The client class of the entry's vendor (the handler's)."""
-        raise NotImplementedError
-
-    async def async_step_menu(self, user_input: dict[str, Any] | None = None) -> SubentryFlowResult:
-        """The device flow's menu (the handler's)."""
-        raise NotImplementedError
 
     async def async_step_device(
         self, user_input: dict[str, Any] | None = None

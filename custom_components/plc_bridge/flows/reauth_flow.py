@@ -5,22 +5,21 @@ from __future__ import annotations
 from collections.abc import Mapping
 from typing import Any
 
-from homeassistant.config_entries import ConfigEntry, ConfigFlow, ConfigFlowResult
+from homeassistant.config_entries import ConfigFlowResult
 from homeassistant.const import CONF_USERNAME
 import voluptuous as vol
 
 from ..const import CONF_OPTIONS, CONF_VENDOR
 from ..model.vendor_fields import VENDOR_FIELDS
-from ..plc import DeviceInfo, PlcOptionError
+from ..plc import PlcOptionError
 from ..plc.vendors import client_class
+from .base import PlcFlowBase
 from .connection_form import CREDENTIALS_SCHEMA, fields_schema, on_form, option_error
 from .vendor_steps import Input
 
 
-class ReauthSteps(ConfigFlow):
+class ReauthSteps(PlcFlowBase):
     """Ask again for what the PLC refused, check it as a new PLC is checked, then store it."""
-
-    _problem: str
 
     async def async_step_reauth(self, entry_data: Mapping[str, Any]) -> ConfigFlowResult:
         """Start re-authentication after the PLC refused the stored credentials."""
@@ -71,19 +70,3 @@ class ReauthSteps(ConfigFlow):
             errors=on_form(errors, CREDENTIALS_SCHEMA),
             description_placeholders={"name": entry.title, "problem": self._problem},
         )
-
-    async def _connect(self, data: Mapping[str, Any]) -> tuple[DeviceInfo | None, dict[str, str]]:
-        """Connect and log in once (the config flow's)."""
-        raise NotImplementedError
-
-    def _store(
-        self, entry: ConfigEntry, reason: str, data: dict[str, Any], **changes: Any
-    ) -> ConfigFlowResult:
-        """Update the entry and end the flow (the config flow's)."""
-        raise NotImplementedError
-
-    async def _resolved(
-        self, vendor: str, user_input: Mapping[str, Any], stored: Mapping[str, Any]
-    ) -> dict[str, str]:
-        """Resolve the options that name files (the config flow's)."""
-        raise NotImplementedError

@@ -24,15 +24,13 @@ from ..const import (
     CONF_POINTS,
     CONF_READ_ONLY,
     CONF_ROLE,
-    CONF_VENDOR,
 )
 from ..model.availability import AVAILABILITY_FIELDS
 from ..model.composite import assign_entities
 from ..model.device_classes import device_classes
 from ..model.point_table import async_describe, parse_points
-from ..model.points import check_point, point_data, point_key
-from ..plc import BrowseItem, PlcClient, PlcError, Point
-from ..plc.vendors import client_class
+from ..model.points import check_point, point_data
+from ..plc import PlcError
 from .composite_flow import CompositeSteps, defaulted, layout_errors
 from .flow_lists import (
     CONF_FILTER,
@@ -41,7 +39,6 @@ from .flow_lists import (
     async_type_names,
     listing,
     matching,
-    menu_listing,
     pick_schema,
     picked_points,
     point_choice,
@@ -55,57 +52,6 @@ CONF_TABLE = "table"
 
 class DeviceSubentryFlowHandler(CompositeSteps, MachineStep):
     """Add or edit a device of the PLC and its points."""
-
-    def __init__(self) -> None:
-        """Start with an unnamed device and no points."""
-        self._name = ""
-        self._area: str | None = None
-        self._availability: dict[str, Any] = {}  # the availability fields, as stored
-        self._points: dict[str, dict[str, Any]] = {}
-        self._editing: str | None = None
-        self._base: dict[str, Any] = {}
-        self._published: list[BrowseItem] | None = None
-        self._items: list[BrowseItem] = []
-        self._ticked: list[str] = []
-        self._confirmed = ""  # a pasted table whose assumed data types were shown
-        self._composite, self._parts, self._made, self._part_ids = {}, [], [], []
-
-    @property
-    def _client(self) -> type[PlcClient]:
-        """The client class of the entry's vendor: its parser, data types and browsing."""
-        return client_class(self._get_entry().data[CONF_VENDOR])
-
-    def _taken(self) -> set[Point]:
-        """Points of the PLC already used, outside the one being edited."""
-        subentry_id = self._reconfigure_subentry_id if self.source == "reconfigure" else None
-        taken = {
-            point_key(data)
-            for subentry in self._get_entry().subentries.values()
-            if subentry.subentry_id != subentry_id
-            for data in subentry.data.get(CONF_POINTS, {}).values()
-        }
-        taken |= {point_key(data) for pid, data in self._points.items() if pid != self._editing}
-        return {self._normal(point) for point in taken}
-
-    def _plc_points(self) -> list[dict[str, Any]]:
-        """The stored data of the PLC's points, outside the one being edited."""
-        subentry_id = self._reconfigure_subentry_id if self.source == "reconfigure" else None
-        return [
-            *(
-                data
-                for subentry in self._get_entry().subentries.values()
-                if subentry.subentry_id != subentry_id
-                for data in subentry.data.get(CONF_POINTS, {}).values()
-            ),
-            *(data for pid, data in self._points.items() if pid != self._editing),
-        ]
-
-    def _normal(self, point: Point) -> Point:
-        """Return a stored point as the vendor spells it (a PLCnext path with its component)."""
-        try:
-            return self._client.validate_point(point)
-        except PlcError:
-            return point
 
     async def async_step_user(self, user_input: dict[str, Any] | None = None) -> SubentryFlowResult:
         """Ask the device's name and area."""
@@ -123,27 +69,6 @@ class DeviceSubentryFlowHandler(CompositeSteps, MachineStep):
         }
         self._points = {pid: dict(data) for pid, data in subentry.data.get(CONF_POINTS, {}).items()}
         return await self.async_step_menu()
-
-    async def async_step_menu(self, user_input: dict[str, Any] | None = None) -> SubentryFlowResult:
-        """Show what can be done next, and the points so far."""
-        options = ["point", "composite"]
-        if self._client.can_browse and self._get_entry().state is ConfigEntryState.LOADED:
-            options.append("browse")
-        options.append("import_points")
-        if self._points:
-            options += ["edit", "remove"]
-        options.append("device")
-        if self._points:
-            options.append("save")
-        return self.async_show_menu(
-            step_id="menu",
-            menu_options=options,
-            description_placeholders={
-                "name": self._name,
-                "count": str(len(self._points)),
-                "points": menu_listing(self._points, await async_type_names(self.hass)),
-            },
-        )
 
     async def async_step_point(
         self, user_input: dict[str, Any] | None = None
