@@ -144,8 +144,8 @@ class PlcCoordinator(PollingCoordinator):
         """Follow edited points; the new ones are read together once the edits pause."""
         invalid, tick = set(self.availability.invalid), self.update_interval
         self._set_points(points)
-        if self.update_interval != tick and self._unsub_refresh is not None:
-            self._schedule_refresh()  # a first fast point: the next poll comes sooner
+        if self.update_interval != tick:
+            self._reschedule()  # a first fast point: the next poll comes sooner
         if invalid - self.availability.invalid:  # a machine no longer names its address
             self._changed = None
             self.async_update_listeners()

@@ -17,10 +17,12 @@ import asyncio
 from collections.abc import Callable, Collection, Container, Iterable, Mapping
 from dataclasses import replace
 import math
+from random import randint
 from typing import Any
 
 from homeassistant.config_entries import ConfigEntry
 from homeassistant.core import CALLBACK_TYPE, HassJob, HassJobType, HomeAssistant, callback
+from homeassistant.helpers.event import RANDOM_MICROSECOND_MAX, RANDOM_MICROSECOND_MIN
 from homeassistant.helpers.update_coordinator import DataUpdateCoordinator
 
 from ..const import LOGGER
@@ -34,6 +36,8 @@ With the S7-200 SMART's connect (three requests a second apart) a start takes ab
 """
 EDIT_DELAY = 1.0
 """Seconds after the last edit before the points edits added are read (in one read)."""
+BASE_MEMBERS = ("_schedule_refresh", "_unsub_refresh", "_retry_after", "_listeners")
+"""DataUpdateCoordinator's private members the poll cadence relies on (see PollingCoordinator)."""
 UPDATE_SLICE = 200
 """Entities a poll updates in one turn of the event loop (a state write costs ~50 µs)."""
 
@@ -62,6 +66,12 @@ class PollingCoordinator(DataUpdateCoordinator[ReadResult]):
     """Polls `_poll` through `client` from start to start; tells the entities what changed.
 
     Point entities listen with their point as context; the PLC's own entities with none.
+
+    The cadence needs one override of DataUpdateCoordinator's private scheduler,
+    `_schedule_refresh`, and with it the base's members of that contract (BASE_MEMBERS,
+    checked on both supported Home Assistant releases by tests/test_polling_contract.py):
+    the handle `_unsub_refresh` the base cancels at shutdown, the `_retry_after` an
+    UpdateFailed asks for, and `_listeners`, the entities' callbacks with their points.
     """
 
     config_entry: ConfigEntry[Any]
@@ -86,6 +96,8 @@ class PollingCoordinator(DataUpdateCoordinator[ReadResult]):
         self._changed: set[Point] | None = None  # what the last poll changed (None: all)
         self._edited: set[Point] = set()  # points edits added, not read yet
         self._unsub_edit: CALLBACK_TYPE | None = None
+        self._stagger = randint(RANDOM_MICROSECOND_MIN, RANDOM_MICROSECOND_MAX) / 10**6
+        """Where in its second each poll starts, as Home Assistant staggers coordinators."""
 
     @property
     def poll_intervals(self) -> dict[str, float]:
@@ -126,7 +138,7 @@ class PollingCoordinator(DataUpdateCoordinator[ReadResult]):
         self._started, self._partial, self._again, self._changed = now, False, False, None
         # A scheduled poll keeps the grid (its lateness never adds up); another starts one,
         # staggered within its second as Home Assistant staggers coordinators.
-        at = self._grid if self._grid is not None else int(now) + self._microsecond
+        at = self._grid if self._grid is not None else int(now) + self._stagger
         self._base, self._grid = at, None
         read = self.data.values if self.data is not None else {}
         if self.last_update_success:
@@ -196,17 +208,32 @@ class PollingCoordinator(DataUpdateCoordinator[ReadResult]):
             return
         if self.config_entry.pref_disable_polling:
             return
-        self._async_unsub_refresh()
+        self._cancel_poll()
         now = self.hass.loop.time()
         interval = self.update_interval.total_seconds()
-        if self._base is None:
-            due = int(now) + self._microsecond + interval
+        if self._retry_after is not None:  # an UpdateFailed asked for a later retry
+            due, self._retry_after = int(now) + self._stagger + self._retry_after, None
+        elif self._base is None:
+            due = int(now) + self._stagger + interval
         elif self._partial or self._again:
             due = now
         else:
             due = max(now, self._base + interval)
         self._due = due
         self._unsub_refresh = self._call_at(due, self._poll_due, "poll")
+
+    @callback
+    def _reschedule(self) -> None:
+        """Schedule a waiting poll again: the tick changed (a first fast point came)."""
+        if self._unsub_refresh is not None:
+            self._schedule_refresh()
+
+    @callback
+    def _cancel_poll(self) -> None:
+        """Cancel the scheduled poll, if one is."""
+        if self._unsub_refresh is not None:
+            self._unsub_refresh()
+            self._unsub_refresh = None
 
     @callback
     def _call_at(
@@ -223,8 +250,13 @@ class PollingCoordinator(DataUpdateCoordinator[ReadResult]):
         """Start the due poll as a background task of the entry (cancelled when HA stops)."""
         self._unsub_refresh, self._grid = None, self._due
         self.config_entry.async_create_background_task(
-            self.hass, self._handle_refresh_interval(), f"{self.name} poll"
+            self.hass, self._async_poll(), f"{self.name} poll"
         )
+
+    async def _async_poll(self) -> None:
+        """Poll as scheduled, unless Home Assistant is stopping."""
+        if not self.hass.is_stopping:
+            await self.async_refresh()
 
     @callback
     def _queue_edited(self) -> None:
@@ -257,7 +289,7 @@ class PollingCoordinator(DataUpdateCoordinator[ReadResult]):
         own_read = self.client.min_scan_interval(list(self._edited))
         due = self._due if self._unsub_refresh is not None else None
         if due is not None and due <= now + own_read:
-            self._async_unsub_refresh()
+            self._cancel_poll()
             self._due = now
             self._poll_due()
             return
