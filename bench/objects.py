@@ -21,6 +21,7 @@ import argparse
 import asyncio
 from collections import Counter
 from collections.abc import Iterable
+from functools import cached_property
 import gc
 import json
 import os
@@ -98,9 +99,12 @@ def _kind_points(kind: int, index: int) -> list[PointData]:
 
 
 def machines(count: int) -> list[ConfigSubentryDataWithId]:
-    """Machines holding `count` entities, the kinds in turn, as the device flow stores them."""
+    """Machines holding `count` entities, the kinds in turn, as read back from storage.
+
+    Through JSON as after a restart: no text is shared between points by the source's literals.
+    """
     per = max(1, count // MACHINES)
-    return [
+    stored = [
         device(
             [p for index in range(m, min(m + per, count)) for p in _kind_points(index % 8, index)],
             subentry_id=f"machine{m // per}",
@@ -108,6 +112,7 @@ def machines(count: int) -> list[ConfigSubentryDataWithId]:
         )
         for m in range(0, count, per)
     ]
+    return [ConfigSubentryDataWithId(**item) for item in json.loads(json.dumps(stored))]
 
 
 def shared_functions() -> set[int]:
@@ -182,31 +187,85 @@ def near(roots: Iterable[object], depth: int) -> set[int]:
     return found
 
 
+HOME_ASSISTANT_SETS = frozenset(
+    {
+        "hass",
+        "platform",
+        "platform_data",
+        "registry_entry",
+        "device_entry",
+        "entity_id",
+        "parallel_updates",
+        "coordinator",
+        "_on_remove",
+        "_unsub_device_updates",
+        "_state_info",
+        "_platform_state",
+        "_cached_friendly_name",
+        "_device_class_name",
+        "_object_id_device_class_name",
+        "_name_translation_key",
+        "_verified_state_writable",
+        "internal_integration_suggested_object_id",
+    }
+)
+"""Attributes Home Assistant sets on every entity itself (its cached properties aside)."""
+
+
+def ours(entity: object) -> list[object]:
+    """The values of the attributes our code sets on an entity (Home Assistant's left out)."""
+    cached = {
+        name
+        for cls in type(entity).__mro__
+        if cls.__module__.startswith("homeassistant.")
+        for name, member in vars(cls).items()
+        if isinstance(member, cached_property)
+    }
+    return [
+        value
+        for name, value in vars(entity).items()
+        if name not in HOME_ASSISTANT_SETS
+        and name not in cached
+        and not name.startswith("_sensor_option_")
+    ]
+
+
 def count_objects(hass: HomeAssistant, entities: Iterable[object]) -> dict[str, Any]:
     """Objects and bytes per entity, shared ones left out, and the types that hold the most.
 
     What `hass.data` holds near its top (the event trackers' callbacks, the registries) is
-    shared: the walk stops there.
+    shared: the walk stops there. `ours_per_entity` counts the entity, its attributes' dict
+    and what the attributes our code sets reach; the rest is what Home Assistant keeps per
+    entity (its registry entry, listeners and caches).
     """
     entities = list(entities)
     stop = shared_functions() | near(hass.data.values(), depth=3)
     reached: Counter[int] = Counter()
     objects: dict[int, object] = {}
+    own: set[int] = set()
     for entity in entities:
         found = reachable(entity, stop)
         reached.update(found.keys())
         objects |= found
+        instance = {id(entity), id(vars(entity))}
+        own |= instance
+        for value in ours(entity):
+            own |= reachable(value, stop | instance).keys()
     limit = max(2, SHARED_SHARE * len(entities))
-    kept = [objects[key] for key, times in reached.items() if times < limit]
-    types = Counter(type(item).__qualname__ for item in kept)
+    kept = [key for key, times in reached.items() if times < limit]
+    types = Counter(type(objects[key]).__qualname__ for key in kept)
     count = max(1, len(entities))
     return {
         "entities": len(entities),
         "objects_per_entity": round(len(kept) / count, 1),
-        "bytes_per_entity": round(sum(sys.getsizeof(item) for item in kept) / count),
+        "ours_per_entity": round(sum(1 for key in kept if key in own) / count, 1),
+        "bytes_per_entity": round(sum(sys.getsizeof(objects[key]) for key in kept) / count),
+        "ours_bytes_per_entity": round(
+            sum(sys.getsizeof(objects[key]) for key in kept if key in own) / count
+        ),
         "shared_left_out": sum(1 for times in reached.values() if times >= limit),
         "types_per_entity": {
-            name: round(number / count, 2) for name, number in types.most_common(15)
+            name: round(number / count, 2) for name, number in types.most_common(12)
         },
     }
 
@@ -258,12 +317,13 @@ def text(result: dict[str, Any]) -> list[str]:
     """Return one size's figures as lines."""
     types = ", ".join(f"{name} {n:g}" for name, n in result["types_per_entity"].items())
     return [
-        f"{result['points']} points, {result['entities']} point entities ({', '.join(KINDS)}):",
+        f"{result['entities']} point entities ({', '.join(KINDS)} in turn):",
         f"  objects per point entity: {result['objects_per_entity']:g}"
-        f" ({result['bytes_per_entity']} bytes); {result['shared_left_out']} objects shared"
-        " by half of them or more left out",
+        f" ({result['bytes_per_entity']} bytes), {result['ours_per_entity']:g} of them"
+        f" ({result['ours_bytes_per_entity']} bytes) the entity and what our code sets on it;"
+        f" {result['shared_left_out']} objects shared by half the entities or more left out",
         f"  most per entity: {types}",
-        f"  RSS per point after a restart: {result['rss_kib_per_point']:.1f} KiB",
+        f"  RSS per point entity after a restart: {result['rss_kib_per_point']:.1f} KiB",
         f"  longest full gc.collect(): {result['gc_full_max_ms']:.1f} ms"
         f" ({result['gc_objects']} objects tracked)",
     ]
