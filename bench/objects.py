@@ -127,12 +127,13 @@ def shared_functions() -> set[int]:
                 found.add(id(value))
             elif isinstance(value, type):
                 for member in list(vars(value).values()):
+                    function = member
                     if isinstance(member, classmethod | staticmethod):
-                        member = member.__func__
+                        function = member.__func__
                     elif isinstance(member, property):
-                        member = member.fget
-                    if isinstance(member, FunctionType):
-                        found.add(id(member))
+                        function = member.fget
+                    if isinstance(function, FunctionType):
+                        found.add(id(function))
     return found
 
 
@@ -230,16 +231,21 @@ def ours(entity: object) -> list[object]:
     ]
 
 
-def count_objects(hass: HomeAssistant, entities: Iterable[object]) -> dict[str, Any]:
+def count_objects(
+    hass: HomeAssistant, entities: Iterable[object], shared: Iterable[object] = ()
+) -> dict[str, Any]:
     """Objects and bytes per entity, shared ones left out, and the types that hold the most.
 
     What `hass.data` holds near its top (the event trackers' callbacks, the registries) is
-    shared: the walk stops there. `ours_per_entity` counts the entity, its attributes' dict
+    shared: the walk stops there, and at all `shared` reaches (the entry's stored points, the
+    coordinator's last values: kept whatever the entities keep). `ours_per_entity` counts the entity, its attributes' dict
     and what the attributes our code sets reach; the rest is what Home Assistant keeps per
     entity (its registry entry, listeners and caches).
     """
     entities = list(entities)
     stop = shared_functions() | near(hass.data.values(), depth=3)
+    for root in shared:
+        stop |= reachable(root, stop).keys()
     reached: Counter[int] = Counter()
     objects: dict[int, object] = {}
     own: set[int] = set()

@@ -60,7 +60,8 @@ async def test_objects(
     await poll(hass, freezer, 2)
     gc.collect()
     after = rss_kib()
-    counted = count_objects(hass, point_entities(hass))
+    shared = [entry.subentries, entry.runtime_data.coordinator.data]
+    counted = count_objects(hass, point_entities(hass), shared)
     result = {
         "check": "objects",
         "points": POINTS,
