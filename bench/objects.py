@@ -238,9 +238,9 @@ def count_objects(
 
     What `hass.data` holds near its top (the event trackers' callbacks, the registries) is
     shared: the walk stops there, and at all `shared` reaches (the entry's stored points, the
-    coordinator's last values: kept whatever the entities keep). `ours_per_entity` counts the entity, its attributes' dict
-    and what the attributes our code sets reach; the rest is what Home Assistant keeps per
-    entity (its registry entry, listeners and caches).
+    coordinator's last values: kept whatever the entities keep). `ours_per_entity` counts the
+    entity, its attributes' dict and what the attributes our code sets reach; the rest is what
+    Home Assistant keeps per entity (its registry entry, listeners and caches).
     """
     entities = list(entities)
     stop = shared_functions() | near(hass.data.values(), depth=3)
