@@ -6,13 +6,14 @@ S7-200 SMART simulator on loopback, an entry whose machines hold a mix of kinds 
 scaled sensors, an enum sensor, a binary sensor, a switch, a number, a select, a switch of a
 state and a command), set up, unloaded and set up again as after a restart, then polled.
 
-From each point entity it walks `gc.get_referents`, stopping at what every entity shares
-(Home Assistant, the entry, the coordinator, the platform, the loop, modules, classes, code
-and module-level functions), and counts the distinct objects of all point entities together:
-an object reached from half the entities or more counts as shared and is left out; one shared
-by a few (a device, a conversion equal for many points) counts once. It prints the objects and
-bytes per point entity, the types that hold most, the RSS per point (after the restart, against
-before the first setup) and the longest of a few full `gc.collect()` runs.
+From each point entity it walks `gc.get_referents`, stopping at what every entity shares (Home
+Assistant, the entry and its stored points, the coordinator and its last values, the platform,
+the loop, modules, classes, code and module-level functions), and counts the distinct objects of
+all point entities together: an object reached from half the entities or more counts as shared
+and is left out; one shared by a few (a device, a conversion equal for many points) counts once.
+It prints the objects and bytes per point entity, the types that hold most, the RSS per point
+(after the restart, against before the first setup) and the longest of a few full `gc.collect()`
+runs.
 """
 
 from __future__ import annotations
