@@ -15,7 +15,6 @@ from typing import Any
 
 from homeassistant.core import callback
 from homeassistant.exceptions import HomeAssistantError, ServiceValidationError
-from homeassistant.helpers.device_registry import DeviceInfo
 from homeassistant.helpers.entity import Entity
 from homeassistant.helpers.entity_platform import AddConfigEntryEntitiesCallback
 
@@ -23,7 +22,7 @@ from .composite import Composite, composites, group_key
 from .const import DOMAIN
 from .conversion import Conversion
 from .coordinator import PlcBridgeConfigEntry
-from .entity import PlcEntity, entity_name, point_fields
+from .entity import PlcEntity, device_of, entity_name, point_fields
 from .outputs import Output, async_send
 from .plc import Point, PointResult, Value, ValueKind
 from .points import PointConfig, PointFactory, entry_points
@@ -96,7 +95,7 @@ class PlcCompositeEntity(PlcEntity):
         super().__init__(entry, group.key)
         self._attr_name = entity_name(entry, group.subentry_id, group.name)
         self._label = group.name  # what messages call it, whatever Home Assistant shows
-        self._attr_device_info = DeviceInfo(identifiers={(DOMAIN, group.subentry_id)})
+        self._attr_device_info = device_of(group.subentry_id)
         self._machine = group.subentry_id
         self.parts = parts
         self._key = group.key
