@@ -4,10 +4,13 @@ from __future__ import annotations
 
 from freezegun.api import FrozenDateTimeFactory
 from homeassistant.core import HomeAssistant
+import pytest
 
 from bench.objects import count_objects, machines, point_entities
 from simulators.s7_smart import S7SmartSimulator
 from tests.ha_fixtures import ENTRY_ID, UNIQUE_ID, add_entry, poll, set_up, sim_data
+
+pytestmark = pytest.mark.no_pacing
 
 ENTITIES = 80
 """Ten of each kind bench.objects mixes."""
