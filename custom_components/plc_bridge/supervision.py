@@ -100,10 +100,7 @@ class Supervisor:
                 self._faulted = False
                 ir.async_delete_issue(self._entity.hass, DOMAIN, self.issue_id)
             return
-        self._commanded = commanded
-        if self._follows(commanded):
-            self._settled()
-            return
+        self._commanded = commanded  # judged by the polls after it: a read-back may be stale
         self._timer = async_call_later(
             self._entity.hass, self.seconds, HassJob(self._timeout, cancel_on_shutdown=True)
         )
