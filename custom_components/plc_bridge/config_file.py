@@ -17,7 +17,7 @@ from homeassistant.const import CONF_ENTITY_ID, CONF_HOST, CONF_NAME, CONF_PORT,
 import yaml
 
 from .availability import CONF_AVAILABILITY_ADDRESS, CONF_AVAILABILITY_DATA_TYPE
-from .composite import as_platform, supervision_data, travel_data
+from .composite import as_platform, is_part, supervision_data, travel_data
 from .config_keys import (
     CONNECTION,
     FILE,
@@ -335,7 +335,7 @@ def check_points(client: type[PlcClient], pasted: ConfigFile) -> None:
             )
         if travel_data(platform, data)[1]:
             raise ConfigFileError("config_travel_time", point=_named(data))
-        if supervision_data(platform, data)[1]:
+        if supervision_data(platform if is_part(platform, role) else "", data)[1]:
             raise ConfigFileError("config_supervision", point=_named(data))
     for data, conflict in layout_conflicts(client, [], points)[:1]:
         other = conflict.other.address if conflict.other else ""
