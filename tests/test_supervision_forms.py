@@ -12,19 +12,20 @@ from custom_components.plc_bridge.point_export import export_points
 from custom_components.plc_bridge.point_table import parse_points
 from simulators.s7_smart import S7SmartSimulator
 
-from .flow_fixtures import step, strings_at
+from .flow_fixtures import smart_data, step, strings_at
 from .ha_fixtures import make_entry, point
-from .test_command_layouts import (  # noqa: F401
-    SMART,
-    composite,
-    fields,
-    key_only,
-    machines,
-    smart_entry,
-)
+from .test_command_layouts import SMART, composite, fields, key_only, machines
 from .test_config_file import CONFIG, paste
 
 pytestmark = pytest.mark.no_pacing
+
+
+@pytest.fixture
+def smart_entry(hass: HomeAssistant, flow_sim: S7SmartSimulator) -> MockConfigEntry:
+    """An S7-200 SMART entry without machines (not set up)."""
+    entry = MockConfigEntry(domain=DOMAIN, data=smart_data(flow_sim), version=2)
+    entry.add_to_hass(hass)
+    return entry
 
 
 async def test_supervision_on_the_switch_form(

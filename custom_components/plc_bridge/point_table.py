@@ -68,8 +68,8 @@ COLUMNS = (
     CONF_ROLE,
     CONF_POLL,
     CONF_AS_TEXT,
-    CONF_TRAVEL_TIME,
     CONF_SUPERVISION,
+    CONF_TRAVEL_TIME,
 )
 """The columns of the format, in the order export writes them (rows of one entity of several
 addresses share its name and platform, and each names its role); an empty poll is normal,
