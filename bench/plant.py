@@ -6,7 +6,7 @@ S7-200 SMART simulators in a subprocess, every point a sensor in ten devices per
 vendor's pacing on unless `--pacing 0`. It prints the time until every entity is registered and
 available, the event loop's lag (max, p99, stalls of 250 ms or more with the GC pauses and our
 state writes inside them), how long each poll's state writes hold the loop, full collections,
-and the RSS from the end of the start-up to N minutes later.
+and the RSS from the end of the start-up to N minutes later, and per point against before setup.
 """
 
 from __future__ import annotations
@@ -53,6 +53,7 @@ def run(args: argparse.Namespace) -> dict[str, Any] | str:
 def text(result: dict[str, Any], command: str, load: tuple[float, ...]) -> str:
     """Return the figures as lines, each beside its target."""
     rss = result["rss_mib"]
+    plcs = result["plcs"]
     first, last = rss[0][1], rss[-1][1]
     later = next((m for t, m in rss if t >= result["minutes"] * 20), first)
     faults = f"a PLC away every {result['fault_s']:g} s" if result["fault_s"] else "no faults"
@@ -92,6 +93,12 @@ def text(result: dict[str, Any], command: str, load: tuple[float, ...]) -> str:
         f" third of the run on, target +/- {TARGETS['rss']:g} % in steady polling);"
         f" samples every 10 s: {' '.join(f'{m:g}' for _t, m in rss)}",
     ]
+    if "rss_before_setup_mib" in result:
+        per_point = (first - result["rss_before_setup_mib"]) * 1024 / (plcs * result["points"])
+        lines.append(
+            f"RSS per point: {per_point:.1f} KiB after the start-up (against"
+            f" {result['rss_before_setup_mib']} MiB before the first setup)"
+        )
     if result["growth"]:
         lines.append("tracemalloc, the largest growths from a third of the run to its end:")
     for row in result["growth"]:

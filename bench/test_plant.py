@@ -240,6 +240,8 @@ async def test_plant(hass: HomeAssistant, monkeypatch: pytest.MonkeyPatch) -> No
     stop = asyncio.Event()
     watcher = loop.create_task(probe.watch_loop(stop))
     total = PLCS * POINTS
+    gc.collect()
+    rss_before = rss_mib()
     # The first start registers every entity; the second is what every restart looks like.
     started = time.perf_counter()
     await asyncio.gather(*(hass.config_entries.async_setup(e.entry_id) for e in entries))
@@ -308,6 +310,7 @@ async def test_plant(hass: HomeAssistant, monkeypatch: pytest.MonkeyPatch) -> No
         "gc_gen2": len(gen2),
         "gc_gen2_max_ms": round(max(gen2, default=0) * 1000, 1),
         "rss_mib": [(t, round(m, 1)) for t, m in rss],
+        "rss_before_setup_mib": round(rss_before, 1),
         "growth": growth,
     }
     print("\nBENCH " + json.dumps(result))

@@ -33,6 +33,7 @@ class Drive:
     address: str  # read back from the PLC with plc_bridge.read
     data_type: str
     expected: Any
+    reached: str = ""  # or this bit reads on: the end the command moves to (then it is released)
 
 
 @dataclass(frozen=True, slots=True)
@@ -83,7 +84,9 @@ def drives(word: str, bit: str, at: dict[str, str]) -> tuple[Drive, ...]:
         Drive("climate", "set_temperature", {"temperature": 22.5}, at["target"], word, 225),
         Drive("climate", "set_hvac_mode", {"hvac_mode": "heat"}, at["hvac"], word, 1),
         Drive("select", "select_option", {"option": "Manual"}, at["mode"], word, 2),
-        Drive("cover", "open_cover", {}, at["open"], bit, True),
+        # A level open is released once the open limit reads on (sooner than the check reads
+        # the command where the simulator's program moves the shutter at once).
+        Drive("cover", "open_cover", {}, at["open"], bit, True, reached=at["opened"]),
         Drive("switch", "turn_on", {}, at["run"], bit, True),
         Drive("button", "press", {}, at["start"], bit, True),
     )
@@ -107,6 +110,11 @@ KIND_ADDRESSES = {
         "INT",
         "BOOL",
         "N7:50 N7:52 N7:54 N7:30 N7:70 B3:4/0 B3:4/1 B3:6/0 B3:6/1 B3:7/0 B3:5/1 B3:5/2",
+    ),
+    "logo": (
+        "INT",
+        "BOOL",
+        "VW50 VW52 VW54 VW30 VW70 V60.0 V60.1 V62.0 V62.1 V63.0 V61.1 V61.2",
     ),
     "tecomat": (
         "INT",
@@ -150,6 +158,7 @@ JOURNEYS = {
     "plcnext": Journey(pick="MainInstance.Setpoint", **kinds("plcnext")),
     "softplc": Journey(table=HEADER + "Preset,T4:0.PRE,INT,number,0,30000", **kinds("softplc")),
     "s7": Journey(table=HEADER + "Setpoint,DB1.DBW6,INT,number,0,1000", **kinds("s7")),
+    "logo": Journey(table=HEADER + "Setpoint,VW6,INT,number,0,1000", **kinds("logo")),
 }
 """What each family's simulator offers a first user (see scripts/develop's hints)."""
 WRITTEN = 21.0
@@ -291,11 +300,20 @@ def take(hass: Hass, ws: Socket, entry_id: str, drive: Drive, vendor: str) -> st
     before = plc_value(hass, entry_id, drive)
     service = f"/api/services/{drive.domain}/{drive.service}"
     hass.call("POST", service, {"entity_id": entity, **drive.data})
-    if not wait_for(lambda: plc_value(hass, entry_id, drive) == drive.expected, 15):
+    end = Drive(drive.domain, drive.service, {}, drive.reached, drive.data_type, True)
+
+    def done() -> str:
+        """What shows the action done: its value written, or the end its command moves to."""
+        if plc_value(hass, entry_id, drive) == drive.expected:
+            return f"{drive.address} {before!r} -> {drive.expected!r}"
+        if drive.reached and plc_value(hass, entry_id, end) is True:
+            return f"{drive.reached} (the end it moves to) -> True, the command released"
+        return ""
+
+    if not (shown := wait_for(done, 15)):
         now = plc_value(hass, entry_id, drive)
         return f"{entity}: {drive.address} is {now!r}, not {drive.expected!r}"
-    line = f"{drive.domain}.{drive.service} on {entity}: {drive.address} {before!r} -> "
-    print(f"demo: {vendor}: {line}{drive.expected!r}", flush=True)
+    print(f"demo: {vendor}: {drive.domain}.{drive.service} on {entity}: {shown}", flush=True)
     return ""
 
 

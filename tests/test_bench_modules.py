@@ -29,6 +29,7 @@ ENTRY_POINTS: dict[str, tuple[list[str], str]] = {
         "every entity registered",
     ),
     "edit_read": (["--points", "32", "--pacing", "0.1"], "targets met: yes"),
+    "objects": (["--points", "10"], "per point entity"),
     "serve": (["s7_smart", "1"], '"port"'),
     "plant_sims": (["1", "1", "1"], '"port"'),
 }

@@ -31,6 +31,8 @@ OTHERS = {
     "plcnext": r"S7|SMART|STEP 7|TSAP|rack|slot|ISO-on-TCP|TecoApi|Tecomat|Mosaic|Web API",
     "softplc": r"S7|SMART|STEP 7|TecoApi|Tecomat|Mosaic|TSAP|rack|slot|ISO-on-TCP|Web API|"
     r"password|user",
+    "logo": r"SMART|Web API|TecoApi|Tecomat|Mosaic|certificate|HTTPS|password|log ?in|user|"
+    r"rack|slot",
 }
 """Words of other families (or of what the vendor does not have) that its pages must not use."""
 

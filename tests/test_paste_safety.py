@@ -32,6 +32,8 @@ from .ha_fixtures import POINTS, device, point, sim_data
 from .test_config_file import CONFIG, confirm, paste
 from .test_config_file_text import plc
 
+pytestmark = pytest.mark.no_pacing
+
 
 def line_of(text: str, needle: str) -> str:
     """Return the line (1-based, as text) of the first line holding the needle."""

@@ -147,11 +147,18 @@ class PlcClimate(PlcCompositeEntity, ClimateEntity):
             values["hvac_mode"] = mode.conversion.code(str(hvac_mode))
         if values:
             await self.async_write_parts(values)
+            self.supervisor.watch("off" if hvac_mode == HVACMode.OFF else "on")
+
+    def follows(self, commanded: str) -> bool | None:
+        """Whether the mode read is off when off was commanded, another one when on was."""
+        mode = self.hvac_mode
+        return None if mode is None else (mode != HVACMode.OFF) == (commanded == "on")
 
     async def async_turn_on(self) -> None:
         """Switch on through the on/off part, else the first mode that is not off."""
         if "on_off" in self.parts:
             await self.async_write_parts({"on_off": self.parts["on_off"].level(on=True)})
+            self.supervisor.watch("on")
             return
         await self.async_set_hvac_mode(next(m for m in self.hvac_modes if m != HVACMode.OFF))
 

@@ -15,13 +15,12 @@ from typing import Any
 
 from homeassistant.core import callback
 from homeassistant.exceptions import HomeAssistantError, ServiceValidationError
-from homeassistant.helpers.device_registry import DeviceInfo
 from homeassistant.helpers.entity import Entity
 from homeassistant.helpers.entity_platform import AddConfigEntryEntitiesCallback
 
 from .const import DOMAIN
 from .coordinator import PlcBridgeConfigEntry
-from .entity import PlcEntity, entity_name, point_fields
+from .entity import PlcEntity, device_of, entity_name, point_fields
 from .model.composite import Composite, composites, group_key
 from .model.conversion import Conversion
 from .model.points import PointConfig, entry_points, pulse_seconds
@@ -29,6 +28,7 @@ from .plc import Point, PointResult, Value, ValueKind
 from .runtime.entities import PointFactory
 from .runtime.issues import COMMAND_NOT_RELEASED, PULSE_FAILED
 from .runtime.outputs import Output, async_send
+from .runtime.supervision import Supervisor, seconds_of
 
 
 @dataclass(frozen=True, slots=True)
@@ -96,12 +96,14 @@ class PlcCompositeEntity(PlcEntity):
         super().__init__(entry, group.key)
         self._attr_name = entity_name(entry, group.subentry_id, group.name)
         self._label = group.name  # what messages call it, whatever Home Assistant shows
-        self._attr_device_info = DeviceInfo(identifiers={(DOMAIN, group.subentry_id)})
+        self._attr_device_info = device_of(group.subentry_id)
         self._machine = group.subentry_id
         self.parts = parts
         self._key = group.key
         self._writing = asyncio.Lock()  # one write of commands and releases at a time
         self.outputs = {role: self._output(role) for role, part in parts.items() if part.pulse > 0}
+        seconds = seconds_of(part.config.data for part in parts.values())
+        self.supervisor = Supervisor(entry, self._key, self._label, seconds, self.follows)
 
     def _output(self, role: str) -> Output:
         """Return the output of a command part: its off-write and its repair issue."""
@@ -214,6 +216,17 @@ class PlcCompositeEntity(PlcEntity):
                 released.released()
         await self._async_read_back()
 
+    def follows(self, commanded: str) -> bool | None:
+        """Whether the state shown is what was commanded ("on" or "off"); None while unknown."""
+        state: bool | None = getattr(self, "is_on", None)
+        return None if state is None else state == (commanded == "on")
+
+    @callback
+    def _handle_coordinator_update(self) -> None:
+        """Check the state watched by the supervision, then show the poll."""
+        self.supervisor.update()
+        super()._handle_coordinator_update()
+
     def switched(self) -> bool | None:
         """On or off: the `state` part, else what a level `command` part reads back."""
         if "state" in self.parts:
@@ -234,6 +247,7 @@ class PlcCompositeEntity(PlcEntity):
                 values["command"] = command.level(on=on)
             if values:
                 await self.async_write_parts(values)
+            self.supervisor.watch("on" if on else "off")
             return
         state = self.on("state")
         if state is None:
@@ -246,12 +260,14 @@ class PlcCompositeEntity(PlcEntity):
             await self.async_write_parts(values)
         if state != on:
             await self.async_command("command")
+        self.supervisor.watch("on" if on else "off")
 
     async def async_added_to_hass(self) -> None:
         """Follow Home Assistant's stop for every output; release what a last setup left on."""
         await super().async_added_to_hass()
         for output in self.outputs.values():
             self.async_on_remove(output.async_attach(self.hass))
+        self.async_on_remove(self.supervisor.async_attach(self))
 
     async def async_will_remove_from_hass(self) -> None:
         """Removed (unload, reload, edit): release every output still held, now."""

@@ -38,6 +38,7 @@ from .coordinator import PlcBridgeConfigEntry
 from .model.composite import CONF_TRAVEL_TIME, Composite
 from .plc import Point, Value, ValueKind
 from .runtime.outputs import async_send
+from .runtime.supervision import seconds_of
 
 PARALLEL_UPDATES = 1
 FULL = 100
@@ -82,6 +83,9 @@ class Travel(PlcCompositeEntity):
         for role in self._commands:
             self.outputs.setdefault(role, self._output(role))
         self._travel_time = travel_time(parts)
+        self.supervisor.seconds = seconds_of(
+            (p.config.data for p in parts.values()), CONF_TRAVEL_TIME
+        )
         self._moved: dict[str, float] = {}  # level open or close held: loop time of its command
         self._left: set[str] = set()  # of those, the ones read away from their end since
 
@@ -199,6 +203,11 @@ class Travel(PlcCompositeEntity):
             await self.async_command("step")
         elif position is not None:
             await self._async_set_position(position)
+        self.supervisor.watch(role if role in ("open", "close") else None)
+
+    def follows(self, commanded: str) -> bool | None:
+        """Whether the end an open or close moves to reads reached; None where no part tells."""
+        return self._reached(commanded)
 
     async def _async_set_position(self, position: float, which: str = "position") -> None:
         """Write the position through the part's range (refused outside it, nothing sent)."""
@@ -210,6 +219,7 @@ class Travel(PlcCompositeEntity):
             position = FULL - position
         raw = part.conversion.raw(position, integer=part.kind is ValueKind.INTEGER)
         held = [other for other in self._commands if self.outputs[other].held]
+        self.supervisor.watch(None)
         if not held:
             await self.async_write_parts({role: raw})
             return

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from enum import StrEnum
+from functools import lru_cache
 from typing import Any
 
 from homeassistant.const import CONF_DEVICE_CLASS, CONF_HOST, CONF_PORT
@@ -14,7 +15,7 @@ from homeassistant.helpers.entity import EntityDescription
 from homeassistant.helpers.update_coordinator import CoordinatorEntity
 from yarl import URL
 
-from .const import CONF_MAC, CONF_OFFSET, CONF_SCALE, CONF_TLS, DOMAIN
+from .const import CONF_MAC, CONF_TLS, DOMAIN
 from .coordinator import PlcBridgeConfigEntry, PlcCoordinator
 from .model.conversion import Conversion, conversion_of
 from .model.points import PointConfig
@@ -78,15 +79,16 @@ def point_fields(entry: PlcBridgeConfigEntry, config: PointConfig) -> dict[str, 
         kind = entry.runtime_data.client.value_kind(point)
     except PlcError:
         kind = None  # the poll reports the address error on the entity
+    conversion = conversion_of(config.data)
     return {
         "key": config.point_id,
         "name": entity_name(entry, config.subentry_id, config.name),
         "point": point,
         "kind": kind,
-        "scale": float(config.data.get(CONF_SCALE, 1.0)),
-        "offset": float(config.data.get(CONF_OFFSET, 0.0)),
+        "scale": conversion.scale,
+        "offset": conversion.offset,
         "read_only": config.read_only,
-        "conversion": conversion_of(config.data),
+        "conversion": conversion,
     }
 
 
@@ -154,6 +156,15 @@ def device_info(entry: PlcBridgeConfigEntry) -> DeviceInfo:
     )
 
 
+@lru_cache(maxsize=4096)
+def device_of(identifier: str) -> DeviceInfo:
+    """Return the device info naming one device: one object for every entity of the device.
+
+    Home Assistant only reads it (to find the device when an entity is added).
+    """
+    return DeviceInfo(identifiers={(DOMAIN, identifier)})
+
+
 def plc_device(hass: HomeAssistant, entry: PlcBridgeConfigEntry) -> str:
     """Return the id of the PLC's own device, made or brought up to date."""
     registry = dr.async_get(hass)
@@ -169,8 +180,9 @@ class PlcEntity(CoordinatorEntity[PlcCoordinator]):
         """Attach the entity to the entry's coordinator (for `point`) and the PLC's device."""
         super().__init__(entry.runtime_data.coordinator, context=point)
         self._attr_unique_id = f"{device_key(entry)}_{key}"
-        self._attr_device_info = DeviceInfo(identifiers={(DOMAIN, device_key(entry))})
-        self._shown: tuple[bool, Any] | None = None
+        self._attr_device_info = device_of(device_key(entry))
+        self._shown_available: bool | None = None  # None: nothing shown yet
+        self._shown: Any = None
         self._machine: str | None = None  # the device subentry whose availability applies
 
     @property
@@ -194,14 +206,14 @@ class PlcEntity(CoordinatorEntity[PlcCoordinator]):
     async def async_added_to_hass(self) -> None:
         """Remember what the first state shows, then follow the coordinator."""
         await super().async_added_to_hass()
-        self._shown = (self.available, self.observed())
+        self._shown_available, self._shown = self.available, self.observed()
 
     @callback
     def _handle_coordinator_update(self) -> None:
         """Write the state only when availability or the value changed: a quiet poll writes none."""
-        shown = (self.available, self.observed())
-        if shown != self._shown:
-            self._shown = shown
+        available, shown = self.available, self.observed()
+        if available != self._shown_available or not (shown is self._shown or shown == self._shown):
+            self._shown_available, self._shown = available, shown
             super()._handle_coordinator_update()
 
 
@@ -215,7 +227,7 @@ class PlcPointEntity(PlcEntity):
     ) -> None:
         """Bind the entity to its point and device (the key: the point id, or it and a bit)."""
         super().__init__(entry, description.key, description.point)
-        self._attr_device_info = DeviceInfo(identifiers={(DOMAIN, config.subentry_id)})
+        self._attr_device_info = device_of(config.subentry_id)
         self._machine = config.subentry_id
         self.entity_description = description
 

@@ -12,7 +12,7 @@ from homeassistant.helpers.entity_platform import AddConfigEntryEntitiesCallback
 from .const import LOGGER
 from .coordinator import PlcBridgeConfigEntry
 from .entity import PlcPointDescription, PlcPointEntity, point_fields
-from .model.conversion import UnmappedLog
+from .model.conversion import check_unmapped, labels
 from .model.points import PointConfig
 
 PARALLEL_UPDATES = 1
@@ -26,7 +26,7 @@ class PlcSelectDescription(SelectEntityDescription, PlcPointDescription):
 def point_select(entry: PlcBridgeConfigEntry, config: PointConfig) -> PlcSelect:
     """Return the select of a point: its options are the labels of its value map."""
     fields = point_fields(entry, config)
-    options = [label for _, label in fields["conversion"].value_map]
+    options = labels(fields["conversion"].value_map)
     return PlcSelect(entry, config, PlcSelectDescription(**fields, options=options))
 
 
@@ -49,7 +49,8 @@ class PlcSelect(PlcPointEntity, SelectEntity):
     ) -> None:
         """Bind the select to its point and note raw values outside the map."""
         super().__init__(entry, config, description)
-        self._unmapped = UnmappedLog(LOGGER, config.name)
+        self._label = config.name
+        self._unmapped = False
 
     @property
     def current_option(self) -> str | None:
@@ -58,7 +59,9 @@ class PlcSelect(PlcPointEntity, SelectEntity):
 
     def observed(self) -> Any:
         """The point's value as read in the last poll (a value outside the map logged once)."""
-        self._unmapped.check(self.entity_description.convert, self.raw_value)
+        self._unmapped = check_unmapped(
+            LOGGER, self._label, self.entity_description.convert, self.raw_value, self._unmapped
+        )
         return self.raw_value
 
     async def async_select_option(self, option: str) -> None:

@@ -30,7 +30,7 @@ from .entity import (
     point_fields,
 )
 from .link import link_sensors
-from .model.conversion import UnmappedLog
+from .model.conversion import check_unmapped, labels
 from .model.duration_units import as_text, duration_unit, in_unit
 from .model.points import PointConfig
 from .plc import PlcStatus, ValueKind
@@ -154,9 +154,9 @@ def point_sensor(entry: PlcBridgeConfigEntry, config: PointConfig) -> PlcPointSe
     """Return the sensor of a point: numbers keep unit and classes, other values show as text."""
     fields = point_fields(entry, config)
     extra: dict[str, Any] = {}
-    if labels := [label for _, label in fields["conversion"].value_map]:
+    if options := labels(fields["conversion"].value_map):
         description = PlcSensorDescription(
-            **fields, device_class=SensorDeviceClass.ENUM, options=labels
+            **fields, device_class=SensorDeviceClass.ENUM, options=options
         )
         return PlcEnumSensor(entry, config, description)
     if fields["kind"] in NUMERIC or fields["kind"] is None:
@@ -225,7 +225,8 @@ class PlcEnumSensor(PlcPointSensor):
     ) -> None:
         """Bind the sensor to its point and note raw values outside the map."""
         super().__init__(entry, config, description)
-        self._unmapped = UnmappedLog(LOGGER, config.name)
+        self._label = config.name
+        self._unmapped = False
 
     @property
     def native_value(self) -> str | None:
@@ -234,7 +235,9 @@ class PlcEnumSensor(PlcPointSensor):
 
     def observed(self) -> Any:
         """The point's value as read in the last poll (a value outside the map logged once)."""
-        self._unmapped.check(self.entity_description.convert, self.raw_value)
+        self._unmapped = check_unmapped(
+            LOGGER, self._label, self.entity_description.convert, self.raw_value, self._unmapped
+        )
         return self.raw_value
 
 

@@ -98,7 +98,7 @@ def test_scan_interval_follows_request_count() -> None:
 
 
 def test_registry() -> None:
-    assert VENDORS == ("s7_smart", "tecomat", "plcnext", "softplc", "s7")
+    assert VENDORS == ("s7_smart", "tecomat", "plcnext", "softplc", "s7", "logo")
     with pytest.raises(KeyError):
         client_class("nope")
     for vendor in implemented():

@@ -20,6 +20,7 @@ ADVISED = {
     "plcnext": 0.0,  # the REST notes: "No rate limit documented"
     "softplc": 0.0,  # WEB.TLM names connections (over 50), no request rate
     "s7": 0.0,  # the S7comm notes advise none; the negotiated PDU bounds a request
+    "logo": 0.0,  # LOGO! speaks S7comm on the S7 transport: no request rate advised either
 }
 """Seconds between requests each vendor's documentation advises (0: it advises none)."""
 

@@ -38,13 +38,16 @@ from ..const import (
     CONF_ROLE,
 )
 from ..model.composite import (
+    CONF_SUPERVISION,
     CONF_TRAVEL_TIME,
     INVERTIBLE,
     ROLES,
+    SUPERVISED_PLATFORMS,
     TRAVEL_PLATFORMS,
     as_platform,
     group_errors,
     part_data,
+    supervision_data,
     travel_data,
 )
 from ..model.point_table import first_type
@@ -55,8 +58,10 @@ from ..plc import PlcAddressError, PlcClient, Point
 from .base import DeviceFlowBase
 from .point_form import BASE_FIELDS, details_schema
 
-SHARED = (CONF_POLL, CONF_TRAVEL_TIME)
-"""What every part of one entity has alike: its poll class and its travel time."""
+SHARED = (CONF_POLL, CONF_TRAVEL_TIME, CONF_SUPERVISION)
+"""What every part of one entity has alike: its poll class, travel and supervision time."""
+TIMES = (CONF_TRAVEL_TIME, CONF_SUPERVISION)
+"""The entity's times the first form (or a part's address form) asks, stored on every part."""
 _SECONDS = NumberSelector(NumberSelectorConfig(mode=NumberSelectorMode.BOX, step="any"))
 
 TYPE_SUFFIX = "_data_type"
@@ -113,8 +118,10 @@ class CompositeSteps(DeviceFlowBase):
         placeholders |= {"point": "", "written": ""}
         if user_input is not None:
             travel, errors = travel_data(platform, user_input)
-            self._composite = {k: v for k, v in self._composite.items() if k != CONF_TRAVEL_TIME}
-            self._composite |= travel
+            supervision, wrong = supervision_data(platform, user_input)
+            errors |= wrong
+            self._composite = {k: v for k, v in self._composite.items() if k not in TIMES}
+            self._composite |= travel | supervision
             parts = self._given(platform, user_input, errors, placeholders)
             problems = group_errors(parts)
             if not errors and problems:
@@ -132,6 +139,8 @@ class CompositeSteps(DeviceFlowBase):
             fields[vol.Optional(f"{role}{TYPE_SUFFIX}")] = data_types(self._client)
         if platform in TRAVEL_PLATFORMS:
             fields[vol.Optional(CONF_TRAVEL_TIME)] = _SECONDS
+        if platform in SUPERVISED_PLATFORMS:
+            fields[vol.Optional(CONF_SUPERVISION)] = _SECONDS
         return self.async_show_form(
             step_id="composite_parts",
             data_schema=self.add_suggested_values_to_schema(vol.Schema(fields), user_input or {}),
@@ -275,16 +284,18 @@ class CompositeSteps(DeviceFlowBase):
             address = str(user_input.get(CONF_ADDRESS) or "")
             data_type = str(user_input.get(CONF_DATA_TYPE) or "")
             travel, errors = travel_data(platform, user_input)
-            kept = {k: v for k, v in values.items() if k != CONF_TRAVEL_TIME}
+            supervision, wrong = supervision_data(platform, user_input)
+            errors |= wrong
+            kept = {k: v for k, v in values.items() if k not in TIMES}
             part, found_errors, found = self._part_at(
                 values[CONF_ROLE], address, data_type, self._taken()
             )
             errors |= found_errors
             placeholders |= found
             if part is not None and not errors:
-                part = {**kept, **part, **travel}
+                part = {**kept, **part, **travel, **supervision}
                 rows = [
-                    {k: v for k, v in row.items() if k != CONF_TRAVEL_TIME}
+                    {k: v for k, v in row.items() if k not in TIMES}
                     for row in self._entity_rows(self._part_ids[0])
                 ]
                 if problems := group_errors([*rows, part]):
@@ -304,6 +315,8 @@ class CompositeSteps(DeviceFlowBase):
         )
         if platform in TRAVEL_PLATFORMS:
             schema = schema.extend({vol.Optional(CONF_TRAVEL_TIME): _SECONDS})
+        if platform in SUPERVISED_PLATFORMS:
+            schema = schema.extend({vol.Optional(CONF_SUPERVISION): _SECONDS})
         return self.async_show_form(
             step_id="composite_edit",
             data_schema=self.add_suggested_values_to_schema(schema, user_input or values),

@@ -112,6 +112,10 @@ CONF_TRAVEL_TIME: Final = "travel_time"
 TRAVEL_PLATFORMS = frozenset({"cover", "valve"})
 TRAVEL_MIN, TRAVEL_MAX = 1.0, 600.0
 """The travel times a cover or valve may have, in seconds (0 or empty: none)."""
+CONF_SUPERVISION: Final = "supervision"
+"""Part data: seconds the state has to follow a command (absent: none); every part has it."""
+SUPERVISED_PLATFORMS = frozenset({"switch", "light", "fan", "climate"})
+"""Kinds that take a supervision time (supervision.py); a cover or valve has its travel time."""
 ALWAYS = frozenset({"cover", "valve", "climate", "light", "fan"})
 """Platforms whose every point is a part; a switch point is one only when it names a role."""
 
@@ -254,7 +258,9 @@ def part_data(
     if role in INVERTIBLE and values.get(CONF_INVERT):
         data[CONF_INVERT] = True
     travel, wrong = travel_data(platform, values)
-    data |= travel | {CONF_PLATFORM: platform, CONF_ROLE: role}
+    supervision, wrong_time = supervision_data(platform, values)
+    data |= travel | supervision | {CONF_PLATFORM: platform, CONF_ROLE: role}
+    wrong |= wrong_time
     return data, errors | found | wrong, placeholders
 
 
@@ -279,15 +285,39 @@ def travel_data(platform: str, values: Mapping[str, Any]) -> tuple[dict[str, Any
     return {CONF_TRAVEL_TIME: seconds}, {}
 
 
+def supervision_data(
+    platform: str, values: Mapping[str, Any]
+) -> tuple[dict[str, Any], dict[str, str]]:
+    """Return what a part stores of its entity's supervision time (0 or empty: nothing), or why not.
+
+    The bounds are the travel time's: a cover's or valve's travel time is its supervision time.
+    """
+    given = values.get(CONF_SUPERVISION)
+    if given is None or given == "":
+        return {}, {}
+    try:
+        seconds = float(given)
+    except (TypeError, ValueError):
+        return {}, {CONF_SUPERVISION: "supervision_out_of_range"}
+    if seconds == 0:
+        return {}, {}
+    if platform not in SUPERVISED_PLATFORMS:
+        return {}, {CONF_SUPERVISION: "supervision_not_here"}
+    if not TRAVEL_MIN <= seconds <= TRAVEL_MAX:
+        return {}, {CONF_SUPERVISION: "supervision_out_of_range"}
+    return {CONF_SUPERVISION: seconds}, {}
+
+
 def group_errors(rows: Iterable[Mapping[str, Any]]) -> list[tuple[str, str, dict[str, str]]]:
     """Check the parts of new composite entities together: each role once, one that shows.
 
-    Their travel times, where given, agree.
+    Their travel times and supervision times, where given, agree.
 
     Returns (entity name, error key, placeholders) for each entity at fault.
     """
     groups: dict[tuple[str, str], list[str]] = {}
     times: dict[tuple[str, str], set[float]] = {}
+    watched: dict[tuple[str, str], set[float]] = {}  # supervision times
     for data in rows:
         platform = str(data.get(CONF_PLATFORM, ""))
         if is_part(platform, data.get(CONF_ROLE)):
@@ -295,6 +325,8 @@ def group_errors(rows: Iterable[Mapping[str, Any]]) -> list[tuple[str, str, dict
             groups.setdefault(key, []).append(str(data.get(CONF_ROLE, "")))
             if data.get(CONF_TRAVEL_TIME):
                 times.setdefault(key, set()).add(float(data[CONF_TRAVEL_TIME]))
+            if data.get(CONF_SUPERVISION):
+                watched.setdefault(key, set()).add(float(data[CONF_SUPERVISION]))
     errors: list[tuple[str, str, dict[str, str]]] = []
     for (platform, name), roles in groups.items():
         repeated = sorted({role for role in roles if roles.count(role) > 1})
@@ -303,6 +335,9 @@ def group_errors(rows: Iterable[Mapping[str, Any]]) -> list[tuple[str, str, dict
         elif len(times.get((platform, name), ())) > 1:
             seconds = ", ".join(f"{time:g}" for time in sorted(times[(platform, name)]))
             errors.append((name, "travel_time_differs", {"name": name, "seconds": seconds}))
+        elif len(watched.get((platform, name), ())) > 1:
+            seconds = ", ".join(f"{time:g}" for time in sorted(watched[(platform, name)]))
+            errors.append((name, "supervision_differs", {"name": name, "seconds": seconds}))
         elif not set(roles) & set(NEEDS_ONE_OF[platform]):
             needs = ", ".join(NEEDS_ONE_OF[platform])
             errors.append((name, "role_missing", {"name": name, "roles": needs}))

@@ -33,7 +33,7 @@ from ..const import (
 from ..plc import PlcClient, PlcError, Point, TlsMode
 from ..plc.vendors import implemented
 from .availability import CONF_AVAILABILITY_ADDRESS, CONF_AVAILABILITY_DATA_TYPE
-from .composite import as_platform, point_classes, travel_data
+from .composite import as_platform, is_part, point_classes, supervision_data, travel_data
 from .config_keys import (
     CONNECTION,
     FILE,
@@ -324,9 +324,9 @@ def check_addresses(client: type[PlcClient], pasted: ConfigFile) -> None:
 def check_points(client: type[PlcClient], pasted: ConfigFile) -> None:
     """Raise ConfigFileError for the first point the forms would refuse as it is laid out.
 
-    A command stored read only, a travel time out of bounds or on an entity without travel,
-    and a write that would meet read-only data (another point's, or data its vendor writes
-    with it) are refused as the forms and tables refuse them.
+    A command stored read only, a travel or supervision time out of bounds or on an entity
+    without travel or supervision, and a write that would meet read-only data (another
+    point's, or data its vendor writes with it) are refused as the forms and tables refuse them.
     """
     points = [
         data
@@ -343,6 +343,8 @@ def check_points(client: type[PlcClient], pasted: ConfigFile) -> None:
             )
         if travel_data(platform, data)[1]:
             raise ConfigFileError("config_travel_time", point=_named(data))
+        if supervision_data(platform if is_part(platform, role) else "", data)[1]:
+            raise ConfigFileError("config_supervision", point=_named(data))
     for data, conflict in layout_conflicts(client, [], points)[:1]:
         other = conflict.other.address if conflict.other else ""
         key = "config_writes_read_only" if conflict.key == "writes_read_only" else "config_overlap"

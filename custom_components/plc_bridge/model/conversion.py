@@ -20,6 +20,7 @@ from __future__ import annotations
 from collections.abc import Mapping
 from dataclasses import dataclass
 from decimal import Decimal
+from functools import lru_cache
 import logging
 from typing import Any
 
@@ -244,45 +245,60 @@ class Conversion:
         return int(code) if float(code).is_integer() else code
 
 
+@lru_cache(maxsize=4096)
+def shared(conversion: Conversion) -> Conversion:
+    """Return the one conversion kept for all equal to this one (most points share a few)."""
+    return conversion
+
+
 def conversion_of(data: Mapping[str, Any]) -> Conversion:
-    """Return the conversion a point's stored data describes (older points: scale and offset)."""
+    """Return the conversion a point's stored data describes (older points: scale and offset).
+
+    Points with equal settings get one object.
+    """
     linear = None
     if all(data.get(key) is not None for key in LINEAR_KEYS):
         linear = Linear(*(float(data[key]) for key in LINEAR_KEYS))
         if linear.raw_min == linear.raw_max or linear.shown_min == linear.shown_max:
             linear = None
     precision = data.get(CONF_PRECISION)
-    return Conversion(
-        scale=float(data.get(CONF_SCALE, 1.0)),
-        offset=float(data.get(CONF_OFFSET, 0.0)),
-        linear=linear,
-        precision=None if precision is None else int(precision),
-        value_map=stored_pairs(data, CONF_VALUE_MAP),
-        invert=bool(data.get(CONF_INVERT, False)),
-        on_value=None if data.get(CONF_ON_VALUE) is None else float(data[CONF_ON_VALUE]),
-        off_value=None if data.get(CONF_OFF_VALUE) is None else float(data[CONF_OFF_VALUE]),
+    return shared(
+        Conversion(
+            scale=float(data.get(CONF_SCALE, 1.0)),
+            offset=float(data.get(CONF_OFFSET, 0.0)),
+            linear=linear,
+            precision=None if precision is None else int(precision),
+            value_map=stored_pairs(data, CONF_VALUE_MAP),
+            invert=bool(data.get(CONF_INVERT, False)),
+            on_value=None if data.get(CONF_ON_VALUE) is None else float(data[CONF_ON_VALUE]),
+            off_value=None if data.get(CONF_OFF_VALUE) is None else float(data[CONF_OFF_VALUE]),
+        )
     )
 
 
-class UnmappedLog:
-    """Logs a raw value outside a value map once, and again once it was in the map and left."""
+@lru_cache(maxsize=1024)
+def labels(value_map: Pairs) -> list[str]:
+    """Return a value map's labels in order: one list for every point of an equal map.
 
-    def __init__(self, logger: logging.Logger, name: str) -> None:
-        """Log under this entity name."""
-        self._logger = logger
-        self._name = name
-        self._logged = False
+    Home Assistant only reads an entity's options; entities of equal maps share them.
+    """
+    return [label for _, label in value_map]
 
-    def check(self, conversion: Conversion, raw: Value | None) -> None:
-        """Note the raw value of a poll (None, a failed read, changes nothing)."""
-        if raw is None:
-            return
-        if conversion.label(raw) is not None:
-            self._logged = False
-        elif not self._logged:
-            self._logged = True
-            self._logger.warning(
-                "%s: the PLC holds %s, which its value map does not name; shown as unknown",
-                self._name,
-                raw,
-            )
+
+def check_unmapped(
+    logger: logging.Logger, name: str, conversion: Conversion, raw: Value | None, logged: bool
+) -> bool:
+    """Note a poll's raw value; return whether a value outside the map is logged now.
+
+    Logged once, and again once the value was in the map and left; None (a failed read)
+    changes nothing. The entity keeps the flag: no object per entity for it.
+    """
+    if raw is None:
+        return logged
+    if conversion.label(raw) is not None:
+        return False
+    if not logged:
+        logger.warning(
+            "%s: the PLC holds %s, which its value map does not name; shown as unknown", name, raw
+        )
+    return True

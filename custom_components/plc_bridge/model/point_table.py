@@ -36,7 +36,15 @@ from ..const import (
     SUBENTRY_DEVICE,
 )
 from ..plc import PlcAddressError, PlcClient, Point, ValueKind
-from .composite import CONF_TRAVEL_TIME, as_platform, group_errors, is_part, part_data, takes_roles
+from .composite import (
+    CONF_SUPERVISION,
+    CONF_TRAVEL_TIME,
+    as_platform,
+    group_errors,
+    is_part,
+    part_data,
+    takes_roles,
+)
 from .point_kinds import KIND_COLUMNS, NUMBER_FIELDS, PAIRS_FIELDS
 from .points import CONTROLS, point_data, point_key, suggested_platform
 from .poll_classes import CONF_POLL
@@ -60,12 +68,13 @@ COLUMNS = (
     CONF_ROLE,
     CONF_POLL,
     CONF_AS_TEXT,
+    CONF_SUPERVISION,
     CONF_TRAVEL_TIME,
 )
 """The columns of the format, in the order export writes them (rows of one entity of several
 addresses share its name and platform, and each names its role); an empty poll is normal,
 `as_text` shows a duration as hh:mm:ss.zzz, and a cover's or valve's rows carry its travel
-time in seconds (empty: none)."""
+time in seconds (empty: none), a supervised entity's its supervision time."""
 COMMENT = "comment"
 HEADERS: dict[str, str] = {
     **{column: column for column in COLUMNS},
@@ -93,7 +102,10 @@ WRITABLE_HEADER = re.compile(
 Writable from HMI/OPC UA/Web API (in the editor), Schreibbar aus HMI/OPC UA/Web API."""
 SET_FLAGS = (CONF_INVERT, CONF_AS_TEXT)
 """Yes/no columns stored only when yes (an empty cell is no)."""
-NUMBERS = (CONF_SCALE, CONF_OFFSET, CONF_MIN, CONF_MAX, CONF_STEP, *NUMBER_FIELDS, CONF_TRAVEL_TIME)
+NUMBERS = (
+    *(CONF_SCALE, CONF_OFFSET, CONF_MIN, CONF_MAX, CONF_STEP, *NUMBER_FIELDS),
+    *(CONF_TRAVEL_TIME, CONF_SUPERVISION),
+)
 TRUE = {"1", "true", "yes", "y", "on", "x"}
 FALSE = {"", "0", "false", "no", "n", "off"}
 SIGNED = ("signed", "INT", "DINT")
@@ -287,6 +299,8 @@ def parse_points(
         data, found, placeholders = (part_data if part else point_data)(client, values)
         if not part and values.get(CONF_TRAVEL_TIME):
             found[CONF_TRAVEL_TIME] = "travel_time_not_here"
+        if not part and values.get(CONF_SUPERVISION):
+            found[CONF_SUPERVISION] = "supervision_not_here"
         if found:
             texts = dict.fromkeys(describe(key, placeholders) for key in found.values())
             errors.append((line, " ".join(texts)))

@@ -9,6 +9,8 @@ from __future__ import annotations
 
 from collections.abc import Mapping
 from dataclasses import dataclass
+from functools import lru_cache
+import sys
 from typing import Any
 
 from homeassistant.components.sensor import CONF_STATE_CLASS
@@ -49,8 +51,8 @@ class PointConfig:
 
     @property
     def point(self) -> Point:
-        """The PLC address and data type the point reads."""
-        return Point(self.data[CONF_ADDRESS], self.data[CONF_DATA_TYPE])
+        """The PLC address and data type the point reads (one object for equal points)."""
+        return shared_point(str(self.data[CONF_ADDRESS]), str(self.data[CONF_DATA_TYPE]))
 
     @property
     def platform(self) -> str:
@@ -76,6 +78,16 @@ class PointConfig:
     def read_only(self) -> bool:
         """True when Home Assistant must never write the point."""
         return bool(self.data.get(CONF_READ_ONLY, False))
+
+
+@lru_cache(maxsize=65536)
+def shared_point(address: str, data_type: str) -> Point:
+    """Return the point of an address and data type, one object for all that name it.
+
+    The entities, the coordinator's poll plan and its results then hold one point, not a copy
+    each; the data type's text (one of a few) is interned.
+    """
+    return Point(address, sys.intern(data_type))
 
 
 def entry_points(entry: ConfigEntry[Any]) -> dict[str, PointConfig]:

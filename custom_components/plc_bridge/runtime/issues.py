@@ -35,6 +35,8 @@ PULSE_FAILED = "pulse_failed"
 """One issue per pulsed output whose off is not written yet (outputs.py)."""
 COMMAND_NOT_RELEASED = "command_not_released"
 """One issue per level command of a cover or valve whose off is not written yet."""
+FEEDBACK_TIMEOUT = "feedback_timeout"
+"""One issue per entity whose state did not follow its command in time (supervision.py)."""
 
 
 def issue_id(entry: ConfigEntry[Any], key: str) -> str:
@@ -188,6 +190,6 @@ def async_clear_all(hass: HomeAssistant, entry: ConfigEntry) -> None:
         async_clear_issue(hass, entry, key)
     async_clear_point_issues(hass, entry)
     async_clear_expose_issues(hass, entry)
-    for kind in (PULSE_FAILED, COMMAND_NOT_RELEASED):
+    for kind in (PULSE_FAILED, COMMAND_NOT_RELEASED, FEEDBACK_TIMEOUT):
         for key in _async_item_issues(hass, entry, kind):
             ir.async_delete_issue(hass, DOMAIN, f"{kind}_{entry.entry_id}_{key}")

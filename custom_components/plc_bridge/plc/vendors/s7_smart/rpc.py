@@ -4,8 +4,7 @@ from __future__ import annotations
 
 import asyncio
 from collections.abc import Mapping
-from datetime import UTC, datetime
-from email.utils import parsedate_to_datetime
+from datetime import datetime
 import itertools
 import json
 import logging
@@ -13,6 +12,7 @@ import re
 import time
 from typing import Any
 
+from ...backoff import retry_after as http_retry_after
 from ...errors import PlcConnectionError, PlcProtocolError
 from ...http import HttpTransport
 from .codec import dumps
@@ -47,18 +47,9 @@ def cookie_header(token: str) -> str:
 
 
 def retry_after(headers: Mapping[str, str], now: datetime | None = None) -> float:
-    """Return the seconds a 429 asks to wait (RFC 9110 10.2.3: seconds or a date), bounded."""
-    value = headers.get("Retry-After", "").strip()
-    if value.isascii() and value.isdigit():
-        return min(float(value[:6]), MAX_BACKOFF)
-    try:
-        when = parsedate_to_datetime(value)
-    except (TypeError, ValueError, IndexError):
-        return BACKOFF
-    if when.tzinfo is None:
-        when = when.replace(tzinfo=UTC)
-    seconds = (when - (now or datetime.now(UTC))).total_seconds()
-    return min(max(seconds, 0.0), MAX_BACKOFF)
+    """Return the seconds a 429 asks to wait (its Retry-After, else BACKOFF), bounded."""
+    seconds = http_retry_after(headers, now)
+    return BACKOFF if seconds is None else min(seconds, MAX_BACKOFF)
 
 
 def busy_delays(budget: float, first: float) -> list[float]:
