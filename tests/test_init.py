@@ -180,7 +180,7 @@ async def test_certificate_fix_flow_aborts(
 
 
 async def test_session_issue_has_no_fix_flow(hass: HomeAssistant) -> None:
-    from custom_components.plc_bridge.runtime.issues import async_create_fix_flow
+    from custom_components.plc_bridge.repairs import async_create_fix_flow
 
     flow = await async_create_fix_flow(hass, "session_conflict_x", {"entry_id": "x"})
     assert type(flow).__name__ == "ConfirmRepairFlow"
