@@ -68,6 +68,8 @@ async def refused(hass: HomeAssistant, text: str) -> tuple[str, str]:
     return key, error_message(result, CONF_CONFIGURATION, *CONFIG)
 
 
+pytestmark = pytest.mark.no_pacing  # an S7-200 SMART under the frozen clock
+
 FILE = dump_config(plc())
 TAGS = {
     "binary": "name: !!binary aGVsbG8=",

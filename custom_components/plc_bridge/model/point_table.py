@@ -1,4 +1,4 @@
-"""Points as text: pasted tables imported line by line (point_export.py writes the format).
+"""Points as text: pasted tables imported line by line (export_points writes the format).
 
 The format is CSV with a header row (comma, semicolon or tab separated, as engineering tools
 and spreadsheets copy tables). A TIA Portal tag table or a STEP 7-Micro/WIN SMART symbol table
