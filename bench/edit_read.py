@@ -18,7 +18,7 @@ import subprocess
 import sys
 from typing import Any
 
-from custom_components.plc_bridge.polling import EDIT_DELAY
+from custom_components.plc_bridge.runtime.polling import EDIT_DELAY
 
 ROOT = Path(__file__).resolve().parent.parent
 LAG_TARGET = 1.0

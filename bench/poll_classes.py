@@ -18,16 +18,16 @@ import json
 import sys
 from typing import Any
 
-from custom_components.plc_bridge.plc import PlcClient, Point
-from custom_components.plc_bridge.plc.vendors import client_class
-from custom_components.plc_bridge.poll_classes import (
+from custom_components.plc_bridge.model.poll_classes import (
     DEFAULT_FAST_INTERVAL,
     DEFAULT_SLOW_INTERVAL,
     FAST,
     NORMAL,
     SLOW,
-    PollSchedule,
 )
+from custom_components.plc_bridge.plc import PlcClient, Point
+from custom_components.plc_bridge.plc.vendors import client_class
+from custom_components.plc_bridge.runtime.polling import PollSchedule
 
 from .poll import VENDORS, Simulator, make_client, ready_vendors
 

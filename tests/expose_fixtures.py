@@ -31,7 +31,7 @@ from custom_components.plc_bridge.const import (
     CONF_VALUE_MAP,
     SUBENTRY_EXPOSE,
 )
-from custom_components.plc_bridge.expose import BATCH_WINDOW
+from custom_components.plc_bridge.runtime.expose import BATCH_WINDOW
 from tests.ha_fixtures import PointData, make_entry, point, set_up
 from tests.plcnext_ha_fixtures import make_plcnext_entry
 from tests.s7_ha_fixtures import make_s7_entry

@@ -45,7 +45,7 @@ from custom_components.plc_bridge.const import (
     SUBENTRY_DEVICE,
     SUBENTRY_POINT,
 )
-from custom_components.plc_bridge.polling import EDIT_DELAY
+from custom_components.plc_bridge.runtime.polling import EDIT_DELAY
 from simulators.s7_smart import DEFAULT_PASSWORD, DEFAULT_USER, S7SmartSimulator
 from tests.loopback import Server, running
 

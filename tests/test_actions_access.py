@@ -8,8 +8,8 @@ import pytest
 from pytest_homeassistant_custom_component.common import MockConfigEntry, MockUser
 
 from custom_components.plc_bridge.const import DOMAIN
+from custom_components.plc_bridge.model.point_table import parse_points, point_order
 from custom_components.plc_bridge.plc.vendors.s7_smart import S7SmartClient
-from custom_components.plc_bridge.point_table import parse_points, point_order
 from simulators.s7_smart import S7SmartSimulator
 
 from .ha_fixtures import POINTS, call, make_entry, point

@@ -15,11 +15,11 @@ from homeassistant.util import dt as dt_util
 import pytest
 from pytest_homeassistant_custom_component.common import MockConfigEntry, async_fire_time_changed
 
-from custom_components.plc_bridge import polling
 from custom_components.plc_bridge.const import CONF_POINTS, DOMAIN
 from custom_components.plc_bridge.entity import PlcEntity
 from custom_components.plc_bridge.plc import Point, ReadResult
 from custom_components.plc_bridge.plc.vendors.s7_smart import S7SmartClient
+from custom_components.plc_bridge.runtime import polling
 from simulators.s7_smart import S7SmartSimulator
 
 from .flow_fixtures import smart_data

@@ -18,12 +18,11 @@ from homeassistant.exceptions import ServiceValidationError
 import pytest
 from pytest_homeassistant_custom_component.common import MockConfigEntry
 
-from custom_components.plc_bridge.config_file import dump_config
 from custom_components.plc_bridge.const import CONF_POINTS, DOMAIN, SUBENTRY_DEVICE
+from custom_components.plc_bridge.model.config_file import dump_config
+from custom_components.plc_bridge.model.point_table import export_points, parse_points
 from custom_components.plc_bridge.plc import Point
 from custom_components.plc_bridge.plc.vendors import client_class
-from custom_components.plc_bridge.point_export import export_points
-from custom_components.plc_bridge.point_table import parse_points
 from simulators.s7_smart import S7SmartSimulator
 from simulators.softplc import SoftplcSimulator
 

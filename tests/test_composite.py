@@ -6,7 +6,7 @@ from typing import Any
 
 import pytest
 
-from custom_components.plc_bridge.composite import (
+from custom_components.plc_bridge.model.composite import (
     as_platform,
     assign_entities,
     composites,
@@ -14,10 +14,9 @@ from custom_components.plc_bridge.composite import (
     part_errors,
     touched,
 )
+from custom_components.plc_bridge.model.point_table import export_points, parse_points, point_order
+from custom_components.plc_bridge.model.points import PointConfig
 from custom_components.plc_bridge.plc.vendors import client_class
-from custom_components.plc_bridge.point_export import export_points
-from custom_components.plc_bridge.point_table import parse_points, point_order
-from custom_components.plc_bridge.points import PointConfig
 
 pytestmark = pytest.mark.no_pacing
 

@@ -19,21 +19,21 @@ from homeassistant.helpers import entity_registry as er
 import pytest
 from pytest_homeassistant_custom_component.common import MockConfigEntry
 
-from custom_components.plc_bridge.config_file_flow import CONF_CONFIGURATION, PASTE
-from custom_components.plc_bridge.config_flow import device_unique_id
-from custom_components.plc_bridge.connection import create_client
 from custom_components.plc_bridge.const import (
     CONF_SEND_ON_START,
     CONF_VENDOR,
     DOMAIN,
     SUBENTRY_EXPOSE,
 )
-from custom_components.plc_bridge.expose_config import CONF_SEND
-from custom_components.plc_bridge.poll_classes import (
+from custom_components.plc_bridge.flows.base import device_unique_id
+from custom_components.plc_bridge.flows.config_file_flow import CONF_CONFIGURATION, PASTE
+from custom_components.plc_bridge.model.expose import CONF_SEND
+from custom_components.plc_bridge.model.poll_classes import (
     CONF_FAST_INTERVAL,
     CONF_POLL,
     CONF_SLOW_INTERVAL,
 )
+from custom_components.plc_bridge.runtime.connection import create_client
 from simulators.plcnext import DEFAULT_PASSWORD as PLCNEXT_PASSWORD
 from simulators.s7_smart import DEFAULT_PASSWORD as SMART_PASSWORD
 from simulators.tecomat import DEFAULT_PASSWORD as TECOMAT_PASSWORD

@@ -18,7 +18,6 @@ from homeassistant.helpers import area_registry as ar, device_registry as dr
 import pytest
 from pytest_homeassistant_custom_component.common import MockConfigEntry
 
-from custom_components.plc_bridge.config_file import dump_config
 from custom_components.plc_bridge.const import (
     CONF_AREA,
     CONF_POINTS,
@@ -26,6 +25,7 @@ from custom_components.plc_bridge.const import (
     DOMAIN,
     SUBENTRY_DEVICE,
 )
+from custom_components.plc_bridge.model.config_file import dump_config
 from simulators.s7_smart import DEFAULT_PASSWORD as SMART_PASSWORD, DEFAULT_USER, S7SmartSimulator
 
 from .flow_fixtures import suggested

@@ -12,15 +12,6 @@ import pytest
 from pytest_homeassistant_custom_component.common import MockConfigEntry
 import yaml
 
-from custom_components.plc_bridge.config_file import (
-    SECRETS,
-    ConfigFileError,
-    check_addresses,
-    dump_config,
-    load_config,
-)
-from custom_components.plc_bridge.config_file_flow import CONF_CONFIGURATION, PASTE
-from custom_components.plc_bridge.connection_form import VENDOR_FIELDS
 from custom_components.plc_bridge.const import (
     CONF_FINGERPRINT,
     CONF_OPTIONS,
@@ -28,6 +19,15 @@ from custom_components.plc_bridge.const import (
     CONF_VENDOR,
     DOMAIN,
 )
+from custom_components.plc_bridge.flows.config_file_flow import CONF_CONFIGURATION, PASTE
+from custom_components.plc_bridge.model.config_file import (
+    SECRETS,
+    ConfigFileError,
+    check_addresses,
+    dump_config,
+    load_config,
+)
+from custom_components.plc_bridge.model.vendor_fields import VENDOR_FIELDS
 from custom_components.plc_bridge.plc.vendors import client_class
 
 from .flow_fixtures import error_message, suggested, translated

@@ -18,10 +18,10 @@ from homeassistant.helpers.selector import NumberSelector, TextSelector
 import pytest
 from pytest_homeassistant_custom_component.common import MockConfigEntry
 
-from custom_components.plc_bridge import config_flow, connection_form
-from custom_components.plc_bridge.config_file_flow import PASTE
-from custom_components.plc_bridge.connection_form import VendorField
 from custom_components.plc_bridge.const import CONF_TLS, CONF_VENDOR, DOMAIN
+from custom_components.plc_bridge.flows import base, connection_form
+from custom_components.plc_bridge.flows.config_file_flow import PASTE
+from custom_components.plc_bridge.model.vendor_fields import VendorField
 from custom_components.plc_bridge.plc import DeviceInfo
 from custom_components.plc_bridge.plc.http import format_fingerprint
 from custom_components.plc_bridge.plc.vendors import VENDORS, implemented
@@ -182,7 +182,7 @@ async def test_timeout(
     monkeypatch: pytest.MonkeyPatch,
 ) -> None:
     """A PLC that never completes the handshake: timeout on the host field."""
-    monkeypatch.setattr(config_flow, "CERTIFICATE_TIMEOUT", 0.1)
+    monkeypatch.setattr(base, "CERTIFICATE_TIMEOUT", 0.1)
     result = await submit(hass, await start(hass), connection(flow_sim, port=silent_port))
     assert result["errors"] == {CONF_HOST: "timeout"}
     assert error_message(result, CONF_HOST, *CONFIG) == (
@@ -259,7 +259,7 @@ async def test_vendor_without_tls_choice_or_credentials(
 def test_mac_is_unique_id() -> None:
     """A device with a MAC but no serial is known by its formatted MAC."""
     info = DeviceInfo(vendor=FAKE_VENDOR, model="Fake", mac="00:0A:14:1E:28:32")
-    assert config_flow.device_unique_id(info, {}) == "00:0a:14:1e:28:32"
+    assert base.device_unique_id(info, {}) == "00:0a:14:1e:28:32"
 
 
 async def test_added_plc_and_point_come_alive(

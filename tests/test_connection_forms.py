@@ -10,14 +10,14 @@ from homeassistant.core import HomeAssistant
 import pytest
 
 from custom_components.plc_bridge.config_flow import PlcBridgeConfigFlow
-from custom_components.plc_bridge.connection_form import (
-    SECOND_PAGES,
+from custom_components.plc_bridge.const import CONF_VENDOR, DOMAIN
+from custom_components.plc_bridge.flows.connection_form import (
     connection_schema,
     connection_step,
     fields_schema,
     second_page,
 )
-from custom_components.plc_bridge.const import CONF_VENDOR, DOMAIN
+from custom_components.plc_bridge.model.vendor_fields import SECOND_PAGES
 from custom_components.plc_bridge.plc.vendors import client_class, implemented
 from tests.flow_fixtures import strings_at
 

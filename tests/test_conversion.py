@@ -5,7 +5,7 @@ from __future__ import annotations
 from homeassistant.exceptions import ServiceValidationError
 import pytest
 
-from custom_components.plc_bridge.conversion import (
+from custom_components.plc_bridge.model.conversion import (
     Conversion,
     InvalidPairs,
     Linear,

@@ -13,7 +13,7 @@ import pytest
 from pytest_homeassistant_custom_component.common import MockConfigEntry
 
 from custom_components.plc_bridge.const import CONF_POINTS, CONF_VENDOR, DOMAIN, SUBENTRY_DEVICE
-from custom_components.plc_bridge.point_export import export_points
+from custom_components.plc_bridge.model.point_table import export_points
 from simulators.s7_smart import S7SmartSimulator
 
 from .flow_fixtures import error_message, smart_data, translated

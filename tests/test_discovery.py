@@ -15,8 +15,8 @@ from homeassistant.helpers.service_info.dhcp import DhcpServiceInfo
 import pytest
 from pytest_homeassistant_custom_component.common import MockConfigEntry
 
-from custom_components.plc_bridge import discovery
 from custom_components.plc_bridge.const import CONF_MAC, CONF_TLS, CONF_VENDOR, DOMAIN
+from custom_components.plc_bridge.flows import discovery
 from custom_components.plc_bridge.plc.vendors import implemented
 from simulators.plcnext import (
     DEFAULT_PASSWORD as PLCNEXT_PASSWORD,

@@ -12,7 +12,7 @@ from homeassistant.loader import async_get_dhcp
 import pytest
 
 from custom_components.plc_bridge.const import DOMAIN
-from custom_components.plc_bridge.mac_prefixes import FAMILIES, MAC_PREFIXES, family_of
+from custom_components.plc_bridge.flows.mac_prefixes import FAMILIES, MAC_PREFIXES, family_of
 from custom_components.plc_bridge.plc.vendors import probe_of
 
 ROOT = Path(__file__).resolve().parent.parent

@@ -11,7 +11,7 @@ import pytest
 from pytest_homeassistant_custom_component.common import MockConfigEntry
 
 from custom_components.plc_bridge.const import DOMAIN
-from custom_components.plc_bridge.migration import kept_duration
+from custom_components.plc_bridge.model.migration import kept_duration
 from simulators.plcnext import PlcnextSimulator
 from simulators.s7_smart import S7SmartSimulator
 from simulators.tecomat import TecomatSimulator

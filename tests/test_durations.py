@@ -17,9 +17,9 @@ from homeassistant.core import HomeAssistant
 from homeassistant.exceptions import HomeAssistantError
 import pytest
 
+from custom_components.plc_bridge.model.points import point_data, suggested_platform
 from custom_components.plc_bridge.plc.vendors.plcnext import PlcnextClient
 from custom_components.plc_bridge.plc.vendors.tecomat import TecomatClient
-from custom_components.plc_bridge.point_form import point_data, suggested_platform
 from simulators.plcnext import PlcnextSimulator
 from simulators.tecomat import TecomatSimulator
 

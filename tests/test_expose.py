@@ -15,8 +15,8 @@ from pytest_homeassistant_custom_component.components.diagnostics import (
 from pytest_homeassistant_custom_component.typing import ClientSessionGenerator
 
 from custom_components.plc_bridge.const import DOMAIN
-from custom_components.plc_bridge.expose import FAILURE_LIMIT
-from custom_components.plc_bridge.repairs import expose_issue_id
+from custom_components.plc_bridge.runtime.expose import FAILURE_LIMIT
+from custom_components.plc_bridge.runtime.issues import expose_issue_id
 from simulators.s7_smart import S7SmartSimulator
 from tests.ha_fixtures import make_entry, point, set_up
 

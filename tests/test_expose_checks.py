@@ -13,7 +13,7 @@ import pytest
 from pytest_homeassistant_custom_component.common import MockConfigEntry
 
 from custom_components.plc_bridge.const import CONF_VENDOR, DOMAIN
-from custom_components.plc_bridge.expose_config import check_expose
+from custom_components.plc_bridge.model.expose import check_expose
 from custom_components.plc_bridge.plc.vendors import client_class
 
 from .expose_fixtures import expose_data

@@ -16,9 +16,9 @@ import pytest
 from pytest_homeassistant_custom_component.common import MockConfigEntry, async_fire_time_changed
 
 from custom_components.plc_bridge.const import DOMAIN
-from custom_components.plc_bridge.expose import BATCH_WINDOW, FAILURE_LIMIT, RETRY_INTERVAL
 from custom_components.plc_bridge.plc.vendors.s7_smart import S7SmartClient
-from custom_components.plc_bridge.repairs import expose_issue_id
+from custom_components.plc_bridge.runtime.expose import BATCH_WINDOW, FAILURE_LIMIT, RETRY_INTERVAL
+from custom_components.plc_bridge.runtime.issues import expose_issue_id
 from simulators.s7_smart import S7SmartSimulator
 from tests.ha_fixtures import make_entry, point, set_up
 

@@ -14,7 +14,7 @@ from pytest_homeassistant_custom_component.common import MockConfigEntry
 
 from custom_components.plc_bridge.config_flow import PlcBridgeConfigFlow
 from custom_components.plc_bridge.const import CONF_VENDOR, DOMAIN, SUBENTRY_EXPOSE
-from custom_components.plc_bridge.expose_flow import ExposeSubentryFlowHandler
+from custom_components.plc_bridge.flows.expose_flow import ExposeSubentryFlowHandler
 
 from .expose_fixtures import add_expose
 from .flow_fixtures import error_message, suggested, translated

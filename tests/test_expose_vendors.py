@@ -12,8 +12,8 @@ from homeassistant.helpers import issue_registry as ir
 import pytest
 
 from custom_components.plc_bridge.const import DOMAIN
-from custom_components.plc_bridge.expose import FAILURE_LIMIT
-from custom_components.plc_bridge.repairs import expose_issue_id
+from custom_components.plc_bridge.runtime.expose import FAILURE_LIMIT
+from custom_components.plc_bridge.runtime.issues import expose_issue_id
 from tests.ha_fixtures import set_up
 
 from .expose_fixtures import VENDORS, VendorCase, add_expose, burst, settle, shown

@@ -17,14 +17,14 @@ from pytest_homeassistant_custom_component.components.diagnostics import (
 )
 from pytest_homeassistant_custom_component.typing import ClientSessionGenerator
 
-from custom_components.plc_bridge.availability import (
+from custom_components.plc_bridge.const import DOMAIN, SUBENTRY_DEVICE
+from custom_components.plc_bridge.model.availability import (
     CONF_AVAILABILITY_ADDRESS,
     CONF_AVAILABILITY_DATA_TYPE,
     CONF_AVAILABILITY_VALUES,
     is_valid,
     parse_values,
 )
-from custom_components.plc_bridge.const import DOMAIN, SUBENTRY_DEVICE
 from simulators.s7_smart import S7SmartSimulator
 
 from .flow_fixtures import error_message, smart_data, translated

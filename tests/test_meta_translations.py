@@ -22,7 +22,9 @@ import voluptuous as vol
 
 INTEGRATION = Path(__file__).resolve().parent.parent / "custom_components" / "plc_bridge"
 STRINGS: dict[str, Any] = json.loads((INTEGRATION / "strings.json").read_text(encoding="utf-8"))
-CODE = sorted(INTEGRATION.glob("*.py"))
+CODE = sorted(
+    path for path in INTEGRATION.rglob("*.py") if path.relative_to(INTEGRATION).parts[0] != "plc"
+)
 SERVICES_YAML = INTEGRATION / "services.yaml"
 SERVICES: dict[str, Any] = load_yaml_dict(SERVICES_YAML) if SERVICES_YAML.exists() else {}
 PLATFORMS = {platform.value for platform in Platform}

@@ -19,11 +19,11 @@ import pytest
 from pytest_homeassistant_custom_component.common import MockConfigEntry
 import yaml
 
-from custom_components.plc_bridge.config_file import dump_config
-from custom_components.plc_bridge.config_file_flow import CONF_CONFIGURATION, PASTE
 from custom_components.plc_bridge.const import CONF_VENDOR, DOMAIN, SUBENTRY_EXPOSE
-from custom_components.plc_bridge.expose_config import CONF_SEND
-from custom_components.plc_bridge.yaml_text import MAX_BYTES
+from custom_components.plc_bridge.flows.config_file_flow import CONF_CONFIGURATION, PASTE
+from custom_components.plc_bridge.model.config_file import dump_config
+from custom_components.plc_bridge.model.expose import CONF_SEND
+from custom_components.plc_bridge.model.yaml_text import MAX_BYTES
 from simulators.s7_smart import DEFAULT_PASSWORD as SMART_PASSWORD, S7SmartSimulator
 
 from .expose_fixtures import expose_data, settle
@@ -67,6 +67,8 @@ async def refused(hass: HomeAssistant, text: str) -> tuple[str, str]:
     key = result["errors"][CONF_CONFIGURATION]
     return key, error_message(result, CONF_CONFIGURATION, *CONFIG)
 
+
+pytestmark = pytest.mark.no_pacing  # an S7-200 SMART under the frozen clock
 
 FILE = dump_config(plc())
 TAGS = {

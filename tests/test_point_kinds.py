@@ -6,11 +6,11 @@ from typing import Any
 
 import pytest
 
+from custom_components.plc_bridge.flows.point_form import details_schema
+from custom_components.plc_bridge.model.point_table import export_points, parse_points, point_order
+from custom_components.plc_bridge.model.points import point_data
 from custom_components.plc_bridge.plc import ValueKind
 from custom_components.plc_bridge.plc.vendors import client_class
-from custom_components.plc_bridge.point_export import export_points
-from custom_components.plc_bridge.point_form import details_schema, point_data
-from custom_components.plc_bridge.point_table import parse_points, point_order
 
 pytestmark = pytest.mark.no_pacing
 

@@ -7,14 +7,14 @@ import time
 
 import pytest
 
-from custom_components.plc_bridge.plc import Point
-from custom_components.plc_bridge.plc.vendors import client_class
-from custom_components.plc_bridge.point_export import export_points
-from custom_components.plc_bridge.point_table import (
+from custom_components.plc_bridge.model.point_table import (
     COLUMNS,
+    export_points,
     parse_points,
     point_order,
 )
+from custom_components.plc_bridge.plc import Point
+from custom_components.plc_bridge.plc.vendors import client_class
 
 pytestmark = pytest.mark.no_pacing
 

@@ -11,15 +11,15 @@ import pytest
 from pytest_homeassistant_custom_component.common import MockConfigEntry
 
 from custom_components.plc_bridge.const import DOMAIN
-from custom_components.plc_bridge.plc.vendors import client_class
-from custom_components.plc_bridge.point_export import export_points
-from custom_components.plc_bridge.point_form import check_point
-from custom_components.plc_bridge.point_table import (
+from custom_components.plc_bridge.model.point_table import (
     COLUMNS,
+    export_points,
     parse_points,
     point_order,
 )
-from custom_components.plc_bridge.repairs import async_check_tls
+from custom_components.plc_bridge.model.points import check_point
+from custom_components.plc_bridge.plc.vendors import client_class
+from custom_components.plc_bridge.runtime.issues import async_check_tls
 from simulators.tecomat import TecomatSimulator
 
 from .ha_fixtures import unload_all

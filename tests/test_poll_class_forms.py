@@ -12,12 +12,12 @@ import pytest
 from pytest_homeassistant_custom_component.common import MockConfigEntry
 
 from custom_components.plc_bridge.const import CONF_POINTS, DOMAIN, SUBENTRY_DEVICE
+from custom_components.plc_bridge.model.composite import point_classes
+from custom_components.plc_bridge.model.point_table import export_points, parse_points, point_order
+from custom_components.plc_bridge.model.points import PointConfig
 from custom_components.plc_bridge.plc import Point
 from custom_components.plc_bridge.plc.vendors import client_class
 from custom_components.plc_bridge.plc.vendors.s7_smart import S7SmartClient
-from custom_components.plc_bridge.point_export import export_points
-from custom_components.plc_bridge.point_table import parse_points, point_order
-from custom_components.plc_bridge.points import PointConfig, point_classes
 from simulators.s7_smart import S7SmartSimulator
 
 from .flow_fixtures import MACHINE, error_message, smart_data, translated

@@ -13,7 +13,7 @@ from homeassistant.const import (
 from homeassistant.core import HomeAssistant
 import pytest
 
-from custom_components.plc_bridge.availability import (
+from custom_components.plc_bridge.model.availability import (
     CONF_AVAILABILITY_ADDRESS,
     CONF_AVAILABILITY_DATA_TYPE,
 )

@@ -11,8 +11,8 @@ from homeassistant.core import HomeAssistant
 import pytest
 from pytest_homeassistant_custom_component.common import MockConfigEntry
 
+from custom_components.plc_bridge.model.points import entry_points
 from custom_components.plc_bridge.plc.vendors.s7 import S7Client
-from custom_components.plc_bridge.points import entry_points
 from simulators.s7 import S7Simulator
 
 from .ha_fixtures import poll

@@ -11,8 +11,8 @@ from homeassistant.core import HomeAssistant
 from homeassistant.exceptions import HomeAssistantError
 import pytest
 
+from custom_components.plc_bridge.model.points import suggested_platform
 from custom_components.plc_bridge.plc.vendors.s7 import S7Client
-from custom_components.plc_bridge.point_form import suggested_platform
 from simulators.s7 import S7Simulator
 
 from .ha_fixtures import call, point, poll

@@ -18,8 +18,8 @@ from pytest_homeassistant_custom_component.common import MockConfigEntry, snapsh
 from syrupy.assertion import SnapshotAssertion
 
 from custom_components.plc_bridge.const import DOMAIN
-from custom_components.plc_bridge.conversion import scaled
 from custom_components.plc_bridge.entity import PlcPointDescription
+from custom_components.plc_bridge.model.conversion import scaled
 from custom_components.plc_bridge.plc import Point, ReadResult, ValueKind
 from custom_components.plc_bridge.plc.vendors.s7_smart import S7SmartClient
 from simulators.s7_smart import S7SmartSimulator

@@ -17,7 +17,7 @@ import pytest
 from pytest_homeassistant_custom_component.common import async_capture_events
 
 from custom_components.plc_bridge.const import DOMAIN
-from custom_components.plc_bridge.supervision import (
+from custom_components.plc_bridge.runtime.supervision import (
     EVENT_FEEDBACK_RESTORED,
     EVENT_FEEDBACK_TIMEOUT,
 )

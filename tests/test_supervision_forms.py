@@ -6,10 +6,9 @@ from homeassistant.core import HomeAssistant
 import pytest
 from pytest_homeassistant_custom_component.common import MockConfigEntry
 
-from custom_components.plc_bridge.config_file import dump_config
 from custom_components.plc_bridge.const import DOMAIN
-from custom_components.plc_bridge.point_export import export_points
-from custom_components.plc_bridge.point_table import parse_points
+from custom_components.plc_bridge.model.config_file import dump_config
+from custom_components.plc_bridge.model.point_table import export_points, parse_points
 from simulators.s7_smart import S7SmartSimulator
 
 from .flow_fixtures import smart_data, step, strings_at

@@ -26,8 +26,8 @@ import voluptuous as vol
 from custom_components.plc_bridge.const import DOMAIN
 from custom_components.plc_bridge.plc import Point
 from custom_components.plc_bridge.plc.vendors import client_class
+from custom_components.plc_bridge.runtime.write_guard import WriteGuard
 from custom_components.plc_bridge.services import MAX_READ
-from custom_components.plc_bridge.write_guard import WriteGuard
 from simulators.s7_smart import S7SmartSimulator
 
 from .ha_fixtures import POINTS, call, make_entry, point

@@ -2,30 +2,45 @@
 
 from __future__ import annotations
 
+from functools import partial
+
 from homeassistant.config_entries import ConfigEntry
 from homeassistant.core import HomeAssistant
 from homeassistant.helpers import config_validation as cv
 from homeassistant.helpers.typing import ConfigType
 
-from .connection import create_polling_client
 from .const import DOMAIN, PLATFORMS
 from .coordinator import PlcBridgeConfigEntry, PlcCoordinator, PlcRuntimeData, link_error
 from .entity import plc_device
-from .expose import async_start_exposes
-from .migration import async_migrate_entry
+from .model import migration
 from .plc import PlcError
-from .points import PointEntities, async_register_devices
-from .repairs import CERTIFICATE_CHANGED, async_check_tls, async_clear_all, async_clear_issue
+from .runtime.connection import create_polling_client
+from .runtime.entities import PointEntities, async_register_devices
+from .runtime.expose import async_start_exposes
+from .runtime.issues import (
+    CERTIFICATE_CHANGED,
+    TIMES_IN_SECONDS,
+    async_check_tls,
+    async_clear_all,
+    async_clear_issue,
+    async_raise_issue,
+)
 from .services import async_setup_services
 
 CONFIG_SCHEMA = cv.config_entry_only_config_schema(DOMAIN)
-__all__ = ["async_migrate_entry"]  # Home Assistant looks it up here
 
 
 async def async_setup(hass: HomeAssistant, config: ConfigType) -> bool:
     """Register the actions, once for every PLC."""
     async_setup_services(hass)
     return True
+
+
+async def async_migrate_entry(hass: HomeAssistant, entry: ConfigEntry) -> bool:
+    """Migrate an entry of an older version (model/migration.py), raising the issue it asks."""
+    return await migration.async_migrate_entry(
+        hass, entry, partial(async_raise_issue, hass, entry, TIMES_IN_SECONDS)
+    )
 
 
 async def async_setup_entry(hass: HomeAssistant, entry: PlcBridgeConfigEntry) -> bool:

@@ -18,11 +18,10 @@ from homeassistant.helpers.entity_platform import AddConfigEntryEntitiesCallback
 
 from .coordinator import PlcBridgeConfigEntry
 from .entity import PlcPointDescription, PlcPointEntity, point_fields
-from .outputs import Output, async_send
+from .model.points import PointConfig, pulse_seconds
 from .plc import ValueKind
-from .points import PointConfig
-from .pulse import pulse_seconds
-from .repairs import PULSE_FAILED
+from .runtime.issues import PULSE_FAILED
+from .runtime.outputs import Output, async_send
 
 PARALLEL_UPDATES = 1
 

@@ -22,10 +22,10 @@ from homeassistant.core import HomeAssistant
 from homeassistant.exceptions import ServiceValidationError
 from homeassistant.helpers.entity_platform import AddConfigEntryEntitiesCallback
 
-from .composite import Composite
 from .composite_entity import Part, PlcCompositeEntity, async_setup_composites
 from .const import CONF_MAX, CONF_MIN, CONF_STEP, DOMAIN
 from .coordinator import PlcBridgeConfigEntry
+from .model.composite import Composite
 from .plc import Value, ValueKind
 
 PARALLEL_UPDATES = 1

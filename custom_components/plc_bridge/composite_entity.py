@@ -18,17 +18,17 @@ from homeassistant.exceptions import HomeAssistantError, ServiceValidationError
 from homeassistant.helpers.entity import Entity
 from homeassistant.helpers.entity_platform import AddConfigEntryEntitiesCallback
 
-from .composite import Composite, composites, group_key
 from .const import DOMAIN
-from .conversion import Conversion
 from .coordinator import PlcBridgeConfigEntry
 from .entity import PlcEntity, device_of, entity_name, point_fields
-from .outputs import Output, async_send
+from .model.composite import Composite, composites, group_key
+from .model.conversion import Conversion
+from .model.points import PointConfig, entry_points, pulse_seconds
 from .plc import Point, PointResult, Value, ValueKind
-from .points import PointConfig, PointFactory, entry_points
-from .pulse import pulse_seconds
-from .repairs import COMMAND_NOT_RELEASED, PULSE_FAILED
-from .supervision import Supervisor, seconds_of
+from .runtime.entities import PointFactory
+from .runtime.issues import COMMAND_NOT_RELEASED, PULSE_FAILED
+from .runtime.outputs import Output, async_send
+from .runtime.supervision import Supervisor, seconds_of
 
 
 @dataclass(frozen=True, slots=True)

@@ -15,9 +15,9 @@ from homeassistant.exceptions import (
 )
 from homeassistant.helpers.update_coordinator import UpdateFailed
 
-from .availability import MachineAvailability
 from .const import CONF_TLS, DOMAIN, LOGGER
-from .models import PlcBridgeConfigEntry, PlcRuntimeData
+from .model.composite import point_classes
+from .model.poll_classes import class_intervals
 from .plc import (
     PlcAddressError,
     PlcAuthenticationError,
@@ -31,10 +31,9 @@ from .plc import (
     TlsMode,
     Value,
 )
-from .points import point_classes
-from .poll_classes import class_intervals
-from .polling import PollingCoordinator
-from .repairs import (
+from .runtime.availability import MachineAvailability
+from .runtime.errors import check_can_write, named, translated_errors
+from .runtime.issues import (
     CERTIFICATE_CHANGED,
     SESSION_CONFLICT,
     async_clear_issue,
@@ -44,11 +43,18 @@ from .repairs import (
     async_raise_issue,
     async_raise_point_issue,
 )
-from .translated_errors import check_can_write, translated_errors
-from .write_guard import WriteGuard
+from .runtime.polling import PollingCoordinator
+from .runtime.write_guard import WriteGuard
 
 if TYPE_CHECKING:
-    from .points import PointConfig
+    from .model.points import PointConfig
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any
+
+from homeassistant.config_entries import ConfigEntry
+
+from .plc import DeviceInfo
+from .runtime.entities import PointEntities
 
 __all__ = ["PlcBridgeConfigEntry", "PlcCoordinator", "PlcRuntimeData", "link_error"]
 
@@ -138,8 +144,8 @@ class PlcCoordinator(PollingCoordinator):
         """Follow edited points; the new ones are read together once the edits pause."""
         invalid, tick = set(self.availability.invalid), self.update_interval
         self._set_points(points)
-        if self.update_interval != tick and self._unsub_refresh is not None:
-            self._schedule_refresh()  # a first fast point: the next poll comes sooner
+        if self.update_interval != tick:
+            self._reschedule()  # a first fast point: the next poll comes sooner
         if invalid - self.availability.invalid:  # a machine no longer names its address
             self._changed = None
             self.async_update_listeners()
@@ -272,7 +278,16 @@ class PlcCoordinator(PollingCoordinator):
             )
 
 
-def named(point: Point, error: PlcError) -> str:
-    """Return a point's error led by its address, unless the vendor's words already are."""
-    text = str(error)
-    return text if text.startswith(f"{point.address}:") else f"{point.address}: {text}"
+@dataclass(slots=True, kw_only=True)
+class PlcRuntimeData:
+    """What a loaded entry keeps: the connected client, its coordinator, what the PLC said."""
+
+    client: PlcClient
+    coordinator: PlcCoordinator
+    device: DeviceInfo
+    points: PointEntities
+    settings: tuple[dict[str, Any], dict[str, Any]]
+    """The entry's data and options at setup: a change of these reloads the entry."""
+
+
+type PlcBridgeConfigEntry = ConfigEntry[PlcRuntimeData]

@@ -33,12 +33,12 @@ from homeassistant.const import CONF_DEVICE_CLASS
 from homeassistant.core import HomeAssistant, callback
 from homeassistant.helpers.entity_platform import AddConfigEntryEntitiesCallback
 
-from .composite import CONF_TRAVEL_TIME, Composite
 from .composite_entity import Part, PlcCompositeEntity, async_setup_composites
 from .coordinator import PlcBridgeConfigEntry
-from .outputs import async_send
+from .model.composite import CONF_TRAVEL_TIME, Composite
 from .plc import Point, Value, ValueKind
-from .supervision import seconds_of
+from .runtime.outputs import async_send
+from .runtime.supervision import seconds_of
 
 PARALLEL_UPDATES = 1
 FULL = 100

@@ -19,7 +19,7 @@ from .entity import (
     async_remove_entity,
     point_fields,
 )
-from .points import PointConfig
+from .model.points import PointConfig
 
 PARALLEL_UPDATES = 1
 

@@ -9,9 +9,9 @@ from homeassistant.components.diagnostics import async_redact_data
 from homeassistant.const import CONF_HOST, CONF_PASSWORD, CONF_USERNAME
 from homeassistant.core import HomeAssistant
 
-from .availability import AVAILABILITY_FIELDS
 from .const import CONF_AREA, CONF_FINGERPRINT, SUBENTRY_DEVICE, SUBENTRY_EXPOSE
 from .coordinator import PlcBridgeConfigEntry
+from .model.availability import AVAILABILITY_FIELDS
 from .services import json_value
 
 TO_REDACT = {

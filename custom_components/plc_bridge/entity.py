@@ -16,10 +16,10 @@ from homeassistant.helpers.update_coordinator import CoordinatorEntity
 from yarl import URL
 
 from .const import CONF_MAC, CONF_TLS, DOMAIN
-from .conversion import Conversion, conversion_of
 from .coordinator import PlcBridgeConfigEntry, PlcCoordinator
+from .model.conversion import Conversion, conversion_of
+from .model.points import PointConfig
 from .plc import PlcError, Point, PointResult, TlsMode, Value, ValueKind
-from .points import PointConfig
 
 MANUFACTURERS = {
     "s7_smart": "Siemens",

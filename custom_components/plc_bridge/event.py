@@ -9,10 +9,10 @@ from homeassistant.components.event import EventEntity, EventEntityDescription
 from homeassistant.core import HomeAssistant, callback
 from homeassistant.helpers.entity_platform import AddConfigEntryEntitiesCallback
 
-from .alarm import bit_set, word_bits
 from .coordinator import PlcBridgeConfigEntry
 from .entity import PlcPointDescription, PlcPointEntity, point_fields
-from .points import PointConfig
+from .model.alarm import bit_set, word_bits
+from .model.points import PointConfig
 
 PARALLEL_UPDATES = 0
 RAISED = "raised"

@@ -17,9 +17,9 @@ from homeassistant.components.fan import (  # type: ignore[attr-defined]
 from homeassistant.core import HomeAssistant
 from homeassistant.helpers.entity_platform import AddConfigEntryEntitiesCallback
 
-from .composite import Composite
 from .composite_entity import Part, PlcCompositeEntity, async_setup_composites
 from .coordinator import PlcBridgeConfigEntry
+from .model.composite import Composite
 from .plc import Value, ValueKind
 
 PARALLEL_UPDATES = 1

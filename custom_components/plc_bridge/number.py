@@ -17,15 +17,10 @@ from homeassistant.helpers.entity_platform import AddConfigEntryEntitiesCallback
 
 from .const import CONF_MAX, CONF_MIN, CONF_STEP
 from .coordinator import PlcBridgeConfigEntry
-from .duration_units import UNITS, duration_unit, in_unit, of_unit
-from .entity import (
-    PlcPointDescription,
-    PlcPointEntity,
-    device_class,
-    point_fields,
-)
+from .entity import PlcPointDescription, PlcPointEntity, device_class, point_fields
+from .model.duration_units import UNITS, duration_unit, in_unit, of_unit
+from .model.points import PointConfig
 from .plc import ValueKind
-from .points import PointConfig
 
 PARALLEL_UPDATES = 1
 MILLISECOND = timedelta(milliseconds=1)

@@ -10,10 +10,10 @@ from homeassistant.core import HomeAssistant
 from homeassistant.helpers.entity_platform import AddConfigEntryEntitiesCallback
 
 from .const import LOGGER
-from .conversion import check_unmapped, labels
 from .coordinator import PlcBridgeConfigEntry
 from .entity import PlcPointDescription, PlcPointEntity, point_fields
-from .points import PointConfig
+from .model.conversion import check_unmapped, labels
+from .model.points import PointConfig
 
 PARALLEL_UPDATES = 1
 

@@ -20,9 +20,7 @@ from homeassistant.helpers.entity_platform import AddConfigEntryEntitiesCallback
 from homeassistant.util import dt as dt_util
 
 from .const import LOGGER
-from .conversion import check_unmapped, labels
 from .coordinator import PlcBridgeConfigEntry
-from .duration_units import as_text, duration_unit, in_unit
 from .entity import (
     PlcEntity,
     PlcPointDescription,
@@ -32,9 +30,11 @@ from .entity import (
     point_fields,
 )
 from .link import link_sensors
+from .model.conversion import check_unmapped, labels
+from .model.duration_units import as_text, duration_unit, in_unit
+from .model.points import PointConfig
 from .plc import PlcStatus, ValueKind
 from .plc.durations import clock_text
-from .points import PointConfig
 
 PARALLEL_UPDATES = 0
 

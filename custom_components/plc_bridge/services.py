@@ -19,7 +19,6 @@ from homeassistant.helpers.service import async_register_admin_service
 from homeassistant.util import dt as dt_util
 import voluptuous as vol
 
-from .config_file import dump_config
 from .const import (
     ATTR_CONFIG_ENTRY_ID,
     ATTR_POINTS,
@@ -30,10 +29,11 @@ from .const import (
     SUBENTRY_DEVICE,
 )
 from .coordinator import PlcBridgeConfigEntry
+from .model.config_file import dump_config
+from .model.point_table import export_points
+from .model.points import entry_points
 from .plc import PlcClient, PlcError, Point, Value
-from .point_export import export_points
-from .points import entry_points
-from .translated_errors import invalid, translated_errors
+from .runtime.errors import invalid, translated_errors
 
 SERVICE_WRITE = "write"
 SERVICE_READ = "read"

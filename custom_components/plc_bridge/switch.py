@@ -19,14 +19,9 @@ from homeassistant.helpers.entity_platform import AddConfigEntryEntitiesCallback
 
 from .composite_entity import PlcCompositeEntity, async_setup_composites
 from .coordinator import PlcBridgeConfigEntry
-from .entity import (
-    PlcPointDescription,
-    PlcPointEntity,
-    device_class,
-    point_fields,
-)
+from .entity import PlcPointDescription, PlcPointEntity, device_class, point_fields
+from .model.points import PointConfig
 from .plc import ValueKind
-from .points import PointConfig
 
 PARALLEL_UPDATES = 1
 

@@ -11,8 +11,8 @@ from homeassistant.helpers.entity_platform import AddConfigEntryEntitiesCallback
 
 from .coordinator import PlcBridgeConfigEntry
 from .entity import PlcPointDescription, PlcPointEntity, point_fields
+from .model.points import PointConfig
 from .plc.durations import clock_text
-from .points import PointConfig
 
 PARALLEL_UPDATES = 1
 

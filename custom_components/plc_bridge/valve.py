@@ -16,10 +16,10 @@ from homeassistant.components.valve import (  # type: ignore[attr-defined]
 from homeassistant.core import HomeAssistant
 from homeassistant.helpers.entity_platform import AddConfigEntryEntitiesCallback
 
-from .composite import Composite
 from .composite_entity import Part, async_setup_composites
 from .coordinator import PlcBridgeConfigEntry
 from .cover import FULL, Travel
+from .model.composite import Composite
 
 PARALLEL_UPDATES = 1
 

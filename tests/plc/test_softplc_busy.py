@@ -8,11 +8,7 @@ from __future__ import annotations
 
 import pytest
 
-from custom_components.plc_bridge.plc import (
-    PlcConnectionError,
-    PlcWriteRefusedError,
-    Point,
-)
+from custom_components.plc_bridge.plc import PlcConnectionError, PlcWriteRefusedError, Point
 from custom_components.plc_bridge.plc.vendors.softplc import SoftplcClient
 from simulators.softplc import SoftplcSimulator
 

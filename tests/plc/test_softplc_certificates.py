@@ -7,12 +7,7 @@ from typing import TYPE_CHECKING
 
 import pytest
 
-from custom_components.plc_bridge.plc import (
-    PlcAuthenticationError,
-    PlcValueError,
-    Point,
-    TlsMode,
-)
+from custom_components.plc_bridge.plc import PlcAuthenticationError, PlcValueError, Point, TlsMode
 from custom_components.plc_bridge.plc.vendors.softplc import SoftplcClient
 from simulators.__main__ import keep_certificate
 from simulators.softplc import SoftplcSimulator

@@ -10,12 +10,7 @@ import contextlib
 
 import pytest
 
-from custom_components.plc_bridge.plc import (
-    PlcAddressError,
-    PlcConnectionError,
-    PlcError,
-    Point,
-)
+from custom_components.plc_bridge.plc import PlcAddressError, PlcConnectionError, PlcError, Point
 from custom_components.plc_bridge.plc.vendors.softplc import SoftplcClient
 from simulators.softplc import SoftplcSimulator
 

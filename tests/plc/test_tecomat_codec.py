@@ -28,11 +28,7 @@ from custom_components.plc_bridge.plc.vendors.tecomat.browse import (
 from custom_components.plc_bridge.plc.vendors.tecomat.codec import decode, dumps, guess_type
 from custom_components.plc_bridge.plc.vendors.tecomat.errors import parse_error, request_error
 from custom_components.plc_bridge.plc.vendors.tecomat.info import device_info, plc_status
-from custom_components.plc_bridge.plc.vendors.tecomat.paths import (
-    nest,
-    pack_names,
-    parse_path,
-)
+from custom_components.plc_bridge.plc.vendors.tecomat.paths import nest, pack_names, parse_path
 
 PRAGUE = ZoneInfo("Europe/Prague")
 

@@ -1,0 +1,174 @@
+"""The lists the device flow shows: the PLC's variables to pick, the device's points, problems."""
+
+from __future__ import annotations
+
+from collections import Counter
+from collections.abc import Collection, Iterable, Mapping
+import re
+from typing import Any
+
+from homeassistant.const import CONF_NAME
+from homeassistant.core import HomeAssistant
+from homeassistant.helpers.selector import (
+    SelectOptionDict,
+    SelectSelector,
+    SelectSelectorConfig,
+    SelectSelectorMode,
+)
+from homeassistant.helpers.translation import async_get_translations
+import voluptuous as vol
+
+from ..const import CONF_ADDRESS, CONF_DATA_TYPE, DOMAIN
+from ..model.point_table import Describe, point_order
+from ..model.points import point_data
+from ..plc import BrowseItem, PlcClient, Point
+from .point_form import browse_values
+
+CONF_FILTER = "filter"
+CONF_VARIABLES = "variables"
+MAX_LISTED = 50
+"""Variables listed at most in one pick list: a real PLC publishes hundreds; filter first."""
+MAX_SHOWN = 20
+"""Problems shown at most (the rest are counted)."""
+MENU_SHOWN = 5
+"""Points listed in the menu at most, so that its choices stay in view."""
+SEGMENT = re.compile(r"[^./\[\]]+(?:\[[^\]]*\])*")
+
+
+def listing(lines: list[str], limit: int = MAX_SHOWN) -> str:
+    """Return lines as a Markdown list of at most `limit`, and how many more there are."""
+    shown = [f"- {line}" for line in lines[:limit]]
+    if len(lines) > limit:
+        shown.append(f"- … (+{len(lines) - limit})")
+    return "\n".join(shown)
+
+
+def in_order(points: Mapping[str, Mapping[str, Any]]) -> list[tuple[str, Mapping[str, Any]]]:
+    """Return a device's points by name (Word 2 before Word 10), then address, every time."""
+    return sorted(points.items(), key=lambda pair: point_order(pair[1]))
+
+
+def menu_listing(points: Mapping[str, Mapping[str, Any]], types: Mapping[str, str]) -> str:
+    """Return the menu's list of a machine's first points, by name, with their types' names."""
+    lines = [
+        f"{data[CONF_NAME]}: {data[CONF_ADDRESS]} "
+        f"({types.get(data[CONF_DATA_TYPE], data[CONF_DATA_TYPE])})"
+        for _, data in in_order(points)
+    ]
+    return listing(lines, MENU_SHOWN)
+
+
+async def async_type_names(hass: HomeAssistant) -> dict[str, str]:
+    """Return the data types' names in Home Assistant's language (an IEC type is its own)."""
+    texts = await async_get_translations(hass, hass.config.language, "selector", [DOMAIN])
+    prefix = f"component.{DOMAIN}.selector.{CONF_DATA_TYPE}.options."
+    return {key.removeprefix(prefix): text for key, text in texts.items() if key.startswith(prefix)}
+
+
+def point_choice(points: Mapping[str, Mapping[str, Any]], *, multiple: bool) -> SelectSelector:
+    """Return the device's points by name and address: a dropdown, or boxes to tick."""
+    return SelectSelector(
+        SelectSelectorConfig(
+            options=[
+                SelectOptionDict(value=pid, label=f"{data[CONF_NAME]} ({data[CONF_ADDRESS]})")
+                for pid, data in in_order(points)
+            ],
+            multiple=multiple,
+            mode=SelectSelectorMode.LIST if multiple else SelectSelectorMode.DROPDOWN,
+        )
+    )
+
+
+def titled(item: BrowseItem) -> bool:
+    """True when the PLC gives the variable a title of its own, not (the end of) its path."""
+    return bool(item.name) and not item.address.endswith(item.name or "")
+
+
+def variable_label(item: BrowseItem) -> str:
+    """Return how a published variable is listed: its title, address and type (`?`: guessed)."""
+    name = f"{item.name} – " if titled(item) else ""
+    return f"{name}{item.address} ({item.data_type}{'?' if item.guessed else ''})"
+
+
+def matching(
+    items: Iterable[BrowseItem], needle: str, taken: Collection[Point]
+) -> list[BrowseItem]:
+    """Return the variables that are no point yet whose name or address holds the text.
+
+    Those the PLC gives a title come first, each group in the PLC's order.
+    """
+    used = {point.address for point in taken}  # under any type: one variable, one point
+    found = [item for item in items if item.address not in used and holds(item, needle)]
+    return sorted(found, key=lambda item: not titled(item))
+
+
+def holds(item: BrowseItem, needle: str) -> bool:
+    """True when the variable's name or address holds the text (not case sensitive)."""
+    needle = needle.strip().lower()
+    return needle in item.address.lower() or needle in (item.name or "").lower()
+
+
+def path_parts(path: str) -> list[str]:
+    """Return a variable path's parts after its component; a trailing `value` names its owner."""
+    parts = SEGMENT.findall(path.rpartition("/")[2])
+    if len(parts) > 1 and parts[-1].lower() == "value":
+        parts.pop()
+    return parts
+
+
+def readable(parts: list[str]) -> str:
+    """Return a point name from path parts: `plcData`, `varBool0` gives "Plc data var bool 0"."""
+    text = " ".join(parts).replace("_", " ")
+    words = re.sub(r"(?<=[a-z])(?=[A-Z])|(?<=[A-Za-z])(?=\d)", " ", text).split()
+    name = " ".join(w.lower() if i and w[1:].islower() else w for i, w in enumerate(words))
+    return name[:1].upper() + name[1:]
+
+
+def point_names(items: list[BrowseItem]) -> list[str]:
+    """Return a name for each picked variable: its title, else its path's last parts, distinct."""
+    paths = [[] if titled(item) else path_parts(item.address) for item in items]
+    depth = [1] * len(items)
+    while True:
+        names = [
+            readable(parts[-depth[i] :]) if parts else str(items[i].name)
+            for i, parts in enumerate(paths)
+        ]
+        twice = {name for name, count in Counter(names).items() if count > 1}
+        grow = [i for i, name in enumerate(names) if name in twice and depth[i] < len(paths[i])]
+        if not grow:
+            return names
+        for i in grow:
+            depth[i] += 1
+
+
+def pick_schema(items: list[BrowseItem]) -> vol.Schema:
+    """Return the pick form: the first MAX_LISTED variables, any number to tick."""
+    options = [
+        SelectOptionDict(value=str(index), label=variable_label(item))
+        for index, item in enumerate(items[:MAX_LISTED])
+    ]
+    return vol.Schema(
+        {
+            vol.Optional(CONF_VARIABLES): SelectSelector(
+                SelectSelectorConfig(options=options, multiple=True, mode=SelectSelectorMode.LIST)
+            )
+        }
+    )
+
+
+def picked_points(
+    client: type[PlcClient], items: Iterable[BrowseItem], describe: Describe
+) -> tuple[list[dict[str, Any]], list[str]]:
+    """Return the points of the ticked variables, and why any of them cannot be one."""
+    points: list[dict[str, Any]] = []
+    refused: list[str] = []
+    items = list(items)
+    for item, name in zip(items, point_names(items), strict=True):
+        values = browse_values(client, item) | {CONF_NAME: name}
+        data, errors, placeholders = point_data(client, values)
+        if errors:
+            texts = dict.fromkeys(describe(key, placeholders) for key in errors.values())
+            refused.append(f"{item.address}: {' '.join(texts)}")
+        else:
+            points.append(data)
+    return points, refused

@@ -1,0 +1,85 @@
+"""Options flow of PLC Bridge: the poll intervals, never shorter than the vendor allows."""
+
+from __future__ import annotations
+
+from typing import Any
+
+from homeassistant.config_entries import ConfigFlowResult, OptionsFlow
+from homeassistant.const import CONF_SCAN_INTERVAL, UnitOfTime
+from homeassistant.helpers.selector import (
+    NumberSelector,
+    NumberSelectorConfig,
+    NumberSelectorMode,
+)
+import voluptuous as vol
+
+from ..const import CONF_VENDOR
+from ..model.availability import availability_points
+from ..model.composite import point_classes
+from ..model.points import entry_points
+from ..model.poll_classes import (
+    CONF_FAST_INTERVAL,
+    CONF_SLOW_INTERVAL,
+    FAST,
+    INTERVALS,
+    NORMAL,
+    SECONDS_MAX,
+    SECONDS_MIN,
+    class_minimums,
+    interval_errors,
+    unset,
+)
+from ..plc.vendors import client_class
+
+SECONDS = NumberSelector(
+    NumberSelectorConfig(
+        min=SECONDS_MIN,
+        max=SECONDS_MAX,
+        step=0.1,
+        mode=NumberSelectorMode.BOX,
+        unit_of_measurement=UnitOfTime.SECONDS,
+    )
+)
+SCHEMA = vol.Schema(
+    {
+        vol.Optional(CONF_FAST_INTERVAL): SECONDS,
+        vol.Required(CONF_SCAN_INTERVAL): SECONDS,
+        vol.Optional(CONF_SLOW_INTERVAL): SECONDS,
+    }
+)
+
+
+class PlcBridgeOptionsFlow(OptionsFlow):
+    """Set how often the PLC is polled; the entry's update listener applies it."""
+
+    async def async_step_init(self, user_input: dict[str, Any] | None = None) -> ConfigFlowResult:
+        """Ask for the poll intervals; refuse those the vendor's pace or their order forbid."""
+        client = client_class(self.config_entry.data[CONF_VENDOR])
+        configs = entry_points(self.config_entry)
+        machines = availability_points(self.config_entry.subentries.values()).values()
+        points = list(dict.fromkeys(c.point for c in configs.values()))
+        polled = list(dict.fromkeys([*machines, *points]))
+        classes = point_classes(configs, machines)
+        minimums = class_minimums(client, classes, polled)
+        options = self.config_entry.options
+        current = {key: float(options[key]) for key in INTERVALS if key in options}
+        errors: dict[str, str] = {}
+        if user_input is not None:
+            given = {key: float(value) for key, value in user_input.items() if key in INTERVALS}
+            errors = interval_errors(unset(client, current | given, minimums), minimums)
+            if not errors:
+                return self.async_create_entry(data={**options, **given})
+        current = unset(client, current, minimums)
+        return self.async_show_form(
+            step_id="init",
+            data_schema=self.add_suggested_values_to_schema(SCHEMA, user_input or current),
+            errors=errors,
+            description_placeholders={
+                "minimum": f"{minimums[NORMAL]:g}",
+                "fast_minimum": f"{minimums[FAST]:g}",
+                # what the coordinator polls at
+                "cycle": f"{max(current[CONF_SCAN_INTERVAL], minimums[NORMAL]):g}",
+                "points": str(len(points)),
+                "requests": str(client.requests_for(points)),
+            },
+        )

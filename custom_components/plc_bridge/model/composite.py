@@ -1,0 +1,365 @@
+"""Entities from several points: a cover, valve, climate, light, fan or switch of a machine.
+
+A point of such an entity stores its `role` besides its platform; the points of one device
+subentry that share a platform and a name are one entity, each filling the role it names
+(`position`, `open`, `target_temperature`, `state`, `command`, ...). That is the table form
+too: one row per address, the rows of one entity sharing its name and platform. Every
+cover, valve, climate, light and fan point is a part; a switch point is one only when it
+names a role (a switch of one address stays as it was). Points stored before roles
+existed have none and load as they always did. Every part is an ordinary point: it joins
+the coordinator's poll and is written through its one write path.
+
+A role is checked and stored like the single-address kind it resembles (`ROLES`): a limit
+switch or state like a binary sensor (invert, on/off codes), a command like a button (codes,
+pulse), a position read like a sensor and set like a number (linear range), a status like
+an enum sensor and a mode like a select (value map). So a part that is only read is read
+only unless the user says otherwise, and one that is written must be at a writable address.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Collection, Iterable, Mapping
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any, Final
+
+from homeassistant.components.climate.const import HVACAction, HVACMode
+from homeassistant.const import CONF_NAME
+
+from ..const import CONF_ENTITY, CONF_INVERT, CONF_PLATFORM, CONF_ROLE, CONF_VALUE_MAP
+from ..plc import PlcClient
+from .conversion import stored_pairs
+from .points import CONTROLS, point_data
+
+if TYPE_CHECKING:
+    from .points import PointConfig
+from typing import TYPE_CHECKING
+
+from ..plc import Point
+from .poll_classes import POLL_CLASSES
+
+COVER_STATES = frozenset({"open", "closed", "opening", "closing"})
+"""The labels a cover's status map may use."""
+ROLES: dict[str, dict[str, str]] = {
+    "cover": {
+        "position": "sensor",
+        "set_position": "number",
+        "open": "button",
+        "close": "button",
+        "stop": "button",
+        "open_limit": "binary_sensor",
+        "closed_limit": "binary_sensor",
+        "status": "sensor",
+        "tilt_position": "sensor",
+        "set_tilt_position": "number",
+        "step": "button",
+    },
+    "valve": {
+        "position": "sensor",
+        "set_position": "number",
+        "open": "button",
+        "close": "button",
+        "stop": "button",
+        "open_limit": "binary_sensor",
+        "closed_limit": "binary_sensor",
+        "status": "sensor",
+    },
+    "climate": {
+        "current_temperature": "sensor",
+        "target_temperature": "number",
+        "hvac_mode": "select",
+        "hvac_action": "sensor",
+        "on_off": "switch",
+        "preset": "select",
+    },
+    "switch": {"state": "binary_sensor", "command": "button"},
+    "fan": {
+        "state": "binary_sensor",
+        "command": "button",
+        "percentage": "number",
+        "preset": "select",
+    },
+    "light": {"state": "binary_sensor", "command": "button", "brightness": "number"},
+}
+"""Each composite platform's roles, and the single-address kind each role is checked as."""
+NEEDS_ONE_OF: dict[str, tuple[str, ...]] = {
+    "cover": (
+        "position",
+        "set_position",
+        "open",
+        "close",
+        "open_limit",
+        "closed_limit",
+        "status",
+        "step",
+    ),
+    "climate": ("current_temperature", "target_temperature", "hvac_mode", "on_off"),
+    "valve": ("position", "set_position", "open", "close", "open_limit", "closed_limit", "status"),
+    "switch": ("command",),
+    "fan": ("command", "percentage"),
+    "light": ("command", "brightness"),
+}
+"""An entity needs at least one of these roles to show anything."""
+LABELS: dict[str, frozenset[str]] = {
+    "status": COVER_STATES,
+    "hvac_mode": frozenset(map(str, HVACMode)),
+    "hvac_action": frozenset(map(str, HVACAction)),
+}
+"""The labels a role's value map may use: Home Assistant's own states."""
+
+
+CONF_TRAVEL_TIME: Final = "travel_time"
+"""Part data of a cover or valve: seconds a full travel takes (absent: none); every part has it."""
+TRAVEL_PLATFORMS = frozenset({"cover", "valve"})
+TRAVEL_MIN, TRAVEL_MAX = 1.0, 600.0
+"""The travel times a cover or valve may have, in seconds (0 or empty: none)."""
+CONF_SUPERVISION: Final = "supervision"
+"""Part data: seconds the state has to follow a command (absent: none); every part has it."""
+SUPERVISED_PLATFORMS = frozenset({"switch", "light", "fan", "climate"})
+"""Kinds that take a supervision time (supervision.py); a cover or valve has its travel time."""
+ALWAYS = frozenset({"cover", "valve", "climate", "light", "fan"})
+"""Platforms whose every point is a part; a switch point is one only when it names a role."""
+
+
+def takes_roles(platform: str) -> bool:
+    """True for a platform whose entities can be built from several points."""
+    return platform in ROLES
+
+
+def is_part(platform: str, role: Any) -> bool:
+    """True for a point that is a part of an entity of several points."""
+    return platform in ALWAYS or (platform in ROLES and bool(role))
+
+
+def as_platform(platform: str, role: Any) -> str:
+    """Return the single-address kind a part is checked and stored as (itself if none)."""
+    return ROLES.get(platform, {}).get(str(role or ""), platform)
+
+
+def written(data: Mapping[str, Any]) -> bool:
+    """True for a stored point its entity writes: a control, or a part of a written role."""
+    return as_platform(str(data.get(CONF_PLATFORM, "")), data.get(CONF_ROLE)) in CONTROLS
+
+
+INVERTIBLE = frozenset({"position", "set_position", "tilt_position", "set_tilt_position"})
+"""Roles whose point may count the other way (0 % open), besides those on or off."""
+
+
+@dataclass(frozen=True, slots=True)
+class Composite:
+    """One entity built from points: its key (see `composites`) and its parts by role."""
+
+    key: str
+    subentry_id: str
+    platform: str
+    name: str
+    parts: Mapping[str, PointConfig]
+
+
+def group_key(config: PointConfig) -> tuple[str, str, str] | None:
+    """Return what the points of one composite entity share, None for a point of its own."""
+    if not is_part(config.platform, config.data.get(CONF_ROLE)):
+        return None
+    return config.subentry_id, config.platform, config.name
+
+
+def composites(configs: Mapping[str, PointConfig]) -> dict[str, Composite]:
+    """Return the composite entities of these points, by the id of each one's first point.
+
+    An entity's key is the `entity` its parts store (given when the machine is saved), so a
+    part added or removed later keeps the entity and its history; else its first point's id.
+    A role given twice keeps its first point (the import and the forms refuse that case).
+    """
+    groups: dict[tuple[str, str, str], dict[str, PointConfig]] = {}
+    for point_id in sorted(configs):
+        config = configs[point_id]
+        if (key := group_key(config)) is not None:
+            groups.setdefault(key, {})[point_id] = config
+    found: dict[str, Composite] = {}
+    keys: set[str] = set()
+    for (subentry_id, platform, name), members in groups.items():
+        parts: dict[str, PointConfig] = {}
+        for config in members.values():
+            parts.setdefault(str(config.data.get(CONF_ROLE, "")), config)
+        lead = next(iter(members))
+        stored = [str(c.data[CONF_ENTITY]) for c in members.values() if c.data.get(CONF_ENTITY)]
+        entity = stored[0] if stored and stored[0] not in keys else lead
+        keys.add(entity)
+        found[lead] = Composite(entity, subentry_id, platform, name, parts)
+    return found
+
+
+def assign_entities(points: dict[str, dict[str, Any]]) -> None:
+    """Give every part of a machine's points its entity's key, kept from then on.
+
+    A part joins the key its entity's other parts have; a new entity takes its first
+    point's id; rows of one entity renamed apart each get a key of their own.
+    """
+    groups: dict[tuple[str, str], list[str]] = {}
+    for point_id in sorted(points):
+        data = points[point_id]
+        if is_part(str(data.get(CONF_PLATFORM, "")), data.get(CONF_ROLE)):
+            groups.setdefault((data[CONF_PLATFORM], data[CONF_NAME]), []).append(point_id)
+    used: set[str] = set()
+    for ids in groups.values():
+        stored = [str(points[pid][CONF_ENTITY]) for pid in ids if points[pid].get(CONF_ENTITY)]
+        key = stored[0] if stored and stored[0] not in used else ids[0]
+        used.add(key)
+        for point_id in ids:
+            points[point_id] = {**points[point_id], CONF_ENTITY: key}
+
+
+def touched(
+    changed: Collection[str], old: Mapping[str, PointConfig], new: Mapping[str, PointConfig]
+) -> set[str]:
+    """Return the changed point ids and every point of the entities they belong to, then or now.
+
+    An edited part rebuilds its whole entity, and the entity of a removed part too.
+    """
+    keys = {
+        key
+        for configs in (old, new)
+        for point_id in changed
+        if point_id in configs and (key := group_key(configs[point_id])) is not None
+    }
+    return set(changed) | {
+        point_id
+        for configs in (old, new)
+        for point_id, config in configs.items()
+        if group_key(config) in keys
+    }
+
+
+def part_errors(platform: str, values: Mapping[str, Any]) -> dict[str, str]:
+    """Check a part's role and its value map's labels; return the errors by field."""
+    role = str(values.get(CONF_ROLE) or "")
+    if role not in ROLES[platform]:
+        return {CONF_ROLE: "role_invalid"}
+    if role in LABELS and not values.get(CONF_VALUE_MAP):
+        return {CONF_VALUE_MAP: "map_empty"}
+    if role in LABELS:
+        labels = {label for _, label in stored_pairs(values, CONF_VALUE_MAP)}
+        if not labels <= LABELS[role]:
+            return {CONF_VALUE_MAP: "role_labels"}
+    return {}
+
+
+def part_data(
+    client: type[PlcClient], values: Mapping[str, Any]
+) -> tuple[dict[str, Any], dict[str, str], dict[str, str]]:
+    """Check one part as the kind its role resembles; return its data, errors, placeholders."""
+    platform = str(values.get(CONF_PLATFORM, ""))
+    role = str(values.get(CONF_ROLE) or "")
+    errors = part_errors(platform, values)
+    if CONF_ROLE in errors:
+        return {}, errors, {"role": role, "platform": platform}
+    data, found, placeholders = point_data(
+        client, {**values, CONF_PLATFORM: as_platform(platform, role)}
+    )
+    if role in INVERTIBLE and values.get(CONF_INVERT):
+        data[CONF_INVERT] = True
+    travel, wrong = travel_data(platform, values)
+    supervision, wrong_time = supervision_data(platform, values)
+    data |= travel | supervision | {CONF_PLATFORM: platform, CONF_ROLE: role}
+    wrong |= wrong_time
+    return data, errors | found | wrong, placeholders
+
+
+def travel_data(platform: str, values: Mapping[str, Any]) -> tuple[dict[str, Any], dict[str, str]]:
+    """Return what a part stores of its entity's travel time (0 or empty: nothing), or the error.
+
+    Only a cover or a valve travels; its time is bounded, so a level command is always released.
+    """
+    given = values.get(CONF_TRAVEL_TIME)
+    if given is None or given == "":
+        return {}, {}
+    try:
+        seconds = float(given)
+    except (TypeError, ValueError):
+        return {}, {CONF_TRAVEL_TIME: "travel_time_out_of_range"}
+    if seconds == 0:
+        return {}, {}
+    if platform not in TRAVEL_PLATFORMS:
+        return {}, {CONF_TRAVEL_TIME: "travel_time_not_here"}
+    if not TRAVEL_MIN <= seconds <= TRAVEL_MAX:
+        return {}, {CONF_TRAVEL_TIME: "travel_time_out_of_range"}
+    return {CONF_TRAVEL_TIME: seconds}, {}
+
+
+def supervision_data(
+    platform: str, values: Mapping[str, Any]
+) -> tuple[dict[str, Any], dict[str, str]]:
+    """Return what a part stores of its entity's supervision time (0 or empty: nothing), or why not.
+
+    The bounds are the travel time's: a cover's or valve's travel time is its supervision time.
+    """
+    given = values.get(CONF_SUPERVISION)
+    if given is None or given == "":
+        return {}, {}
+    try:
+        seconds = float(given)
+    except (TypeError, ValueError):
+        return {}, {CONF_SUPERVISION: "supervision_out_of_range"}
+    if seconds == 0:
+        return {}, {}
+    if platform not in SUPERVISED_PLATFORMS:
+        return {}, {CONF_SUPERVISION: "supervision_not_here"}
+    if not TRAVEL_MIN <= seconds <= TRAVEL_MAX:
+        return {}, {CONF_SUPERVISION: "supervision_out_of_range"}
+    return {CONF_SUPERVISION: seconds}, {}
+
+
+def group_errors(rows: Iterable[Mapping[str, Any]]) -> list[tuple[str, str, dict[str, str]]]:
+    """Check the parts of new composite entities together: each role once, one that shows.
+
+    Their travel times and supervision times, where given, agree.
+
+    Returns (entity name, error key, placeholders) for each entity at fault.
+    """
+    groups: dict[tuple[str, str], list[str]] = {}
+    times: dict[tuple[str, str], set[float]] = {}
+    watched: dict[tuple[str, str], set[float]] = {}  # supervision times
+    for data in rows:
+        platform = str(data.get(CONF_PLATFORM, ""))
+        if is_part(platform, data.get(CONF_ROLE)):
+            key = (platform, str(data[CONF_NAME]))
+            groups.setdefault(key, []).append(str(data.get(CONF_ROLE, "")))
+            if data.get(CONF_TRAVEL_TIME):
+                times.setdefault(key, set()).add(float(data[CONF_TRAVEL_TIME]))
+            if data.get(CONF_SUPERVISION):
+                watched.setdefault(key, set()).add(float(data[CONF_SUPERVISION]))
+    errors: list[tuple[str, str, dict[str, str]]] = []
+    for (platform, name), roles in groups.items():
+        repeated = sorted({role for role in roles if roles.count(role) > 1})
+        if repeated:
+            errors.append((name, "role_repeated", {"name": name, "role": repeated[0]}))
+        elif len(times.get((platform, name), ())) > 1:
+            seconds = ", ".join(f"{time:g}" for time in sorted(times[(platform, name)]))
+            errors.append((name, "travel_time_differs", {"name": name, "seconds": seconds}))
+        elif len(watched.get((platform, name), ())) > 1:
+            seconds = ", ".join(f"{time:g}" for time in sorted(watched[(platform, name)]))
+            errors.append((name, "supervision_differs", {"name": name, "seconds": seconds}))
+        elif not set(roles) & set(NEEDS_ONE_OF[platform]):
+            needs = ", ".join(NEEDS_ONE_OF[platform])
+            errors.append((name, "role_missing", {"name": name, "roles": needs}))
+    return errors
+
+
+def point_classes(
+    configs: Mapping[str, PointConfig], every_poll: Iterable[Point] = ()
+) -> dict[Point, str]:
+    """Return each point's poll class; the parts of one entity share their fastest one.
+
+    The points `every_poll` names (machines' data-valid addresses) get none: every poll reads
+    them, whatever class a point showing the same address has.
+    """
+    classes: dict[Point, str] = {}
+    for config in configs.values():
+        known = classes.get(config.point, config.poll)
+        classes[config.point] = min(known, config.poll, key=POLL_CLASSES.index)
+    for composite in composites(configs).values():
+        parts = [config.point for config in composite.parts.values()]
+        shared = min((classes[point] for point in parts), key=POLL_CLASSES.index)
+        classes |= dict.fromkeys(parts, shared)
+    for point in every_poll:
+        classes.pop(point, None)
+    return classes

@@ -1,0 +1,1 @@
+"""What a loaded entry runs: polling, writes and their guard, exposes, outputs, issues."""
