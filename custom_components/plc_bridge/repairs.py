@@ -2,9 +2,9 @@
 
 from __future__ import annotations
 
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
-from homeassistant.components.repairs import ConfirmRepairFlow, RepairsFlow, RepairsFlowResult
+from homeassistant.components.repairs import ConfirmRepairFlow, RepairsFlow
 from homeassistant.config_entries import ConfigEntryState
 from homeassistant.const import CONF_HOST, CONF_PORT
 from homeassistant.core import HomeAssistant
@@ -14,6 +14,9 @@ from .const import CONF_FINGERPRINT
 from .plc import PlcError
 from .plc.http import fetch_fingerprint, format_fingerprint
 from .runtime.issues import CERTIFICATE_CHANGED
+
+if TYPE_CHECKING:  # named since Home Assistant 2026.10; only annotations use it
+    from homeassistant.components.repairs import RepairsFlowResult
 
 
 class CertificateRepairFlow(RepairsFlow):
