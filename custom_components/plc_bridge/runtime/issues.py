@@ -6,7 +6,7 @@ And outputs that cannot be released (raised and cleared by outputs.py).
 from __future__ import annotations
 
 from collections.abc import Collection
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 from homeassistant.config_entries import ConfigEntry
 from homeassistant.const import CONF_HOST
@@ -15,9 +15,6 @@ from homeassistant.helpers import issue_registry as ir
 
 from ..const import CONF_OPTIONS, CONF_TLS, DOMAIN
 from ..plc import TlsMode
-
-if TYPE_CHECKING:  # named since Home Assistant 2026.10; only annotations use it
-    pass
 
 TLS_OFF = "tls_off"
 CERTIFICATE_CHANGED = "certificate_changed"
