@@ -26,16 +26,13 @@ from homeassistant.components.climate.const import HVACAction, HVACMode
 from homeassistant.const import CONF_NAME
 
 from ..const import CONF_ENTITY, CONF_INVERT, CONF_PLATFORM, CONF_ROLE, CONF_VALUE_MAP
-from ..plc import PlcClient
+from ..plc import PlcClient, Point
 from .conversion import stored_pairs
 from .points import CONTROLS, point_data
+from .poll_classes import POLL_CLASSES
 
 if TYPE_CHECKING:
     from .points import PointConfig
-from typing import TYPE_CHECKING
-
-from ..plc import Point
-from .poll_classes import POLL_CLASSES
 
 COVER_STATES = frozenset({"open", "closed", "opening", "closing"})
 """The labels a cover's status map may use."""
@@ -269,20 +266,7 @@ def travel_data(platform: str, values: Mapping[str, Any]) -> tuple[dict[str, Any
 
     Only a cover or a valve travels; its time is bounded, so a level command is always released.
     """
-    given = values.get(CONF_TRAVEL_TIME)
-    if given is None or given == "":
-        return {}, {}
-    try:
-        seconds = float(given)
-    except (TypeError, ValueError):
-        return {}, {CONF_TRAVEL_TIME: "travel_time_out_of_range"}
-    if seconds == 0:
-        return {}, {}
-    if platform not in TRAVEL_PLATFORMS:
-        return {}, {CONF_TRAVEL_TIME: "travel_time_not_here"}
-    if not TRAVEL_MIN <= seconds <= TRAVEL_MAX:
-        return {}, {CONF_TRAVEL_TIME: "travel_time_out_of_range"}
-    return {CONF_TRAVEL_TIME: seconds}, {}
+    return _entity_seconds(CONF_TRAVEL_TIME, TRAVEL_PLATFORMS, platform, values)
 
 
 def supervision_data(
@@ -292,20 +276,27 @@ def supervision_data(
 
     The bounds are the travel time's: a cover's or valve's travel time is its supervision time.
     """
-    given = values.get(CONF_SUPERVISION)
+    return _entity_seconds(CONF_SUPERVISION, SUPERVISED_PLATFORMS, platform, values)
+
+
+def _entity_seconds(
+    key: str, platforms: Collection[str], platform: str, values: Mapping[str, Any]
+) -> tuple[dict[str, Any], dict[str, str]]:
+    """Return an entity's time setting `key` as stored, or its error (`<key>_not_here`, ...)."""
+    given = values.get(key)
     if given is None or given == "":
         return {}, {}
     try:
         seconds = float(given)
     except (TypeError, ValueError):
-        return {}, {CONF_SUPERVISION: "supervision_out_of_range"}
+        return {}, {key: f"{key}_out_of_range"}
     if seconds == 0:
         return {}, {}
-    if platform not in SUPERVISED_PLATFORMS:
-        return {}, {CONF_SUPERVISION: "supervision_not_here"}
+    if platform not in platforms:
+        return {}, {key: f"{key}_not_here"}
     if not TRAVEL_MIN <= seconds <= TRAVEL_MAX:
-        return {}, {CONF_SUPERVISION: "supervision_out_of_range"}
-    return {CONF_SUPERVISION: seconds}, {}
+        return {}, {key: f"{key}_out_of_range"}
+    return {key: seconds}, {}
 
 
 def group_errors(rows: Iterable[Mapping[str, Any]]) -> list[tuple[str, str, dict[str, str]]]:
