@@ -220,6 +220,11 @@ class PollingCoordinator(DataUpdateCoordinator[ReadResult]):
         else:
             due = max(now, self._base + interval)
         self._due = due
+        if self._again and not self._partial:
+            # Edited points wait for this poll: it starts now, not at the loop's next turn (a
+            # wait for the tasks running, a test's or a stop's, sees it).
+            self._poll_due()
+            return
         self._unsub_refresh = self._call_at(due, self._poll_due, "poll")
 
     @callback
