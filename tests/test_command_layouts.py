@@ -290,29 +290,37 @@ def test_softplc_table_refuses_the_shared_word() -> None:
 
 
 @pytest.mark.parametrize(
-    ("points", "error"),
+    ("points", "error", "on_line"),
     [
-        ([COMMAND, STATE], "config_writes_read_only"),
+        ([COMMAND, STATE], "config_writes_read_only", "address: "),
         (
             [point("open", "Door", "cover", "B3:7/0", "BOOL", role="open", read_only=True)],
             "config_command_read_only",
+            "read_only: true",
         ),
         (
             [point("open", "Door", "cover", "B3:7/0", "BOOL", role="open", travel_time=900.0)],
             "config_travel_time",
+            "travel_time: 900.0",
         ),
     ],
 )
 async def test_pasted_file_runs_the_same_checks(
-    hass: HomeAssistant, softplc_sim: SoftplcSimulator, points: list[PointData], error: str
+    hass: HomeAssistant,
+    softplc_sim: SoftplcSimulator,
+    points: list[PointData],
+    error: str,
+    on_line: str,
 ) -> None:
-    """A pasted PLC file with such a layout is refused with the reason; no PLC is added."""
+    """A pasted PLC file with such a layout is refused with the reason on its line; no PLC."""
     entry = make_softplc_entry(hass, softplc_sim, points)
     text = dump_config(entry)
     assert await hass.config_entries.async_remove(entry.entry_id)
     result = await paste(hass, text)
     assert result["errors"] == {"configuration": error}
     assert strings_at(*CONFIG, "error", error).format(**result["description_placeholders"])
+    line = int(result["description_placeholders"]["line"])
+    assert on_line in text.splitlines()[line - 1]
     assert hass.config_entries.async_entries(DOMAIN) == []
     assert softplc_data(softplc_sim)
 

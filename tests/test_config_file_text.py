@@ -162,6 +162,11 @@ ALIASES = dump_config(plc()).replace(
 """A few lines of YAML aliases stand for a tree no memory holds (here only a hundred leaves)."""
 
 
+def line_of(text: str, part: str) -> int:
+    """Return the number of the line of a text that holds a part."""
+    return next(n for n, line in enumerate(text.splitlines(), 1) if part in line)
+
+
 @pytest.mark.parametrize(
     ("text", "key", "message"),
     [
@@ -171,8 +176,16 @@ ALIASES = dump_config(plc()).replace(
         (edited(version=3), "config_newer", "newer release"),
         (edited(plc_bridge=2), "config_newer", "newer release"),
         (edited(vendor="modbus"), "config_unknown_vendor", "family modbus"),
-        (BAD_ADDRESS, "config_bad_address", "The point Temperature has an address"),
-        (BAD_AVAILABILITY, "config_bad_address", "The point Annex has an address"),
+        (
+            BAD_ADDRESS,
+            "config_bad_address",
+            f"Line {line_of(BAD_ADDRESS, 'VX100')}: the point Temperature has an address",
+        ),
+        (
+            BAD_AVAILABILITY,
+            "config_bad_address",
+            f"Line {line_of(BAD_AVAILABILITY, 'VX1')}: the point Annex has an address",
+        ),
         (
             dump_config(plc()).replace("type: device", "type: sensor"),
             "config_bad_value",

@@ -102,6 +102,8 @@ async def test_pasted_file_refuses_a_bad_supervision(
     assert strings_at(*CONFIG, "error", "config_supervision").format(
         **result["description_placeholders"]
     )
+    line = int(result["description_placeholders"]["line"])
+    assert f"supervision: {supervision}" in text.splitlines()[line - 1]
     assert hass.config_entries.async_entries(DOMAIN) == []
 
 

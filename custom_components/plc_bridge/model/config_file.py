@@ -33,7 +33,15 @@ from ..const import (
 from ..plc import PlcClient, PlcError, Point, TlsMode
 from ..plc.vendors import implemented
 from .availability import CONF_AVAILABILITY_ADDRESS, CONF_AVAILABILITY_DATA_TYPE
-from .composite import as_platform, is_part, point_classes, supervision_data, travel_data
+from .composite import (
+    CONF_SUPERVISION,
+    CONF_TRAVEL_TIME,
+    as_platform,
+    is_part,
+    point_classes,
+    supervision_data,
+    travel_data,
+)
 from .config_keys import (
     CONNECTION,
     FILE,
@@ -307,13 +315,15 @@ def check_addresses(client: type[PlcClient], pasted: ConfigFile) -> None:
     A point is any mapping of a subentry's data with an address and a data type: the points of
     a device, the parts of an entity of several points, and whatever else names an address.
     """
-    for subentry in pasted.subentries:
-        for name, point in _addressed(subentry["data"], subentry["title"]):
+    for index, subentry in enumerate(pasted.subentries):
+        path: Path = ("subentries", index, "data")
+        for name, point, where in _addressed(subentry["data"], subentry["title"], path):
             try:
                 client.validate_point(point)
             except PlcError as err:
                 raise ConfigFileError(
                     "config_bad_address",
+                    line=pasted.line(where),
                     point=name,
                     address=point.address,
                     problem=str(err),
@@ -328,27 +338,36 @@ def check_points(client: type[PlcClient], pasted: ConfigFile) -> None:
     without travel or supervision, and a write that would meet read-only data (another
     point's, or data its vendor writes with it) are refused as the forms and tables refuse them.
     """
-    points = [
-        data
-        for subentry in pasted.subentries
-        for data in (subentry["data"].get(CONF_POINTS) or {}).values()
+    placed = [
+        (data, ("subentries", index, "data", CONF_POINTS, point_id))
+        for index, subentry in enumerate(pasted.subentries)
+        for point_id, data in (subentry["data"].get(CONF_POINTS) or {}).items()
         if isinstance(data, Mapping) and CONF_ADDRESS in data and CONF_DATA_TYPE in data
     ]
-    for data in points:
+    for data, path in placed:
         platform, role = str(data.get(CONF_PLATFORM, "")), str(data.get(CONF_ROLE) or "")
         read_only = bool(data.get(CONF_READ_ONLY))
         if read_only_errors(as_platform(platform, role), role, read_only):
             raise ConfigFileError(
-                "config_command_read_only", point=_named(data), address=str(data[CONF_ADDRESS])
+                "config_command_read_only",
+                line=pasted.line((*path, CONF_READ_ONLY)),
+                point=_named(data),
+                address=str(data[CONF_ADDRESS]),
             )
         if travel_data(platform, data)[1]:
-            raise ConfigFileError("config_travel_time", point=_named(data))
+            line = pasted.line((*path, CONF_TRAVEL_TIME))
+            raise ConfigFileError("config_travel_time", line=line, point=_named(data))
         if supervision_data(platform if is_part(platform, role) else "", data)[1]:
-            raise ConfigFileError("config_supervision", point=_named(data))
-    for data, conflict in layout_conflicts(client, [], points)[:1]:
+            line = pasted.line((*path, CONF_SUPERVISION))
+            raise ConfigFileError("config_supervision", line=line, point=_named(data))
+    paths = {id(data): path for data, path in placed}
+    for data, conflict in layout_conflicts(client, [], [data for data, _ in placed])[:1]:
         other = conflict.other.address if conflict.other else ""
         key = "config_writes_read_only" if conflict.key == "writes_read_only" else "config_overlap"
-        raise ConfigFileError(key, point=_named(data), address=conflict.point.address, other=other)
+        line = pasted.line((*paths[id(data)], CONF_ADDRESS))
+        raise ConfigFileError(
+            key, line=line, point=_named(data), address=conflict.point.address, other=other
+        )
 
 
 def _named(data: Mapping[str, Any]) -> str:
@@ -357,8 +376,8 @@ def _named(data: Mapping[str, Any]) -> str:
     return f"{data.get(CONF_NAME, '')} ({role})" if role else str(data.get(CONF_NAME, ""))
 
 
-def _addressed(value: Any, name: str) -> Iterator[tuple[str, Point]]:
-    """Yield every point a value names, with the name of what it belongs to.
+def _addressed(value: Any, name: str, path: Path) -> Iterator[tuple[str, Point, Path]]:
+    """Yield every point a value names, with the name of what it belongs to and its path.
 
     A point is an address and a data type, or a machine's availability address and its type.
     """
@@ -366,12 +385,13 @@ def _addressed(value: Any, name: str) -> Iterator[tuple[str, Point]]:
         for address, data_type in ADDRESS_KEYS:
             if address in value and data_type in value:
                 point = Point(str(value[address]), str(value[data_type]))
-                yield str(value.get(CONF_NAME) or name), point
+                yield str(value.get(CONF_NAME) or name), point, (*path, address)
         for key, item in value.items():
-            yield from _addressed(item, f"{name} {key}" if key != CONF_POINTS else name)
+            named = f"{name} {key}" if key != CONF_POINTS else name
+            yield from _addressed(item, named, (*path, key))
     elif isinstance(value, list):
-        for item in value:
-            yield from _addressed(item, name)
+        for index, item in enumerate(value):
+            yield from _addressed(item, name, (*path, index))
 
 
 def check_intervals(client: type[PlcClient], pasted: ConfigFile) -> None:
