@@ -31,7 +31,7 @@ from custom_components.plc_bridge.model.vendor_fields import VENDOR_FIELDS
 from custom_components.plc_bridge.plc.vendors import client_class
 
 from .flow_fixtures import error_message, suggested, translated
-from .ha_fixtures import POINTS, PointData, device
+from .ha_fixtures import POINTS, PointData, device, point
 
 pytestmark = pytest.mark.no_pacing
 
@@ -165,6 +165,47 @@ ALIASES = dump_config(plc()).replace(
 def line_of(text: str, part: str) -> int:
     """Return the number of the line of a text that holds a part."""
     return next(n for n, line in enumerate(text.splitlines(), 1) if part in line)
+
+
+TEXT = dump_config(plc())
+AS_DATETIME = TEXT.replace(
+    "name: Pump\n        offset: 0.0\n        platform: switch",
+    "name: Pump\n        offset: 0.0\n        platform: datetime",
+)
+SCALE_ZERO = TEXT.replace("scale: 0.1", "scale: 0.0", 1)
+MIN_OVER_MAX = TEXT.replace("min: 10.0", "min: 70.0")
+STOP_ONLY = dump_config(plc([point("stop", "Shutter", "cover", "Q0.1", "signed", role="stop")]))
+"""Points every form and table refuses, each written into an otherwise exported file."""
+
+
+@pytest.mark.parametrize(
+    ("text", "on_line", "message"),
+    [
+        (AS_DATETIME, "platform: datetime", "A date and time entity needs a date/time point"),
+        (SCALE_ZERO, "scale: 0.0", "the point Pressure cannot be used as it is: The scale"),
+        (MIN_OVER_MAX, "max: 60.0", "The maximum must be greater than the minimum."),
+        (STOP_ONLY, "stop:", "Shutter: give at least one of these parts: position"),
+    ],
+    ids=["platform", "scale", "range", "roles"],
+)
+async def test_refused_as_the_forms_refuse(
+    hass: HomeAssistant, text: str, on_line: str, message: str
+) -> None:
+    """A point a form or table would refuse is refused in the file too, on its line."""
+    result = await hass.config_entries.flow.async_init(DOMAIN, context={"source": SOURCE_USER})
+    result = await hass.config_entries.flow.async_configure(result["flow_id"], {CONF_VENDOR: PASTE})
+    result = translated(
+        await hass.config_entries.flow.async_configure(
+            result["flow_id"], {CONF_CONFIGURATION: text}
+        ),
+        "config",
+    )
+    assert result["type"] is FlowResultType.FORM
+    shown = error_message(result, CONF_CONFIGURATION, "config")
+    assert message in shown
+    line = int(shown.removeprefix("Line ").split(":", 1)[0])
+    assert on_line in text.splitlines()[line - 1]
+    assert not hass.config_entries.async_entries(DOMAIN)
 
 
 @pytest.mark.parametrize(

@@ -29,6 +29,7 @@ from ..model.config_file import (
     load_config,
 )
 from ..model.expose import expose_config
+from ..model.point_table import async_describe
 from ..model.yaml_text import YamlTextError, check_size
 from ..plc import PlcError, PlcOptionError
 from ..plc.vendors import client_class
@@ -89,7 +90,7 @@ class ConfigFileSteps(PlcFlowBase):
             raise ConfigFileError(err.key, **err.placeholders) from err
         pasted = await self.hass.async_add_executor_job(load_config, text, self.VERSION)
         client = client_class(pasted.vendor)
-        check_addresses(client, pasted)
+        check_addresses(client, pasted, await async_describe(self.hass))
         check_intervals(client, pasted)
         subentries = check_exposes(client, pasted)
         options = pasted.data[CONF_OPTIONS]

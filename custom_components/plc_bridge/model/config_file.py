@@ -29,6 +29,7 @@ from ..const import (
     CONF_VENDOR,
     SUBENTRY_DEVICE,
     SUBENTRY_EXPOSE,
+    SUBENTRY_POINT,
 )
 from ..plc import PlcClient, PlcError, Point, TlsMode
 from ..plc.vendors import implemented
@@ -37,7 +38,9 @@ from .composite import (
     CONF_SUPERVISION,
     CONF_TRAVEL_TIME,
     as_platform,
+    group_errors,
     is_part,
+    part_data,
     point_classes,
     supervision_data,
     travel_data,
@@ -56,8 +59,8 @@ from .config_keys import (
     vendor_option_keys,
 )
 from .expose import CONF_SEND, check_expose
-from .point_table import point_order
-from .points import PointConfig, read_only_errors
+from .point_table import Describe, plain, point_order
+from .points import PointConfig, point_data, read_only_errors
 from .poll_classes import (
     CONF_FAST_INTERVAL,
     FAST,
@@ -309,7 +312,9 @@ def _refuse(read: YamlText, path: Path, key: str, name: str, kind: str) -> NoRet
     raise ConfigFileError(key, line=str(read.line(path)), name=name, kind=kind)
 
 
-def check_addresses(client: type[PlcClient], pasted: ConfigFile) -> None:
+def check_addresses(
+    client: type[PlcClient], pasted: ConfigFile, describe: Describe = plain
+) -> None:
     """Raise ConfigFileError for the first point whose address the vendor's parser refuses.
 
     A point is any mapping of a subentry's data with an address and a data type: the points of
@@ -328,20 +333,23 @@ def check_addresses(client: type[PlcClient], pasted: ConfigFile) -> None:
                     address=point.address,
                     problem=str(err),
                 ) from err
-    check_points(client, pasted)
+    check_points(client, pasted, describe)
 
 
-def check_points(client: type[PlcClient], pasted: ConfigFile) -> None:
-    """Raise ConfigFileError for the first point the forms would refuse as it is laid out.
+def check_points(client: type[PlcClient], pasted: ConfigFile, describe: Describe = plain) -> None:
+    """Raise ConfigFileError for the first point the forms would refuse, on its line.
 
-    A command stored read only, a travel or supervision time out of bounds or on an entity
-    without travel or supervision, and a write that would meet read-only data (another
-    point's, or data its vendor writes with it) are refused as the forms and tables refuse them.
+    Each point is checked by the forms' and tables' own check (`point_data`, a part's
+    `part_data`), the parts of each entity together (`group_errors`), and the layout of the
+    whole PLC (`layout_conflicts`); `describe` words a form's error for the file's message. A
+    command stored read only, and a travel or supervision time out of bounds or on an entity
+    without one, keep errors of their own.
     """
     placed = [
-        (data, ("subentries", index, "data", CONF_POINTS, point_id))
+        (data, (*path, CONF_POINTS, point_id) if point_id else path)
         for index, subentry in enumerate(pasted.subentries)
-        for point_id, data in (subentry["data"].get(CONF_POINTS) or {}).items()
+        for path in [("subentries", index, "data")]
+        for point_id, data in _points(subentry)
         if isinstance(data, Mapping) and CONF_ADDRESS in data and CONF_DATA_TYPE in data
     ]
     for data, path in placed:
@@ -360,6 +368,21 @@ def check_points(client: type[PlcClient], pasted: ConfigFile) -> None:
         if supervision_data(platform if is_part(platform, role) else "", data)[1]:
             line = pasted.line((*path, CONF_SUPERVISION))
             raise ConfigFileError("config_supervision", line=line, point=_named(data))
+        check = part_data if is_part(platform, role) else point_data
+        if errors := check(client, data)[1]:
+            field, key = next(iter(errors.items()))
+            raise ConfigFileError(
+                "config_point",
+                line=pasted.line((*path, field)),
+                point=_named(data),
+                problem=describe(key, check(client, data)[2]),
+            )
+    for index, subentry in enumerate(pasted.subentries):
+        rows = [data for _, data in _points(subentry) if isinstance(data, Mapping)]
+        for name, key, details in group_errors(rows)[:1]:
+            point_id = next(pid for pid, data in _points(subentry) if data.get(CONF_NAME) == name)
+            line = pasted.line(("subentries", index, "data", CONF_POINTS, point_id))
+            raise ConfigFileError("config_entity", line=line, problem=describe(key, details))
     paths = {id(data): path for data, path in placed}
     for data, conflict in layout_conflicts(client, [], [data for data, _ in placed])[:1]:
         other = conflict.other.address if conflict.other else ""
@@ -368,6 +391,14 @@ def check_points(client: type[PlcClient], pasted: ConfigFile) -> None:
         raise ConfigFileError(
             key, line=line, point=_named(data), address=conflict.point.address, other=other
         )
+
+
+def _points(subentry: ConfigSubentryData) -> list[tuple[str, Any]]:
+    """Return a subentry's points by id: a machine's, or a version 1 point subentry as one ("")."""
+    data = subentry["data"]
+    if subentry["subentry_type"] == SUBENTRY_POINT:
+        return [("", {CONF_NAME: subentry["title"], **data})]
+    return list((data.get(CONF_POINTS) or {}).items())
 
 
 def _named(data: Mapping[str, Any]) -> str:
