@@ -16,6 +16,7 @@ from homeassistant.const import (
     STATE_UNAVAILABLE,
 )
 from homeassistant.core import HomeAssistant
+from homeassistant.data_entry_flow import FlowResultType
 from homeassistant.exceptions import HomeAssistantError, ServiceValidationError
 import pytest
 from pytest_homeassistant_custom_component.common import MockConfigEntry
@@ -26,6 +27,7 @@ from tests.loopback import running
 
 from .ha_fixtures import add_entry, call, entry_data, point, poll, set_up, unload_all
 from .s7_ha_fixtures import SNAP7_THREADS
+from .test_device_subentry_flow import add_point, new_device
 
 GENERATIONS = ("0ba7", "0ba8", "8_x")
 LOGO_8 = ("0ba8", "8_x")
@@ -191,3 +193,29 @@ async def test_output_write_refused_before_sending(
     )
     assert (logo.requests, logo.calls["write"]) == (requests, writes)
     assert logo.get_block("Q1") is True
+
+
+async def test_forms_and_actions_know_the_generation(
+    hass: HomeAssistant, logo: LogoSimulator, logo_entry: MockConfigEntry
+) -> None:
+    """A block the configured generation lacks is refused on the form's address field and by
+    the read action, before anything is sent; a block it has is taken."""
+    lacks = logo.generation not in LOGO_8  # a 0BA7 has no network inputs
+    menu = await new_device(hass, logo_entry)
+    result = await add_point(
+        hass, menu, {"name": "Partner", "platform": "switch", "address": "NI2", "data_type": "BOOL"}
+    )
+    if lacks:
+        assert result["errors"] == {"address": "invalid_address"}
+        assert "this LOGO! generation has none" in result["description_placeholders"]["error"]
+    else:
+        assert result["type"] is FlowResultType.MENU
+    requests = logo.requests
+    point = {"address": "NI2", "data_type": "BOOL"}
+    if lacks:
+        with pytest.raises(ServiceValidationError) as refused:
+            await call(hass, "read", logo_entry, points=[point])
+        assert refused.value.translation_key == "invalid_address"
+        assert logo.requests == requests
+    else:
+        await call(hass, "read", logo_entry, points=[point])

@@ -5,6 +5,7 @@ from __future__ import annotations
 import pytest
 
 from custom_components.plc_bridge.plc import PlcAddressError, PlcOptionError, Point
+from custom_components.plc_bridge.plc.vendors import client_class
 from custom_components.plc_bridge.plc.vendors.logo import LogoClient
 from custom_components.plc_bridge.plc.vendors.logo.address import variable
 
@@ -115,3 +116,17 @@ def test_options_default_per_generation() -> None:
     with pytest.raises(PlcOptionError) as err:
         LogoClient.validate_options({"generation": "0ba8", "local_tsap": "x"})
     assert err.value.option == "local_tsap"
+
+
+def test_a_configured_class_checks_its_generation() -> None:
+    """Bound to a 0BA7's options, the checks refuse a network input; unbound, they take it."""
+    partner = Point("NI1", "BOOL")
+    assert client_class("logo").validate_point(partner) == partner
+    assert client_class("logo", {"generation": "0ba8"}).validate_point(partner) == partner
+    bound = client_class("logo", {"generation": "0ba7"})
+    with pytest.raises(PlcAddressError, match="this LOGO! generation has none"):
+        bound.validate_point(partner)
+    assert bound.validate_point(Point("AM16", "INT")) == Point("AM16", "INT")
+    assert issubclass(bound, LogoClient)
+    assert client_class("logo", {"generation": "9"}) is LogoClient  # its own check reports it
+    assert client_class("s7", {"rack": 0, "slot": 1}) is client_class("s7")

@@ -299,8 +299,9 @@ class DeviceFlowBase(ConfigSubentryFlow):
 
     @property
     def _client(self) -> type[PlcClient]:
-        """The client class of the entry's vendor: its parser, data types and browsing."""
-        return client_class(self._get_entry().data[CONF_VENDOR])
+        """The client class of the entry's PLC: its parser (for its options), types, browsing."""
+        data = self._get_entry().data
+        return client_class(data[CONF_VENDOR], data.get(CONF_OPTIONS, {}))
 
     def _taken(self) -> set[Point]:
         """Points of the PLC already used, outside the one being edited."""

@@ -89,7 +89,7 @@ class ConfigFileSteps(PlcFlowBase):
         except YamlTextError as err:
             raise ConfigFileError(err.key, **err.placeholders) from err
         pasted = await self.hass.async_add_executor_job(load_config, text, self.VERSION)
-        client = client_class(pasted.vendor)
+        client = client_class(pasted.vendor, pasted.data[CONF_OPTIONS])
         check_addresses(client, pasted, await async_describe(self.hass))
         check_intervals(client, pasted)
         subentries = check_exposes(client, pasted)

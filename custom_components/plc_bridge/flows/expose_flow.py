@@ -33,6 +33,7 @@ from ..const import (
     CONF_DATA_TYPE,
     CONF_DEFAULT,
     CONF_OFFSET,
+    CONF_OPTIONS,
     CONF_RESEND,
     CONF_SCALE,
     CONF_SEND_ON_START,
@@ -100,8 +101,9 @@ class ExposeSubentryFlowHandler(ConfigSubentryFlow):
 
     @property
     def _client(self) -> type[PlcClient]:
-        """The client class of the entry's vendor: its parser, data types and value checks."""
-        return client_class(self._get_entry().data[CONF_VENDOR])
+        """The client class of the entry's PLC: its parser (for its options), types, checks."""
+        data = self._get_entry().data
+        return client_class(data[CONF_VENDOR], data.get(CONF_OPTIONS, {}))
 
     async def async_step_user(self, user_input: dict[str, Any] | None = None) -> SubentryFlowResult:
         """Show the empty form."""

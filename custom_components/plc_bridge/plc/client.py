@@ -98,6 +98,16 @@ class PlcClient(ABC):
         return {k: v for k, v in options.items() if isinstance(v, str | int | bool)}
 
     @classmethod
+    def configured(cls, options: Mapping[str, object]) -> type[PlcClient]:
+        """Return the class whose address checks know a PLC's options (itself, unless they matter).
+
+        The forms check addresses before any client exists; a vendor whose valid addresses
+        depend on its options (a LOGO!'s generation) answers with a class bound to them.
+        Options that are not valid give the class itself: their own check reports them.
+        """
+        return cls
+
+    @classmethod
     def resolve_options(
         cls, folder: str, submitted: Mapping[str, object], stored: Mapping[str, object]
     ) -> dict[str, str]:

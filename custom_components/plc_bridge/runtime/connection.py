@@ -45,7 +45,7 @@ def create_client(
     hass: HomeAssistant, data: Mapping[str, Any], options: Mapping[str, Any] | None = None
 ) -> PlcClient:
     """Return an unconnected client for a flow's checks, on Home Assistant's shared HTTP session."""
-    return client_class(data[CONF_VENDOR])(
+    return client_class(data[CONF_VENDOR], data.get(CONF_OPTIONS, {}))(
         connection_config(hass, data, options), async_get_clientsession(hass)
     )
 
@@ -61,7 +61,7 @@ def create_polling_client(
     This session keeps it for the poll interval; certificates are checked as on the shared one.
     The client closes it with itself (`close`).
     """
-    cls = client_class(data[CONF_VENDOR])
+    cls = client_class(data[CONF_VENDOR], data.get(CONF_OPTIONS, {}))
     config = connection_config(hass, data, options)
     if not cls.uses_http:
         return cls(config)

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 import importlib
 
 from ..client import PlcClient
@@ -37,9 +38,13 @@ def _load() -> tuple[dict[str, type[PlcClient]], dict[str, Probe]]:
 _CLIENTS, _PROBES = _load()
 
 
-def client_class(vendor: str) -> type[PlcClient]:
-    """Return the client class of a vendor; raise KeyError when it is not implemented yet."""
-    return _CLIENTS[vendor]
+def client_class(vendor: str, options: Mapping[str, object] | None = None) -> type[PlcClient]:
+    """Return the client class of a vendor; raise KeyError when it is not implemented yet.
+
+    With a PLC's vendor options: the class whose address checks know them (`configured`).
+    """
+    found = _CLIENTS[vendor]
+    return found if options is None else found.configured(options)
 
 
 def implemented() -> list[str]:

@@ -4,9 +4,10 @@ The S7 client does the work (link, PDU-packed reads, writes, reconnects); this o
 LOGO! addresses to DB1 for the generation configured, refuses writes a LOGO! would overwrite
 before anything is sent, and reads a network input back after writing it (READINGS row 4).
 
-The address checks the forms call are class methods and know no generation: they accept what
-some generation has, and footprints are in block terms (a block's image never overlaps V0..V849).
-A point the configured generation lacks (NI1 on a 0BA7) fails at its first read.
+The address checks the forms call are class methods. Bound to a PLC's options (`configured`,
+which the forms, the pasted file, the actions and the entry's client use) they refuse a block the
+configured generation lacks (NI1 on a 0BA7); unbound, they accept what some generation has.
+Footprints are in block terms (a block's image never overlaps V0..V849).
 """
 
 from __future__ import annotations
@@ -17,13 +18,13 @@ from typing import ClassVar
 
 import aiohttp
 
-from ...errors import PlcAddressError, PlcValueError, PlcWriteRefusedError
+from ...errors import PlcAddressError, PlcOptionError, PlcValueError, PlcWriteRefusedError
 from ...types import ConnectionConfig, DeviceInfo, Footprint, Point, PointResult, Value
 from ..s7 import S7Client
 from ..s7.address import Variable
 from ..s7.codec import check_value, span_of
 from ..s7.planner import Span, plan_reads
-from .address import DATA_TYPES, MODELS, parse, refusal, variable
+from .address import DATA_TYPES, GENERATIONS, MODELS, parse, refusal, variable
 from .options import s7_options, validate_options
 
 PLANNED_GENERATION = "0ba8"  # a class plans without a PLC: for the most common generation
@@ -36,6 +37,8 @@ class LogoClient(S7Client):
     vendor: ClassVar[str] = "logo"
     data_types: ClassVar[tuple[str, ...]] = DATA_TYPES
     requested_pdu: ClassVar[int] = PDU
+    checked_generation: ClassVar[str | None] = None
+    """The generation whose blocks the class methods accept (None: any generation's)."""
 
     def __init__(
         self, config: ConnectionConfig, session: aiohttp.ClientSession | None = None
@@ -60,10 +63,24 @@ class LogoClient(S7Client):
         return validate_options(options)
 
     @classmethod
+    def configured(cls, options: Mapping[str, object]) -> type[LogoClient]:
+        """Return the class that accepts only the configured generation's blocks."""
+        try:
+            generation = str(validate_options(options)["generation"])
+        except PlcOptionError:
+            return cls
+        return GENERATION_CLASSES[generation]
+
+    @classmethod
     def validate_point(cls, point: Point) -> Point:
-        """Return the point as LOGO!Soft Comfort writes it (VB100, V10.3); raise PlcAddressError."""
+        """Return the point as LOGO!Soft Comfort writes it (VB100, V10.3); raise PlcAddressError.
+
+        A class bound to a generation (`configured`) refuses the blocks that generation lacks
+        (NI1 on a 0BA7); the others accept a block some generation has.
+        """
         found = parse(point)
-        return Point(found.text, variable(point, PLANNED_GENERATION).data_type)
+        generation = cls.checked_generation or PLANNED_GENERATION
+        return Point(found.text, variable(point, generation).data_type)
 
     @classmethod
     def footprint(cls, point: Point) -> Footprint:
@@ -151,3 +168,14 @@ class LogoClient(S7Client):
                     )
                 )
         return results
+
+
+GENERATION_CLASSES: dict[str, type[LogoClient]] = {
+    generation: type(
+        f"LogoClient{generation.upper()}",
+        (LogoClient,),
+        {"checked_generation": generation, "__doc__": f"A LOGO! {generation}'s address checks."},
+    )
+    for generation in GENERATIONS
+}
+"""The client classes whose address checks know one generation (see `configured`)."""
