@@ -23,7 +23,7 @@ from custom_components.plc_bridge.flows.config_file_flow import CONF_CONFIGURATI
 from custom_components.plc_bridge.model.config_file import (
     SECRETS,
     ConfigFileError,
-    check_addresses,
+    check_pasted,
     dump_config,
     load_config,
 )
@@ -267,7 +267,7 @@ async def test_refused_on_the_field(hass: HomeAssistant, text: str, key: str, me
 def test_bad_address_names_the_point() -> None:
     """The error names the point, its address and the parser's words."""
     with pytest.raises(ConfigFileError) as caught:
-        check_addresses(client_class("s7_smart"), load_config(BAD_ADDRESS, version=2))
+        check_pasted(client_class("s7_smart"), load_config(BAD_ADDRESS, version=2))
     assert caught.value.placeholders["point"] == "Temperature"
     assert caught.value.placeholders["address"] == "VX100"
     assert caught.value.placeholders["problem"]

@@ -23,9 +23,7 @@ from ..const import CONF_AREA, CONF_FINGERPRINT, CONF_OPTIONS, SUBENTRY_EXPOSE
 from ..model.config_file import (
     ConfigFile,
     ConfigFileError,
-    check_addresses,
-    check_exposes,
-    check_intervals,
+    check_pasted,
     load_config,
 )
 from ..model.expose import expose_config
@@ -90,9 +88,7 @@ class ConfigFileSteps(PlcFlowBase):
             raise ConfigFileError(err.key, **err.placeholders) from err
         pasted = await self.hass.async_add_executor_job(load_config, text, self.VERSION)
         client = client_class(pasted.vendor, pasted.data[CONF_OPTIONS])
-        check_addresses(client, pasted, await async_describe(self.hass))
-        check_intervals(client, pasted)
-        subentries = check_exposes(client, pasted)
+        subentries = check_pasted(client, pasted, await async_describe(self.hass))
         options = pasted.data[CONF_OPTIONS]
         try:
             await self._resolved(pasted.vendor, options, {})

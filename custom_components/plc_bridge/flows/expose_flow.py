@@ -49,7 +49,7 @@ from ..model.expose import (
     expose_title,
     feeds_back,
 )
-from ..model.points import entry_points
+from ..model.plc_config import PlcConfig
 from ..plc import PlcClient
 from ..plc.vendors import client_class
 
@@ -151,11 +151,10 @@ class ExposeSubentryFlowHandler(ConfigSubentryFlow):
         """Check the form through the one validation of an expose; its errors by field."""
         entry = self._get_entry()
         editing = self._reconfigure_subentry_id if self.source == "reconfigure" else None
-        points = entry_points(entry).values()
         return check_expose(
             self._client,
             values,
-            read_only=[config.point for config in points if config.read_only],
+            read_only=PlcConfig.from_entry(entry).read_only_points(),
             taken=[c.point for sid, c in entry_exposes(entry).items() if sid != editing],
             feeds_back=partial(feeds_back, self.hass, entry, editing=editing),
         )

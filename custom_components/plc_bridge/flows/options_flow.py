@@ -13,10 +13,8 @@ from homeassistant.helpers.selector import (
 )
 import voluptuous as vol
 
-from ..const import CONF_VENDOR
-from ..model.availability import availability_points
-from ..model.composite import point_classes
-from ..model.points import entry_points
+from ..const import CONF_OPTIONS, CONF_VENDOR
+from ..model.plc_config import PlcConfig
 from ..model.poll_classes import (
     CONF_FAST_INTERVAL,
     CONF_SLOW_INTERVAL,
@@ -25,8 +23,6 @@ from ..model.poll_classes import (
     NORMAL,
     SECONDS_MAX,
     SECONDS_MIN,
-    class_minimums,
-    interval_errors,
     unset,
 )
 from ..plc.vendors import client_class
@@ -54,19 +50,17 @@ class PlcBridgeOptionsFlow(OptionsFlow):
 
     async def async_step_init(self, user_input: dict[str, Any] | None = None) -> ConfigFlowResult:
         """Ask for the poll intervals; refuse those the vendor's pace or their order forbid."""
-        client = client_class(self.config_entry.data[CONF_VENDOR])
-        configs = entry_points(self.config_entry)
-        machines = availability_points(self.config_entry.subentries.values()).values()
-        points = list(dict.fromkeys(c.point for c in configs.values()))
-        polled = list(dict.fromkeys([*machines, *points]))
-        classes = point_classes(configs, machines)
-        minimums = class_minimums(client, classes, polled)
+        data = self.config_entry.data
+        client = client_class(data[CONF_VENDOR], data.get(CONF_OPTIONS, {}))
+        plc = PlcConfig.from_entry(self.config_entry)
+        minimums, points = plc.poll_minimums(client)
         options = self.config_entry.options
-        current = {key: float(options[key]) for key in INTERVALS if key in options}
+        current = plc.options.intervals
         errors: dict[str, str] = {}
         if user_input is not None:
             given = {key: float(value) for key, value in user_input.items() if key in INTERVALS}
-            errors = interval_errors(unset(client, current | given, minimums), minimums)
+            problems = plc.interval_problems(client, current | given)
+            errors = {problem.field: problem.field_key for problem in problems}
             if not errors:
                 return self.async_create_entry(data={**options, **given})
         current = unset(client, current, minimums)

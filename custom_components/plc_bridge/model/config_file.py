@@ -7,13 +7,13 @@ travel without code here. Only the secrets are left out, by the list below.
 
 from __future__ import annotations
 
-from collections.abc import Iterator, Mapping
+from collections.abc import Mapping
 from dataclasses import dataclass
 import json
 from typing import Any, NoReturn
 
 from homeassistant.config_entries import ConfigEntry, ConfigSubentry, ConfigSubentryData
-from homeassistant.const import CONF_ENTITY_ID, CONF_HOST, CONF_NAME, CONF_PORT, CONF_SCAN_INTERVAL
+from homeassistant.const import CONF_ENTITY_ID, CONF_HOST, CONF_NAME, CONF_PORT
 import yaml
 
 from ..const import (
@@ -21,30 +21,14 @@ from ..const import (
     CONF_DATA_TYPE,
     CONF_MAC,
     CONF_OPTIONS,
-    CONF_PLATFORM,
     CONF_POINTS,
-    CONF_READ_ONLY,
-    CONF_ROLE,
     CONF_TLS,
     CONF_VENDOR,
     SUBENTRY_DEVICE,
     SUBENTRY_EXPOSE,
-    SUBENTRY_POINT,
 )
-from ..plc import PlcClient, PlcError, Point, TlsMode
+from ..plc import PlcClient
 from ..plc.vendors import implemented
-from .availability import CONF_AVAILABILITY_ADDRESS, CONF_AVAILABILITY_DATA_TYPE
-from .composite import (
-    CONF_SUPERVISION,
-    CONF_TRAVEL_TIME,
-    as_platform,
-    group_errors,
-    is_part,
-    part_data,
-    point_classes,
-    supervision_data,
-    travel_data,
-)
 from .config_keys import (
     CONNECTION,
     FILE,
@@ -53,26 +37,12 @@ from .config_keys import (
     POINT,
     SUBENTRY,
     SUBENTRY_DATA,
-    TEXT,
     Keys,
     kind_error,
     vendor_option_keys,
 )
-from .expose import CONF_SEND, check_expose
+from .plc_config import PlcConfig
 from .point_table import Describe, plain, point_order
-from .points import PointConfig, point_data, read_only_errors
-from .poll_classes import (
-    CONF_FAST_INTERVAL,
-    FAST,
-    INTERVALS,
-    NORMAL,
-    SECONDS_MAX,
-    SECONDS_MIN,
-    class_minimums,
-    interval_errors,
-    unset,
-)
-from .write_rules import layout_conflicts
 from .yaml_text import Path, YamlText, YamlTextError, read_yaml
 
 FORMAT_KEY = "plc_bridge"
@@ -89,12 +59,6 @@ HEADER = (
     "# A PLC of PLC Bridge. Add it with Add integration > PLC Bridge > Paste a configuration\n"
     "# exported from PLC Bridge; the secrets listed under `secrets` are asked for then.\n"
 )
-
-ADDRESS_KEYS = (
-    (CONF_ADDRESS, CONF_DATA_TYPE),
-    (CONF_AVAILABILITY_ADDRESS, CONF_AVAILABILITY_DATA_TYPE),
-)
-"""The keys of an address and its data type, wherever they stand in a subentry's data."""
 
 
 class ConfigFileError(Exception):
@@ -128,6 +92,17 @@ class ConfigFile:
     def vendor(self) -> str:
         """The vendor key of the PLC."""
         return str(self.data[CONF_VENDOR])
+
+    def plc(self) -> PlcConfig:
+        """Return the PLC the file holds, typed as a stored one."""
+        return PlcConfig.from_stored(
+            title=self.title,
+            version=self.version,
+            minor_version=self.minor_version,
+            data=self.data,
+            options=self.options,
+            subentries=self.subentries,
+        )
 
 
 def dump_config(entry: ConfigEntry[Any]) -> str:
@@ -254,14 +229,7 @@ def load_config(text: str, version: int) -> ConfigFile:
 
 
 def _check_connection(read: YamlText, data: Mapping[str, Any]) -> None:
-    """Raise ConfigFileError for a connection value the connection page would not take."""
-    if not data[CONF_HOST].strip():
-        _refuse(read, ("connection", CONF_HOST), "config_bad_value", CONF_HOST, TEXT)
-    if not 1 <= data[CONF_PORT] <= 65535:
-        _refuse(read, ("connection", CONF_PORT), "config_bad_value", CONF_PORT, "1 to 65535")
-    if data[CONF_TLS] not in [mode.value for mode in TlsMode]:
-        modes = ", ".join(mode.value for mode in TlsMode)
-        _refuse(read, ("connection", CONF_TLS), "config_bad_value", CONF_TLS, modes)
+    """Raise ConfigFileError for a vendor option the connection pages never store."""
     if CONF_OPTIONS in data:
         keys = vendor_option_keys(data[CONF_VENDOR])
         _check_level(read, ("connection", CONF_OPTIONS), keys, ())
@@ -312,189 +280,16 @@ def _refuse(read: YamlText, path: Path, key: str, name: str, kind: str) -> NoRet
     raise ConfigFileError(key, line=str(read.line(path)), name=name, kind=kind)
 
 
-def check_addresses(
+def check_pasted(
     client: type[PlcClient], pasted: ConfigFile, describe: Describe = plain
-) -> None:
-    """Raise ConfigFileError for the first point whose address the vendor's parser refuses.
+) -> list[ConfigSubentryData]:
+    """Raise ConfigFileError for the first thing no form would store, on its line.
 
-    A point is any mapping of a subentry's data with an address and a data type: the points of
-    a device, the parts of an entity of several points, and whatever else names an address.
+    The one validation of a stored PLC (`PlcConfig.problems`) decides; the subentries are
+    returned with each expose as its form stores it, sending off.
     """
-    for index, subentry in enumerate(pasted.subentries):
-        path: Path = ("subentries", index, "data")
-        for name, point, where in _addressed(subentry["data"], subentry["title"], path):
-            try:
-                client.validate_point(point)
-            except PlcError as err:
-                raise ConfigFileError(
-                    "config_bad_address",
-                    line=pasted.line(where),
-                    point=name,
-                    address=point.address,
-                    problem=str(err),
-                ) from err
-    check_points(client, pasted, describe)
-
-
-def check_points(client: type[PlcClient], pasted: ConfigFile, describe: Describe = plain) -> None:
-    """Raise ConfigFileError for the first point the forms would refuse, on its line.
-
-    Each point is checked by the forms' and tables' own check (`point_data`, a part's
-    `part_data`), the parts of each entity together (`group_errors`), and the layout of the
-    whole PLC (`layout_conflicts`); `describe` words a form's error for the file's message. A
-    command stored read only, and a travel or supervision time out of bounds or on an entity
-    without one, keep errors of their own.
-    """
-    placed = [
-        (data, (*path, CONF_POINTS, point_id) if point_id else path)
-        for index, subentry in enumerate(pasted.subentries)
-        for path in [("subentries", index, "data")]
-        for point_id, data in _points(subentry)
-        if isinstance(data, Mapping) and CONF_ADDRESS in data and CONF_DATA_TYPE in data
-    ]
-    for data, path in placed:
-        platform, role = str(data.get(CONF_PLATFORM, "")), str(data.get(CONF_ROLE) or "")
-        read_only = bool(data.get(CONF_READ_ONLY))
-        if read_only_errors(as_platform(platform, role), role, read_only):
-            raise ConfigFileError(
-                "config_command_read_only",
-                line=pasted.line((*path, CONF_READ_ONLY)),
-                point=_named(data),
-                address=str(data[CONF_ADDRESS]),
-            )
-        if travel_data(platform, data)[1]:
-            line = pasted.line((*path, CONF_TRAVEL_TIME))
-            raise ConfigFileError("config_travel_time", line=line, point=_named(data))
-        if supervision_data(platform if is_part(platform, role) else "", data)[1]:
-            line = pasted.line((*path, CONF_SUPERVISION))
-            raise ConfigFileError("config_supervision", line=line, point=_named(data))
-        check = part_data if is_part(platform, role) else point_data
-        if errors := check(client, data)[1]:
-            field, key = next(iter(errors.items()))
-            raise ConfigFileError(
-                "config_point",
-                line=pasted.line((*path, field)),
-                point=_named(data),
-                problem=describe(key, check(client, data)[2]),
-            )
-    for index, subentry in enumerate(pasted.subentries):
-        rows = [data for _, data in _points(subentry) if isinstance(data, Mapping)]
-        for name, key, details in group_errors(rows)[:1]:
-            point_id = next(pid for pid, data in _points(subentry) if data.get(CONF_NAME) == name)
-            line = pasted.line(("subentries", index, "data", CONF_POINTS, point_id))
-            raise ConfigFileError("config_entity", line=line, problem=describe(key, details))
-    paths = {id(data): path for data, path in placed}
-    for data, conflict in layout_conflicts(client, [], [data for data, _ in placed])[:1]:
-        other = conflict.other.address if conflict.other else ""
-        key = "config_writes_read_only" if conflict.key == "writes_read_only" else "config_overlap"
-        line = pasted.line((*paths[id(data)], CONF_ADDRESS))
-        raise ConfigFileError(
-            key, line=line, point=_named(data), address=conflict.point.address, other=other
-        )
-
-
-def _points(subentry: ConfigSubentryData) -> list[tuple[str, Any]]:
-    """Return a subentry's points by id: a machine's, or a version 1 point subentry as one ("")."""
-    data = subentry["data"]
-    if subentry["subentry_type"] == SUBENTRY_POINT:
-        return [("", {CONF_NAME: subentry["title"], **data})]
-    return list((data.get(CONF_POINTS) or {}).items())
-
-
-def _named(data: Mapping[str, Any]) -> str:
-    """Return a point's name for a message: its entity's name and, for a part, its role."""
-    role = data.get(CONF_ROLE)
-    return f"{data.get(CONF_NAME, '')} ({role})" if role else str(data.get(CONF_NAME, ""))
-
-
-def _addressed(value: Any, name: str, path: Path) -> Iterator[tuple[str, Point, Path]]:
-    """Yield every point a value names, with the name of what it belongs to and its path.
-
-    A point is an address and a data type, or a machine's availability address and its type.
-    """
-    if isinstance(value, Mapping):
-        for address, data_type in ADDRESS_KEYS:
-            if address in value and data_type in value:
-                point = Point(str(value[address]), str(value[data_type]))
-                yield str(value.get(CONF_NAME) or name), point, (*path, address)
-        for key, item in value.items():
-            named = f"{name} {key}" if key != CONF_POINTS else name
-            yield from _addressed(item, named, (*path, key))
-    elif isinstance(value, list):
-        for index, item in enumerate(value):
-            yield from _addressed(item, name, (*path, index))
-
-
-def check_intervals(client: type[PlcClient], pasted: ConfigFile) -> None:
-    """Raise ConfigFileError for a poll interval the options form would refuse, on its line."""
-    configs = {
-        point_id: PointConfig(point_id, str(index), data)
-        for index, subentry in enumerate(pasted.subentries)
-        if subentry["subentry_type"] == SUBENTRY_DEVICE
-        for point_id, data in (subentry["data"].get(CONF_POINTS) or {}).items()
-    }
-    every_poll = [
-        Point(str(data[CONF_AVAILABILITY_ADDRESS]), str(data[CONF_AVAILABILITY_DATA_TYPE]))
-        for subentry in pasted.subentries
-        if (data := subentry["data"]).get(CONF_AVAILABILITY_ADDRESS)
-        and CONF_AVAILABILITY_DATA_TYPE in data
-    ]
-    points = list(dict.fromkeys(config.point for config in configs.values()))
-    polled = list(dict.fromkeys([*every_poll, *points]))
-    minimums = class_minimums(client, point_classes(configs, every_poll), polled)
-    given = {key: float(value) for key, value in pasted.options.items() if key in INTERVALS}
-    for key, value in given.items():
-        if not SECONDS_MIN <= value <= SECONDS_MAX:  # the form's own field bounds
-            line = pasted.line(("options", key))
-            raise ConfigFileError(
-                "config_interval", line=line, name=key, minimum=f"{SECONDS_MIN:g}"
-            )
-    for key in interval_errors(unset(client, given, minimums), minimums):
-        line = pasted.line(("options", key if key in given else CONF_SCAN_INTERVAL))
-        least = minimums[FAST if key == CONF_FAST_INTERVAL else NORMAL]
-        raise ConfigFileError("config_interval", line=line, name=key, minimum=f"{least:g}")
-
-
-def check_exposes(client: type[PlcClient], pasted: ConfigFile) -> list[ConfigSubentryData]:
-    """Return the subentries with each expose as its form stores it, sending off.
-
-    Each expose passes the one validation of an expose (`check_expose`); the first refused
-    raises ConfigFileError on the line of its field. Its feedback is checked when the user
-    turns sending on: the entities it would follow do not exist yet.
-    """
-    read_only = [
-        Point(str(data[CONF_ADDRESS]), str(data[CONF_DATA_TYPE]))
-        for subentry in pasted.subentries
-        for data in (subentry["data"].get(CONF_POINTS) or {}).values()
-        if isinstance(data, Mapping) and data.get(CONF_READ_ONLY)
-    ]
-    exposes = {
-        index: Point(str(subentry["data"][CONF_ADDRESS]), str(subentry["data"][CONF_DATA_TYPE]))
-        for index, subentry in enumerate(pasted.subentries)
-        if subentry["subentry_type"] == SUBENTRY_EXPOSE
-    }
-    subentries: list[ConfigSubentryData] = []
-    for index, subentry in enumerate(pasted.subentries):
-        if index not in exposes:
-            subentries.append(subentry)
-            continue
-        taken = [point for other, point in exposes.items() if other < index]
-        data, errors, words = check_expose(
-            client, subentry["data"], read_only=read_only, taken=taken
-        )
-        for field, key in errors.items():
-            raise ConfigFileError(
-                f"config_expose_{key}",
-                line=pasted.line(("subentries", index, "data", field)),
-                point=subentry["title"],
-                **words,
-            )
-        subentries.append(
-            ConfigSubentryData(
-                data=data | {CONF_SEND: False},
-                subentry_type=SUBENTRY_EXPOSE,
-                title=subentry["title"],
-                unique_id=subentry["unique_id"],
-            )
-        )
-    return subentries
+    plc = pasted.plc()
+    for problem in plc.problems(client, describe)[:1]:
+        line = pasted.line(problem.path)
+        raise ConfigFileError(problem.key, line=line, **problem.placeholders)
+    return plc.sending_off(client)
