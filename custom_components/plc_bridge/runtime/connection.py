@@ -5,18 +5,11 @@ from __future__ import annotations
 from collections.abc import Mapping
 from typing import Any
 
-from homeassistant.const import (
-    CONF_HOST,
-    CONF_PASSWORD,
-    CONF_PORT,
-    CONF_SCAN_INTERVAL,
-    CONF_USERNAME,
-)
 from homeassistant.core import HomeAssistant
 from homeassistant.helpers.aiohttp_client import async_get_clientsession
 from homeassistant.util.ssl import SSL_ALPN_HTTP11, client_context
 
-from ..const import CONF_FINGERPRINT, CONF_OPTIONS, CONF_TLS, CONF_VENDOR
+from ..model.plc_config import Connection, PollOptions
 from ..plc import ConnectionConfig, PlcClient, TlsMode
 from ..plc.http import client_session
 from ..plc.vendors import client_class
@@ -26,18 +19,18 @@ def connection_config(
     hass: HomeAssistant, data: Mapping[str, Any], options: Mapping[str, Any] | None = None
 ) -> ConnectionConfig:
     """Return the protocol layer's connection settings for entry data (and options)."""
-    vendor = client_class(data[CONF_VENDOR])
-    interval = (options or {}).get(CONF_SCAN_INTERVAL, vendor.default_scan_interval)
+    stored = Connection.from_data(data)
+    interval = PollOptions.from_options(options or {}).scan_interval
     return ConnectionConfig(
-        host=data[CONF_HOST],
-        port=int(data[CONF_PORT]),
-        username=data.get(CONF_USERNAME, ""),
-        password=data.get(CONF_PASSWORD, ""),
-        tls=TlsMode(data.get(CONF_TLS, TlsMode.NONE)),
-        fingerprint=data.get(CONF_FINGERPRINT, ""),
+        host=stored.host,
+        port=int(stored.port),
+        username=stored.username or "",
+        password=stored.password or "",
+        tls=TlsMode(stored.tls),
+        fingerprint=stored.fingerprint or "",
         time_zone=str(hass.config.time_zone),
-        poll_interval=float(interval),
-        options=dict(data.get(CONF_OPTIONS, {})),
+        poll_interval=float(interval or client_class(stored.vendor).default_scan_interval),
+        options=dict(stored.vendor_options or {}),
     )
 
 
@@ -45,9 +38,15 @@ def create_client(
     hass: HomeAssistant, data: Mapping[str, Any], options: Mapping[str, Any] | None = None
 ) -> PlcClient:
     """Return an unconnected client for a flow's checks, on Home Assistant's shared HTTP session."""
-    return client_class(data[CONF_VENDOR], data.get(CONF_OPTIONS, {}))(
+    return _client_class(data)(
         connection_config(hass, data, options), async_get_clientsession(hass)
     )
+
+
+def _client_class(data: Mapping[str, Any]) -> type[PlcClient]:
+    """Return the client class of the entry's PLC, its address checks bound to its options."""
+    stored = Connection.from_data(data)
+    return client_class(stored.vendor, stored.vendor_options or {})
 
 
 def create_polling_client(
@@ -61,7 +60,7 @@ def create_polling_client(
     This session keeps it for the poll interval; certificates are checked as on the shared one.
     The client closes it with itself (`close`).
     """
-    cls = client_class(data[CONF_VENDOR], data.get(CONF_OPTIONS, {}))
+    cls = _client_class(data)
     config = connection_config(hass, data, options)
     if not cls.uses_http:
         return cls(config)
