@@ -23,6 +23,7 @@ from .coordinator import PlcBridgeConfigEntry
 from .entity import PlcEntity, device_of, entity_name, point_fields
 from .model.composite import Composite, composites, group_key
 from .model.conversion import Conversion
+from .model.kinds import KINDS
 from .model.points import PointConfig, entry_points, pulse_seconds
 from .plc import Point, PointResult, Value, ValueKind
 from .runtime.entities import PointFactory
@@ -100,10 +101,24 @@ class PlcCompositeEntity(PlcEntity):
         self._machine = group.subentry_id
         self.parts = parts
         self._key = group.key
+        self._platform = group.platform
         self._writing = asyncio.Lock()  # one write of commands and releases at a time
         self.outputs = {role: self._output(role) for role, part in parts.items() if part.pulse > 0}
         seconds = seconds_of(part.config.data for part in parts.values())
         self.supervisor = Supervisor(entry, self._key, self._label, seconds, self.follows)
+
+    def features(self) -> int:
+        """The entity features its kind's description gives the parts it has, as flags.
+
+        A part enables its role's features where Home Assistant writes it: a role that is
+        always written (a command, a set point), or one read and written unless read only.
+        """
+        kind = KINDS[self._platform]
+        return kind.features(
+            role
+            for role, part in self.parts.items()
+            if not part.read_only or ((described := kind.role(role)) and described.written)
+        )
 
     def _output(self, role: str) -> Output:
         """Return the output of a command part: its off-write and its repair issue."""

@@ -34,11 +34,11 @@ from ..const import (
     CONF_READ_ONLY,
     CONF_SCALE,
     CONF_STEP,
-    POINT_PLATFORMS,
 )
-from ..model.device_classes import NUMERIC, device_classes, takes_unit, unit_selector
+from ..model.device_classes import device_classes, takes_unit, unit_selector
+from ..model.kinds import CONTROLS, NUMERIC, POINT_PLATFORMS
 from ..model.point_kinds import kind_fields
-from ..model.points import CONTROLS, suggested_platform
+from ..model.points import suggested_platform
 from ..model.poll_classes import has_poll_class, poll_field
 from ..plc import BrowseItem, PlcAddressError, PlcClient, Point, ValueKind
 

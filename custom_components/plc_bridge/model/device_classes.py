@@ -10,22 +10,13 @@ from collections.abc import Iterable, Mapping
 from enum import StrEnum
 from typing import Any
 
-from homeassistant.components.binary_sensor import (  # type: ignore[attr-defined]
-    BinarySensorDeviceClass,
-)
-from homeassistant.components.number import NumberDeviceClass
-from homeassistant.components.number.const import DEVICE_CLASS_UNITS as NUMBER_UNITS
 from homeassistant.components.sensor import (
     CONF_STATE_CLASS,
     DEVICE_CLASS_STATE_CLASSES,
     SensorDeviceClass,
     SensorStateClass,
 )
-from homeassistant.components.sensor.const import (
-    DEVICE_CLASS_UNITS as SENSOR_UNITS,
-    STATE_CLASS_UNITS,
-)
-from homeassistant.components.switch import SwitchDeviceClass  # type: ignore[attr-defined]
+from homeassistant.components.sensor.const import STATE_CLASS_UNITS
 from homeassistant.const import CONF_DEVICE_CLASS, CONF_UNIT_OF_MEASUREMENT
 from homeassistant.helpers.selector import (
     SelectSelector,
@@ -36,20 +27,17 @@ from homeassistant.helpers.selector import (
 
 from ..plc import ValueKind
 from .duration_units import UNITS as DURATION_UNITS
+from .kinds import KINDS, NUMERIC
 
-NUMERIC = frozenset({ValueKind.INTEGER, ValueKind.FLOAT})
 COUNTED = NUMERIC | {ValueKind.BOOL}
 """Kinds a sensor shows as a number (a true/false point as 1 or 0): unit and classes apply."""
 
-DEVICE_CLASSES: dict[str, type[StrEnum]] = {
-    "sensor": SensorDeviceClass,
-    "binary_sensor": BinarySensorDeviceClass,
-    "switch": SwitchDeviceClass,
-    "number": NumberDeviceClass,
+DEVICE_CLASSES = {
+    key: kind.device_class for key, kind in KINDS.items() if kind.single and kind.device_class
 }
 NOT_NUMERIC = {SensorDeviceClass.TIMESTAMP, SensorDeviceClass.DATE, SensorDeviceClass.ENUM}
 """Sensor classes whose state is no number: a numeric point cannot carry them."""
-UNITS: dict[str, Mapping[Any, set[Any]]] = {"sensor": SENSOR_UNITS, "number": NUMBER_UNITS}
+UNITS = {key: kind.units for key, kind in KINDS.items() if kind.units is not None}
 
 
 def takes_unit(platform: str, kind: ValueKind | None) -> bool:
