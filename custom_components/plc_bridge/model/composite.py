@@ -160,7 +160,7 @@ def part_errors(platform: str, values: Mapping[str, Any]) -> dict[str, str]:
         return {CONF_VALUE_MAP: "map_empty"}
     if described.labels:
         labels = {label for _, label in stored_pairs(values, CONF_VALUE_MAP)}
-        if not labels <= described.labels:
+        if not labels <= set(described.labels):
             return {CONF_VALUE_MAP: "role_labels"}
     return {}
 
@@ -172,12 +172,18 @@ def part_data(
     platform = str(values.get(CONF_PLATFORM, ""))
     role = str(values.get(CONF_ROLE) or "")
     errors = part_errors(platform, values)
+    described = role_of(platform, role)
+    kind = KINDS.get(platform)
+    wording = {"role": role, "platform": platform}
+    wording["roles"] = ", ".join(kind.role_keys if kind else ())
+    wording["labels"] = ", ".join(described.labels if described else ())
     if CONF_ROLE in errors:
-        return {}, errors, {"role": role, "platform": platform}
+        return {}, errors, wording
     data, found, placeholders = point_data(
         client, {**values, CONF_PLATFORM: as_platform(platform, role)}
     )
-    if (described := role_of(platform, role)) and described.invertible and values.get(CONF_INVERT):
+    placeholders = wording | placeholders
+    if described and described.invertible and values.get(CONF_INVERT):
         data[CONF_INVERT] = True
     travel, wrong = travel_data(platform, values)
     supervision, wrong_time = supervision_data(platform, values)

@@ -43,7 +43,7 @@ CONF_SUPERVISION: Final = "supervision"
 NUMERIC = frozenset({ValueKind.INTEGER, ValueKind.FLOAT})
 ON_OFF = frozenset({ValueKind.BOOL, ValueKind.INTEGER})
 """A point that is on or off: a bit, or an integer whose codes say on and off (1 and 0)."""
-COVER_STATES = frozenset({"open", "closed", "opening", "closing"})
+COVER_STATES = ("open", "closed", "opening", "closing")
 """The labels a cover's or valve's status map may use."""
 
 
@@ -57,7 +57,7 @@ class Role:
     """The kind of one address the part is checked, stored and shown on its form as."""
     section: str
     """The section of the entity's form the role belongs to (commands, position, modes, ...)."""
-    labels: frozenset[str] = frozenset()
+    labels: tuple[str, ...] = ()
     """The only labels its value map may use (Home Assistant's states); a map is then required."""
     shows: bool = False
     """One of the roles of which an entity needs at least one to show anything."""
@@ -219,8 +219,8 @@ CLIMATE = Kind(
             shows=True,
             features=("TARGET_TEMPERATURE",),
         ),
-        _role("hvac_mode", "select", "modes", shows=True, labels=frozenset(map(str, HVACMode))),
-        _role("hvac_action", "sensor", "action", labels=frozenset(map(str, HVACAction))),
+        _role("hvac_mode", "select", "modes", shows=True, labels=tuple(map(str, HVACMode))),
+        _role("hvac_action", "sensor", "action", labels=tuple(map(str, HVACAction))),
         _role("on_off", "switch", "on_off", shows=True, features=("TURN_ON", "TURN_OFF")),
         _role("preset", "select", "presets", features=("PRESET_MODE",)),
     ),
