@@ -31,7 +31,16 @@ from homeassistant.components.valve import (  # type: ignore[attr-defined]
     ValveDeviceClass,
     ValveEntityFeature,
 )
-from homeassistant.const import Platform
+from homeassistant.components.water_heater import (  # type: ignore[attr-defined]
+    STATE_ECO,
+    STATE_ELECTRIC,
+    STATE_GAS,
+    STATE_HEAT_PUMP,
+    STATE_HIGH_DEMAND,
+    STATE_PERFORMANCE,
+    WaterHeaterEntityFeature,
+)
+from homeassistant.const import STATE_OFF, Platform
 
 from ..plc import ValueKind
 
@@ -45,6 +54,16 @@ ON_OFF = frozenset({ValueKind.BOOL, ValueKind.INTEGER})
 """A point that is on or off: a bit, or an integer whose codes say on and off (1 and 0)."""
 COVER_STATES = ("open", "closed", "opening", "closing")
 """The labels a cover's or valve's status map may use."""
+WATER_HEATER_STATES = (
+    STATE_ECO,
+    STATE_ELECTRIC,
+    STATE_PERFORMANCE,
+    STATE_HIGH_DEMAND,
+    STATE_HEAT_PUMP,
+    STATE_GAS,
+    STATE_OFF,
+)
+"""The labels a water heater's operation mode map may use: Home Assistant's operation modes."""
 
 
 @dataclass(frozen=True, slots=True, kw_only=True)
@@ -326,6 +345,30 @@ KINDS_IN_ORDER: tuple[Kind, ...] = (
         parts_only=True,
         entity_time=CONF_SUPERVISION,
         roles=(*_ON_OFF_ROLES, _role("brightness", "number", "brightness", shows=True)),
+    ),
+    Kind(
+        key="water_heater",
+        parts_only=True,
+        feature=WaterHeaterEntityFeature,
+        roles=(
+            _role("current_temperature", "sensor", "temperatures", shows=True),
+            _role(
+                "target_temperature",
+                "number",
+                "temperatures",
+                shows=True,
+                features=("TARGET_TEMPERATURE",),
+            ),
+            _role(
+                "operation_mode",
+                "select",
+                "modes",
+                shows=True,
+                labels=WATER_HEATER_STATES,
+                features=("OPERATION_MODE",),
+            ),
+            _role("on_off", "switch", "on_off", shows=True, features=("ON_OFF",)),
+        ),
     ),
 )
 """Every kind: those of one address in the point form's order, then those of several."""
