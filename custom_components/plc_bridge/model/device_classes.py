@@ -42,9 +42,12 @@ UNITS = {key: kind.units for key, kind in KINDS.items() if kind.units is not Non
 
 def takes_unit(platform: str, kind: ValueKind | None) -> bool:
     """True when the platform shows the point as a number that can have a unit."""
-    if platform == "sensor":
+    described = KINDS.get(platform)
+    if described is None or not described.scaled:
+        return False
+    if described.measures:
         return kind is None or kind in COUNTED or kind is ValueKind.DURATION
-    return platform == "number"  # a duration: a time unit (seconds unless given)
+    return True  # a duration: a time unit (seconds unless given)
 
 
 def device_classes(platform: str, kind: ValueKind | None) -> list[str]:
@@ -52,7 +55,7 @@ def device_classes(platform: str, kind: ValueKind | None) -> list[str]:
     if platform not in DEVICE_CLASSES or kind is ValueKind.DURATION:
         return []  # a duration is always of class duration
     classes = [str(member) for member in DEVICE_CLASSES[platform]]
-    if platform != "sensor":
+    if not KINDS[platform].measures:
         return classes
     if kind is ValueKind.DATETIME:
         return [SensorDeviceClass.TIMESTAMP.value]
@@ -117,7 +120,8 @@ def class_errors(
         errors[CONF_UNIT_OF_MEASUREMENT], units = "unit_not_valid", set(DURATION_UNITS)
     elif (units := allowed_units(platform, device_class)) is not None and unit not in units:
         errors[CONF_UNIT_OF_MEASUREMENT] = "unit_not_valid" if unit else "unit_required"
-    if state_class and (platform != "sensor" or not takes_unit(platform, kind)):
+    measures = platform in KINDS and KINDS[platform].measures
+    if state_class and (not measures or not takes_unit(platform, kind)):
         errors[CONF_STATE_CLASS] = "state_class_numeric_sensor"
     elif state_class not in (None, *SensorStateClass):
         errors[CONF_STATE_CLASS] = "invalid_state_class"

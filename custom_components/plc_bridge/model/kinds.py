@@ -127,6 +127,12 @@ class Kind:
     """The device classes it can carry (a sensor's are narrowed by its value)."""
     units: Mapping[Any, Any] | None = None
     """The units Home Assistant allows per device class, where it checks them."""
+    scaled: bool = False
+    """Its point shows a number: scale, offset and a unit apply."""
+    measures: bool = False
+    """It shows a measurement: a state class, and only the device classes its value fits."""
+    bounded: bool = False
+    """It is set within a minimum, a maximum and a step."""
     value_map: str = ""
     """Whether its form asks a value map: "required", "optional" (integer points) or not."""
     bits: bool = False
@@ -248,6 +254,8 @@ KINDS_IN_ORDER: tuple[Kind, ...] = (
     Kind(
         key="sensor",
         single=True,
+        scaled=True,
+        measures=True,
         device_class=SensorDeviceClass,
         units=SENSOR_UNITS,
         value_map="optional",
@@ -278,6 +286,8 @@ KINDS_IN_ORDER: tuple[Kind, ...] = (
     Kind(
         key="number",
         single=True,
+        scaled=True,
+        bounded=True,
         value_kinds=NUMERIC | {ValueKind.DURATION},
         kind_error="needs_number",
         writes=True,

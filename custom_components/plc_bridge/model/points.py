@@ -186,7 +186,7 @@ def point_data(
         if values.get(key):
             data[key] = str(values[key])
     for key in (CONF_MIN, CONF_MAX, CONF_STEP):
-        if values.get(key) is not None and platform == "number":
+        if values.get(key) is not None and platform in KINDS and KINDS[platform].bounded:
             data[key] = float(values[key])
     role = str(values.get(CONF_ROLE) or "")
     errors |= read_only_errors(platform, role, data[CONF_READ_ONLY])
