@@ -10,9 +10,9 @@ import homeassistant
 from homeassistant.components.sensor import SensorDeviceClass
 import pytest
 
-from custom_components.plc_bridge.const import POINT_PLATFORMS
 from custom_components.plc_bridge.flows.point_form import browse_values, details_schema
 from custom_components.plc_bridge.model.device_classes import DEVICE_CLASSES, device_classes
+from custom_components.plc_bridge.model.kinds import POINT_PLATFORMS
 from custom_components.plc_bridge.model.points import point_data, suggested_platform
 from custom_components.plc_bridge.plc import BrowseItem, ValueKind
 from custom_components.plc_bridge.plc.vendors import client_class

@@ -9,10 +9,11 @@ from homeassistant.core import HomeAssistant
 from homeassistant.helpers import config_validation as cv
 from homeassistant.helpers.typing import ConfigType
 
-from .const import DOMAIN, PLATFORMS
+from .const import DOMAIN
 from .coordinator import PlcBridgeConfigEntry, PlcCoordinator, PlcRuntimeData, link_error
 from .entity import plc_device
 from .model import migration
+from .model.kinds import PLATFORMS
 from .plc import PlcError
 from .runtime.connection import create_polling_client
 from .runtime.entities import PointEntities, async_register_devices

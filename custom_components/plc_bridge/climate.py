@@ -55,13 +55,12 @@ class PlcClimate(PlcCompositeEntity, ClimateEntity):
         if "on_off" in parts and HVACMode.OFF not in modes:
             modes.insert(0, HVACMode.OFF)
         self._attr_hvac_modes = modes
-        features = ClimateEntityFeature(0)
+        features = ClimateEntityFeature(self.features())
         if HVACMode.OFF in modes:
             features |= ClimateEntityFeature.TURN_OFF | ClimateEntityFeature.TURN_ON
         self._attr_temperature_unit = UnitOfTemperature.CELSIUS
         target = parts.get("target_temperature")
         if target is not None:
-            features |= ClimateEntityFeature.TARGET_TEMPERATURE
             data = target.config.data
             bounds = target.conversion.bounds
             if data.get(CONF_MIN) is not None:
@@ -75,7 +74,6 @@ class PlcClimate(PlcCompositeEntity, ClimateEntity):
             if data.get(CONF_STEP):
                 self._attr_target_temperature_step = float(data[CONF_STEP])
         if (preset := parts.get("preset")) is not None:
-            features |= ClimateEntityFeature.PRESET_MODE
             self._attr_preset_modes = [label for _, label in preset.conversion.value_map]
         self._attr_supported_features = features
         for part in parts.values():

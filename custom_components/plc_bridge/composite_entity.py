@@ -9,20 +9,22 @@ time whatever the on's outcome, the off retried until confirmed and ended at unl
 from __future__ import annotations
 
 import asyncio
-from collections.abc import Callable, Collection
+from collections.abc import Callable, Collection, Iterable
 from dataclasses import dataclass
 from typing import Any
 
+from homeassistant.const import CONF_UNIT_OF_MEASUREMENT, UnitOfTemperature
 from homeassistant.core import callback
 from homeassistant.exceptions import HomeAssistantError, ServiceValidationError
 from homeassistant.helpers.entity import Entity
 from homeassistant.helpers.entity_platform import AddConfigEntryEntitiesCallback
 
-from .const import DOMAIN
+from .const import CONF_MAX, CONF_MIN, CONF_STEP, DOMAIN
 from .coordinator import PlcBridgeConfigEntry
 from .entity import PlcEntity, device_of, entity_name, point_fields
 from .model.composite import Composite, composites, group_key
 from .model.conversion import Conversion
+from .model.kinds import KINDS
 from .model.points import PointConfig, entry_points, pulse_seconds
 from .plc import Point, PointResult, Value, ValueKind
 from .runtime.entities import PointFactory
@@ -49,6 +51,24 @@ class Part:
     def level(self, *, on: bool) -> bool | int | float:
         """Return the raw value that means on or off for this part (codes and invert applied)."""
         return self.conversion.state_value(on, boolean=self.kind is ValueKind.BOOL)
+
+    @property
+    def limits(self) -> tuple[float | None, float | None, float | None]:
+        """A set point's lowest and highest value and step: its min, max, step, else its range."""
+        data, bounds = self.config.data, self.conversion.bounds
+        low = float(data[CONF_MIN]) if data.get(CONF_MIN) is not None else None
+        high = float(data[CONF_MAX]) if data.get(CONF_MAX) is not None else None
+        if bounds:
+            low = bounds[0] if low is None else low
+            high = bounds[1] if high is None else high
+        return low, high, float(data[CONF_STEP]) if data.get(CONF_STEP) else None
+
+
+def temperature_unit(parts: Iterable[Part]) -> str:
+    """The unit of an entity's temperatures: Fahrenheit where a part says so, else Celsius."""
+    units = {part.config.data.get(CONF_UNIT_OF_MEASUREMENT) for part in parts}
+    fahrenheit = UnitOfTemperature.FAHRENHEIT in units
+    return UnitOfTemperature.FAHRENHEIT if fahrenheit else UnitOfTemperature.CELSIUS
 
 
 def part_of(entry: PlcBridgeConfigEntry, config: PointConfig) -> Part:
@@ -100,10 +120,24 @@ class PlcCompositeEntity(PlcEntity):
         self._machine = group.subentry_id
         self.parts = parts
         self._key = group.key
+        self._platform = group.platform
         self._writing = asyncio.Lock()  # one write of commands and releases at a time
         self.outputs = {role: self._output(role) for role, part in parts.items() if part.pulse > 0}
         seconds = seconds_of(part.config.data for part in parts.values())
         self.supervisor = Supervisor(entry, self._key, self._label, seconds, self.follows)
+
+    def features(self) -> int:
+        """The entity features its kind's description gives the parts it has, as flags.
+
+        A part enables its role's features where Home Assistant writes it: a role that is
+        always written (a command, a set point), or one read and written unless read only.
+        """
+        kind = KINDS[self._platform]
+        return kind.features(
+            role
+            for role, part in self.parts.items()
+            if not part.read_only or ((described := kind.role(role)) and described.written)
+        )
 
     def _output(self, role: str) -> Output:
         """Return the output of a command part: its off-write and its repair issue."""
@@ -179,6 +213,23 @@ class PlcCompositeEntity(PlcEntity):
         """Write parts by role in one request (the write guard checks each); read all parts back."""
         await self.coordinator.async_write(
             {self.parts[role].point: values[role] for role in values}, read_back=self.read_points()
+        )
+
+    async def async_write_number(self, role: str, value: float, low: float, high: float) -> None:
+        """Write a part's shown value through its conversion; refused outside low..high first."""
+        if not low <= value <= high:
+            raise ServiceValidationError(
+                translation_domain=DOMAIN,
+                translation_key="out_of_range",
+                translation_placeholders={
+                    "value": f"{value:g}",
+                    "min": f"{low:g}",
+                    "max": f"{high:g}",
+                },
+            )
+        part = self.parts[role]
+        await self.async_write_parts(
+            {role: part.conversion.raw(value, integer=part.kind is ValueKind.INTEGER)}
         )
 
     async def async_command(

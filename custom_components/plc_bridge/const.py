@@ -5,8 +5,6 @@ from __future__ import annotations
 import logging
 from typing import Final
 
-from homeassistant.const import Platform
-
 DOMAIN: Final = "plc_bridge"
 LOGGER = logging.getLogger(__package__)
 
@@ -65,34 +63,6 @@ CONF_RESEND: Final = "resend"
 CONF_SEND_ON_START: Final = "send_on_start"
 CONF_DEFAULT: Final = "default"
 """Expose data: the value written while the entity is unavailable or unknown (absent: none)."""
-
-PLATFORMS: Final = [
-    Platform.BINARY_SENSOR,
-    Platform.BUTTON,
-    Platform.CLIMATE,
-    Platform.COVER,
-    Platform.DATETIME,
-    Platform.EVENT,
-    Platform.FAN,
-    Platform.LIGHT,
-    Platform.NUMBER,
-    Platform.SELECT,
-    Platform.SENSOR,
-    Platform.SWITCH,
-    Platform.TEXT,
-    Platform.VALVE,
-]
-POINT_PLATFORMS: Final = (
-    "sensor",
-    "binary_sensor",
-    "switch",
-    "number",
-    "datetime",
-    "text",
-    "select",
-    "button",
-    "event",
-)
 
 ATTR_CONFIG_ENTRY_ID: Final = "config_entry_id"
 ATTR_POINTS: Final = "points"

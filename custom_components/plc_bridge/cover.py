@@ -18,7 +18,6 @@ is released after STOP_HOLD. A position written releases the level commands stil
 
 from __future__ import annotations
 
-from enum import IntFlag
 import math
 from typing import Any
 
@@ -35,7 +34,8 @@ from homeassistant.helpers.entity_platform import AddConfigEntryEntitiesCallback
 
 from .composite_entity import Part, PlcCompositeEntity, async_setup_composites
 from .coordinator import PlcBridgeConfigEntry
-from .model.composite import CONF_TRAVEL_TIME, Composite
+from .model.composite import Composite
+from .model.kinds import CONF_TRAVEL_TIME
 from .plc import Point, Value, ValueKind
 from .runtime.outputs import async_send
 from .runtime.supervision import seconds_of
@@ -88,22 +88,6 @@ class Travel(PlcCompositeEntity):
         )
         self._moved: dict[str, float] = {}  # level open or close held: loop time of its command
         self._left: set[str] = set()  # of those, the ones read away from their end since
-
-    def _travel_features[F: IntFlag](self, open_: F, close: F, stop: F, set_position: F) -> F:
-        """The given flags of what the parts allow: open, close, stop, be set to a position."""
-        settable = self._setter() is not None
-        parts = self.parts
-        step = "step" in parts
-        features = type(open_)(0)
-        for flag, present in (
-            (open_, settable or step or "open" in parts),
-            (close, settable or step or "close" in parts),
-            (stop, step or "stop" in parts),
-            (set_position, settable),
-        ):
-            if present:
-                features |= flag
-        return features
 
     def _setter(self, role: str = "position") -> str | None:
         """The role that takes a position: `set_position`, else a writable `position`."""
@@ -240,15 +224,7 @@ class PlcCover(Travel, CoverEntity):
     ) -> None:
         """Work out what the cover can do from the parts it has."""
         super().__init__(entry, group, parts)
-        features = self._travel_features(
-            CoverEntityFeature.OPEN,
-            CoverEntityFeature.CLOSE,
-            CoverEntityFeature.STOP,
-            CoverEntityFeature.SET_POSITION,
-        )
-        if self._setter("tilt_position") is not None:
-            features |= CoverEntityFeature.SET_TILT_POSITION
-        self._attr_supported_features = features
+        self._attr_supported_features = CoverEntityFeature(self.features())
         for part in parts.values():
             try:
                 self._attr_device_class = CoverDeviceClass(part.config.data[CONF_DEVICE_CLASS])

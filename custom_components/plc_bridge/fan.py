@@ -43,13 +43,9 @@ class PlcFan(PlcCompositeEntity, FanEntity):
     ) -> None:
         """Work out the speed and the presets from the parts."""
         super().__init__(entry, group, parts)
-        features = FanEntityFeature.TURN_ON | FanEntityFeature.TURN_OFF
-        if "percentage" in parts:
-            features |= FanEntityFeature.SET_SPEED
         if (preset := parts.get("preset")) is not None:
-            features |= FanEntityFeature.PRESET_MODE
             self._attr_preset_modes = [label for _, label in preset.conversion.value_map]
-        self._attr_supported_features = features
+        self._attr_supported_features = FanEntityFeature(self.features())
 
     @property
     def is_on(self) -> bool | None:

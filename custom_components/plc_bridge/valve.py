@@ -41,12 +41,7 @@ class PlcValve(Travel, ValveEntity):
     ) -> None:
         """Work out what the valve can do from the parts it has."""
         super().__init__(entry, group, parts)
-        self._attr_supported_features = self._travel_features(
-            ValveEntityFeature.OPEN,
-            ValveEntityFeature.CLOSE,
-            ValveEntityFeature.STOP,
-            ValveEntityFeature.SET_POSITION,
-        )
+        self._attr_supported_features = ValveEntityFeature(self.features())
         self._attr_reports_position = "position" in parts or "set_position" in parts
 
     @property

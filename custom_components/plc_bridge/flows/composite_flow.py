@@ -38,20 +38,23 @@ from ..const import (
     CONF_ROLE,
 )
 from ..model.composite import (
-    CONF_SUPERVISION,
-    CONF_TRAVEL_TIME,
-    INVERTIBLE,
-    ROLES,
-    SUPERVISED_PLATFORMS,
-    TRAVEL_PLATFORMS,
     as_platform,
+    entity_time,
     group_errors,
     part_data,
+    role_of,
     supervision_data,
     travel_data,
 )
+from ..model.kinds import (
+    COMPOSITE_PLATFORMS,
+    CONF_SUPERVISION,
+    CONF_TRAVEL_TIME,
+    CONTROLS,
+    KINDS,
+)
 from ..model.point_table import first_type
-from ..model.points import CONTROLS, check_point, point_key
+from ..model.points import check_point, point_key
 from ..model.poll_classes import CONF_POLL, NORMAL, poll_field
 from ..model.write_rules import layout_conflicts
 from ..plc import PlcAddressError, PlcClient, Point
@@ -94,7 +97,9 @@ class CompositeSteps(DeviceFlowBase):
         schema = vol.Schema(
             {
                 vol.Required(CONF_PLATFORM, default="cover"): SelectSelector(
-                    SelectSelectorConfig(options=list(ROLES), translation_key="composite_platform")
+                    SelectSelectorConfig(
+                        options=list(COMPOSITE_PLATFORMS), translation_key="composite_platform"
+                    )
                 ),
                 vol.Required(CONF_NAME): TextSelector(),
                 **poll_field(),
@@ -114,7 +119,7 @@ class CompositeSteps(DeviceFlowBase):
         errors: dict[str, str] = {}
         placeholders = {"error": "", "name": self._composite[CONF_NAME], "role": ""}
         placeholders |= {CONF_ADDRESS: "", CONF_DATA_TYPE: ""}
-        placeholders["roles"] = ", ".join(ROLES[platform])
+        placeholders["roles"] = ", ".join(KINDS[platform].role_keys)
         placeholders |= {"point": "", "written": ""}
         if user_input is not None:
             travel, errors = travel_data(platform, user_input)
@@ -134,13 +139,11 @@ class CompositeSteps(DeviceFlowBase):
                 self._parts, self._made = parts, []
                 return await self.async_step_composite_part()
         fields: dict[vol.Marker, Any] = {}
-        for role in ROLES[platform]:
+        for role in KINDS[platform].role_keys:
             fields[vol.Optional(role)] = TextSelector()
             fields[vol.Optional(f"{role}{TYPE_SUFFIX}")] = data_types(self._client)
-        if platform in TRAVEL_PLATFORMS:
-            fields[vol.Optional(CONF_TRAVEL_TIME)] = _SECONDS
-        if platform in SUPERVISED_PLATFORMS:
-            fields[vol.Optional(CONF_SUPERVISION)] = _SECONDS
+        if time := entity_time(platform):
+            fields[vol.Optional(time)] = _SECONDS
         return self.async_show_form(
             step_id="composite_parts",
             data_schema=self.add_suggested_values_to_schema(vol.Schema(fields), user_input or {}),
@@ -158,7 +161,7 @@ class CompositeSteps(DeviceFlowBase):
         """Return the parts given an address, each checked as the kind it resembles."""
         parts: list[dict[str, Any]] = []
         taken = self._taken()
-        for role in ROLES[platform]:
+        for role in KINDS[platform].role_keys:
             address = str(user_input.get(role) or "").strip()
             if not address:
                 continue
@@ -245,7 +248,7 @@ class CompositeSteps(DeviceFlowBase):
         schema = vol.Schema({k: v for k, v in schema.schema.items() if k != CONF_POLL})
         if self._part_ids:  # a new entity's parts take the class its first step set
             schema = schema.extend(poll_field())
-        if role in INVERTIBLE:
+        if (described := role_of(platform, role)) is not None and described.invertible:
             schema = schema.extend({vol.Required(CONF_INVERT, default=False): BooleanSelector()})
         return self.async_show_form(
             step_id="composite_part",
@@ -313,10 +316,8 @@ class CompositeSteps(DeviceFlowBase):
                 vol.Optional(CONF_DATA_TYPE): data_types(self._client),
             }
         )
-        if platform in TRAVEL_PLATFORMS:
-            schema = schema.extend({vol.Optional(CONF_TRAVEL_TIME): _SECONDS})
-        if platform in SUPERVISED_PLATFORMS:
-            schema = schema.extend({vol.Optional(CONF_SUPERVISION): _SECONDS})
+        if time := entity_time(platform):
+            schema = schema.extend({vol.Optional(time): _SECONDS})
         return self.async_show_form(
             step_id="composite_edit",
             data_schema=self.add_suggested_values_to_schema(schema, user_input or values),

@@ -34,11 +34,11 @@ from ..const import (
     CONF_READ_ONLY,
     CONF_SCALE,
     CONF_STEP,
-    POINT_PLATFORMS,
 )
-from ..model.device_classes import NUMERIC, device_classes, takes_unit, unit_selector
+from ..model.device_classes import device_classes, takes_unit, unit_selector
+from ..model.kinds import CONTROLS, KINDS, NUMERIC, POINT_PLATFORMS
 from ..model.point_kinds import kind_fields
-from ..model.points import CONTROLS, suggested_platform
+from ..model.points import suggested_platform
 from ..model.poll_classes import has_poll_class, poll_field
 from ..plc import BrowseItem, PlcAddressError, PlcClient, Point, ValueKind
 
@@ -84,7 +84,8 @@ def details_schema(
     if takes_unit(platform, kind):
         unit_class = "duration" if kind is ValueKind.DURATION else device_class
         fields[vol.Optional(CONF_UNIT_OF_MEASUREMENT)] = unit_selector(platform, unit_class)
-    if platform == "sensor" and takes_unit(platform, kind):
+    described = KINDS[platform]
+    if described.measures and takes_unit(platform, kind):
         fields[vol.Optional(CONF_STATE_CLASS)] = SelectSelector(
             SelectSelectorConfig(
                 options=list(SensorStateClass),
@@ -92,10 +93,10 @@ def details_schema(
                 mode=SelectSelectorMode.DROPDOWN,
             )
         )
-    if platform in ("sensor", "number") and (kind is None or kind in NUMERIC):
+    if described.scaled and (kind is None or kind in NUMERIC):
         fields[vol.Required(CONF_SCALE, default=1.0)] = _NUMBER
         fields[vol.Required(CONF_OFFSET, default=0.0)] = _NUMBER
-    if platform == "number":
+    if described.bounded:
         fields[vol.Optional(CONF_MIN)] = _NUMBER
         fields[vol.Optional(CONF_MAX)] = _NUMBER
         fields[vol.Optional(CONF_STEP)] = NumberSelector(

@@ -9,7 +9,7 @@ names a role (a switch of one address stays as it was). Points stored before rol
 existed have none and load as they always did. Every part is an ordinary point: it joins
 the coordinator's poll and is written through its one write path.
 
-A role is checked and stored like the single-address kind it resembles (`ROLES`): a limit
+A role is checked and stored like the single-address kind it resembles (kinds.py): a limit
 switch or state like a binary sensor (invert, on/off codes), a command like a button (codes,
 pulse), a position read like a sensor and set like a number (linear range), a status like
 an enum sensor and a mode like a select (value map). So a part that is only read is read
@@ -20,125 +20,50 @@ from __future__ import annotations
 
 from collections.abc import Collection, Iterable, Mapping
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any, Final
+from typing import TYPE_CHECKING, Any
 
-from homeassistant.components.climate.const import HVACAction, HVACMode
 from homeassistant.const import CONF_NAME
 
 from ..const import CONF_ENTITY, CONF_INVERT, CONF_PLATFORM, CONF_ROLE, CONF_VALUE_MAP
 from ..plc import PlcClient, Point
 from .conversion import stored_pairs
-from .points import CONTROLS, point_data
+from .kinds import CONF_SUPERVISION, CONF_TRAVEL_TIME, CONTROLS, KINDS, Role
+from .points import point_data
 from .poll_classes import POLL_CLASSES
 
 if TYPE_CHECKING:
     from .points import PointConfig
 
-COVER_STATES = frozenset({"open", "closed", "opening", "closing"})
-"""The labels a cover's status map may use."""
-ROLES: dict[str, dict[str, str]] = {
-    "cover": {
-        "position": "sensor",
-        "set_position": "number",
-        "open": "button",
-        "close": "button",
-        "stop": "button",
-        "open_limit": "binary_sensor",
-        "closed_limit": "binary_sensor",
-        "status": "sensor",
-        "tilt_position": "sensor",
-        "set_tilt_position": "number",
-        "step": "button",
-    },
-    "valve": {
-        "position": "sensor",
-        "set_position": "number",
-        "open": "button",
-        "close": "button",
-        "stop": "button",
-        "open_limit": "binary_sensor",
-        "closed_limit": "binary_sensor",
-        "status": "sensor",
-    },
-    "climate": {
-        "current_temperature": "sensor",
-        "target_temperature": "number",
-        "hvac_mode": "select",
-        "hvac_action": "sensor",
-        "on_off": "switch",
-        "preset": "select",
-    },
-    "switch": {"state": "binary_sensor", "command": "button"},
-    "fan": {
-        "state": "binary_sensor",
-        "command": "button",
-        "percentage": "number",
-        "preset": "select",
-    },
-    "light": {"state": "binary_sensor", "command": "button", "brightness": "number"},
-}
-"""Each composite platform's roles, and the single-address kind each role is checked as."""
-NEEDS_ONE_OF: dict[str, tuple[str, ...]] = {
-    "cover": (
-        "position",
-        "set_position",
-        "open",
-        "close",
-        "open_limit",
-        "closed_limit",
-        "status",
-        "step",
-    ),
-    "climate": ("current_temperature", "target_temperature", "hvac_mode", "on_off"),
-    "valve": ("position", "set_position", "open", "close", "open_limit", "closed_limit", "status"),
-    "switch": ("command",),
-    "fan": ("command", "percentage"),
-    "light": ("command", "brightness"),
-}
-"""An entity needs at least one of these roles to show anything."""
-LABELS: dict[str, frozenset[str]] = {
-    "status": COVER_STATES,
-    "hvac_mode": frozenset(map(str, HVACMode)),
-    "hvac_action": frozenset(map(str, HVACAction)),
-}
-"""The labels a role's value map may use: Home Assistant's own states."""
-
-
-CONF_TRAVEL_TIME: Final = "travel_time"
-"""Part data of a cover or valve: seconds a full travel takes (absent: none); every part has it."""
-TRAVEL_PLATFORMS = frozenset({"cover", "valve"})
 TRAVEL_MIN, TRAVEL_MAX = 1.0, 600.0
 """The travel times a cover or valve may have, in seconds (0 or empty: none)."""
-CONF_SUPERVISION: Final = "supervision"
-"""Part data: seconds the state has to follow a command (absent: none); every part has it."""
-SUPERVISED_PLATFORMS = frozenset({"switch", "light", "fan", "climate"})
-"""Kinds that take a supervision time (supervision.py); a cover or valve has its travel time."""
-ALWAYS = frozenset({"cover", "valve", "climate", "light", "fan"})
-"""Platforms whose every point is a part; a switch point is one only when it names a role."""
 
 
 def takes_roles(platform: str) -> bool:
     """True for a platform whose entities can be built from several points."""
-    return platform in ROLES
+    return platform in KINDS and bool(KINDS[platform].roles)
 
 
 def is_part(platform: str, role: Any) -> bool:
     """True for a point that is a part of an entity of several points."""
-    return platform in ALWAYS or (platform in ROLES and bool(role))
+    kind = KINDS.get(platform)
+    return kind is not None and (kind.parts_only or (bool(kind.roles) and bool(role)))
+
+
+def role_of(platform: str, role: Any) -> Role | None:
+    """Return the description of a part's role, None where the kind has no such role."""
+    kind = KINDS.get(platform)
+    return None if kind is None else kind.role(str(role or ""))
 
 
 def as_platform(platform: str, role: Any) -> str:
     """Return the single-address kind a part is checked and stored as (itself if none)."""
-    return ROLES.get(platform, {}).get(str(role or ""), platform)
+    described = role_of(platform, role)
+    return platform if described is None else described.checked_as
 
 
 def written(data: Mapping[str, Any]) -> bool:
     """True for a stored point its entity writes: a control, or a part of a written role."""
     return as_platform(str(data.get(CONF_PLATFORM, "")), data.get(CONF_ROLE)) in CONTROLS
-
-
-INVERTIBLE = frozenset({"position", "set_position", "tilt_position", "set_tilt_position"})
-"""Roles whose point may count the other way (0 % open), besides those on or off."""
 
 
 @dataclass(frozen=True, slots=True)
@@ -228,14 +153,14 @@ def touched(
 
 def part_errors(platform: str, values: Mapping[str, Any]) -> dict[str, str]:
     """Check a part's role and its value map's labels; return the errors by field."""
-    role = str(values.get(CONF_ROLE) or "")
-    if role not in ROLES[platform]:
+    described = role_of(platform, values.get(CONF_ROLE))
+    if described is None:
         return {CONF_ROLE: "role_invalid"}
-    if role in LABELS and not values.get(CONF_VALUE_MAP):
+    if described.labels and not values.get(CONF_VALUE_MAP):
         return {CONF_VALUE_MAP: "map_empty"}
-    if role in LABELS:
+    if described.labels:
         labels = {label for _, label in stored_pairs(values, CONF_VALUE_MAP)}
-        if not labels <= LABELS[role]:
+        if not labels <= set(described.labels):
             return {CONF_VALUE_MAP: "role_labels"}
     return {}
 
@@ -247,12 +172,18 @@ def part_data(
     platform = str(values.get(CONF_PLATFORM, ""))
     role = str(values.get(CONF_ROLE) or "")
     errors = part_errors(platform, values)
+    described = role_of(platform, role)
+    kind = KINDS.get(platform)
+    wording = {"role": role, "platform": platform}
+    wording["roles"] = ", ".join(kind.role_keys if kind else ())
+    wording["labels"] = ", ".join(described.labels if described else ())
     if CONF_ROLE in errors:
-        return {}, errors, {"role": role, "platform": platform}
+        return {}, errors, wording
     data, found, placeholders = point_data(
         client, {**values, CONF_PLATFORM: as_platform(platform, role)}
     )
-    if role in INVERTIBLE and values.get(CONF_INVERT):
+    placeholders = wording | placeholders
+    if described and described.invertible and values.get(CONF_INVERT):
         data[CONF_INVERT] = True
     travel, wrong = travel_data(platform, values)
     supervision, wrong_time = supervision_data(platform, values)
@@ -266,7 +197,7 @@ def travel_data(platform: str, values: Mapping[str, Any]) -> tuple[dict[str, Any
 
     Only a cover or a valve travels; its time is bounded, so a level command is always released.
     """
-    return _entity_seconds(CONF_TRAVEL_TIME, TRAVEL_PLATFORMS, platform, values)
+    return _entity_seconds(CONF_TRAVEL_TIME, platform, values)
 
 
 def supervision_data(
@@ -276,11 +207,17 @@ def supervision_data(
 
     The bounds are the travel time's: a cover's or valve's travel time is its supervision time.
     """
-    return _entity_seconds(CONF_SUPERVISION, SUPERVISED_PLATFORMS, platform, values)
+    return _entity_seconds(CONF_SUPERVISION, platform, values)
+
+
+def entity_time(platform: str) -> str:
+    """Return the time setting an entity of this kind has (travel or supervision), or ""."""
+    kind = KINDS.get(platform)
+    return "" if kind is None else kind.entity_time
 
 
 def _entity_seconds(
-    key: str, platforms: Collection[str], platform: str, values: Mapping[str, Any]
+    key: str, platform: str, values: Mapping[str, Any]
 ) -> tuple[dict[str, Any], dict[str, str]]:
     """Return an entity's time setting `key` as stored, or its error (`<key>_not_here`, ...)."""
     given = values.get(key)
@@ -292,7 +229,7 @@ def _entity_seconds(
         return {}, {key: f"{key}_out_of_range"}
     if seconds == 0:
         return {}, {}
-    if platform not in platforms:
+    if entity_time(platform) != key:
         return {}, {key: f"{key}_not_here"}
     if not TRAVEL_MIN <= seconds <= TRAVEL_MAX:
         return {}, {key: f"{key}_out_of_range"}
@@ -329,8 +266,8 @@ def group_errors(rows: Iterable[Mapping[str, Any]]) -> list[tuple[str, str, dict
         elif len(watched.get((platform, name), ())) > 1:
             seconds = ", ".join(f"{time:g}" for time in sorted(watched[(platform, name)]))
             errors.append((name, "supervision_differs", {"name": name, "seconds": seconds}))
-        elif not set(roles) & set(NEEDS_ONE_OF[platform]):
-            needs = ", ".join(NEEDS_ONE_OF[platform])
+        elif not set(roles) & set(KINDS[platform].needs_one_of):
+            needs = ", ".join(KINDS[platform].needs_one_of)
             errors.append((name, "role_missing", {"name": name, "roles": needs}))
     return errors
 

@@ -66,8 +66,8 @@ from .availability import (
     CONF_AVAILABILITY_DATA_TYPE,
     CONF_AVAILABILITY_VALUES,
 )
-from .composite import CONF_SUPERVISION, CONF_TRAVEL_TIME
 from .expose import CONF_SEND
+from .kinds import CONF_SUPERVISION, CONF_TRAVEL_TIME
 from .poll_classes import CONF_FAST_INTERVAL, CONF_POLL, CONF_SLOW_INTERVAL
 from .vendor_fields import SECOND_PAGES, VENDOR_FIELDS
 

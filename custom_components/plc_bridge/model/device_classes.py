@@ -10,22 +10,13 @@ from collections.abc import Iterable, Mapping
 from enum import StrEnum
 from typing import Any
 
-from homeassistant.components.binary_sensor import (  # type: ignore[attr-defined]
-    BinarySensorDeviceClass,
-)
-from homeassistant.components.number import NumberDeviceClass
-from homeassistant.components.number.const import DEVICE_CLASS_UNITS as NUMBER_UNITS
 from homeassistant.components.sensor import (
     CONF_STATE_CLASS,
     DEVICE_CLASS_STATE_CLASSES,
     SensorDeviceClass,
     SensorStateClass,
 )
-from homeassistant.components.sensor.const import (
-    DEVICE_CLASS_UNITS as SENSOR_UNITS,
-    STATE_CLASS_UNITS,
-)
-from homeassistant.components.switch import SwitchDeviceClass  # type: ignore[attr-defined]
+from homeassistant.components.sensor.const import STATE_CLASS_UNITS
 from homeassistant.const import CONF_DEVICE_CLASS, CONF_UNIT_OF_MEASUREMENT
 from homeassistant.helpers.selector import (
     SelectSelector,
@@ -36,27 +27,27 @@ from homeassistant.helpers.selector import (
 
 from ..plc import ValueKind
 from .duration_units import UNITS as DURATION_UNITS
+from .kinds import KINDS, NUMERIC
 
-NUMERIC = frozenset({ValueKind.INTEGER, ValueKind.FLOAT})
 COUNTED = NUMERIC | {ValueKind.BOOL}
 """Kinds a sensor shows as a number (a true/false point as 1 or 0): unit and classes apply."""
 
-DEVICE_CLASSES: dict[str, type[StrEnum]] = {
-    "sensor": SensorDeviceClass,
-    "binary_sensor": BinarySensorDeviceClass,
-    "switch": SwitchDeviceClass,
-    "number": NumberDeviceClass,
+DEVICE_CLASSES = {
+    key: kind.device_class for key, kind in KINDS.items() if kind.single and kind.device_class
 }
 NOT_NUMERIC = {SensorDeviceClass.TIMESTAMP, SensorDeviceClass.DATE, SensorDeviceClass.ENUM}
 """Sensor classes whose state is no number: a numeric point cannot carry them."""
-UNITS: dict[str, Mapping[Any, set[Any]]] = {"sensor": SENSOR_UNITS, "number": NUMBER_UNITS}
+UNITS = {key: kind.units for key, kind in KINDS.items() if kind.units is not None}
 
 
 def takes_unit(platform: str, kind: ValueKind | None) -> bool:
     """True when the platform shows the point as a number that can have a unit."""
-    if platform == "sensor":
+    described = KINDS.get(platform)
+    if described is None or not described.scaled:
+        return False
+    if described.measures:
         return kind is None or kind in COUNTED or kind is ValueKind.DURATION
-    return platform == "number"  # a duration: a time unit (seconds unless given)
+    return True  # a duration: a time unit (seconds unless given)
 
 
 def device_classes(platform: str, kind: ValueKind | None) -> list[str]:
@@ -64,7 +55,7 @@ def device_classes(platform: str, kind: ValueKind | None) -> list[str]:
     if platform not in DEVICE_CLASSES or kind is ValueKind.DURATION:
         return []  # a duration is always of class duration
     classes = [str(member) for member in DEVICE_CLASSES[platform]]
-    if platform != "sensor":
+    if not KINDS[platform].measures:
         return classes
     if kind is ValueKind.DATETIME:
         return [SensorDeviceClass.TIMESTAMP.value]
@@ -129,7 +120,8 @@ def class_errors(
         errors[CONF_UNIT_OF_MEASUREMENT], units = "unit_not_valid", set(DURATION_UNITS)
     elif (units := allowed_units(platform, device_class)) is not None and unit not in units:
         errors[CONF_UNIT_OF_MEASUREMENT] = "unit_not_valid" if unit else "unit_required"
-    if state_class and (platform != "sensor" or not takes_unit(platform, kind)):
+    measures = platform in KINDS and KINDS[platform].measures
+    if state_class and (not measures or not takes_unit(platform, kind)):
         errors[CONF_STATE_CLASS] = "state_class_numeric_sensor"
     elif state_class not in (None, *SensorStateClass):
         errors[CONF_STATE_CLASS] = "invalid_state_class"

@@ -38,21 +38,8 @@ from ..const import (
 )
 from ..plc import ValueKind
 from .conversion import LINEAR_KEYS, InvalidPairs, format_pairs, parse_pairs
+from .kinds import KINDS, Kind
 
-ON_OFF = frozenset({ValueKind.BOOL, ValueKind.INTEGER})
-KIND_PLATFORMS: dict[str, tuple[frozenset[ValueKind], str]] = {
-    "binary_sensor": (ON_OFF, "needs_bool"),
-    "switch": (ON_OFF, "needs_bool"),
-    "select": (frozenset({ValueKind.INTEGER}), "needs_integer"),
-    "button": (ON_OFF, "needs_bool_or_integer"),
-    "event": (frozenset({ValueKind.INTEGER}), "needs_integer"),
-}
-"""The kinds of value these platforms can show, and the error when a point is not one.
-
-A switch or binary sensor also takes an integer point: on and off are its codes (1 and 0
-unless the form names others)."""
-KIND_CONTROLS = frozenset({"select", "button"})
-"""The new platforms that write their point."""
 PAIRS_FIELDS = (CONF_VALUE_MAP, CONF_BITS)
 NUMBER_FIELDS = (*LINEAR_KEYS, CONF_PRECISION, CONF_ON_VALUE, CONF_OFF_VALUE, CONF_PULSE)
 """The numeric fields of these kinds (import reads them as numbers)."""
@@ -81,31 +68,27 @@ def _codes(kind: ValueKind | None) -> bool:
     return kind is None or kind is ValueKind.INTEGER
 
 
-def _linear(platform: str, kind: ValueKind | None) -> bool:
-    """True when the point is shown as a number a linear range can convert."""
-    return platform in ("sensor", "number") and kind in (None, ValueKind.INTEGER, ValueKind.FLOAT)
-
-
 def kind_fields(platform: str, kind: ValueKind | None) -> dict[vol.Marker, Any]:
-    """Return the fields the platform needs besides the point form's own."""
+    """Return the fields the platform needs besides the point form's own (its kind's)."""
     fields: dict[vol.Marker, Any] = {}
-    if platform == "select":
+    described = KINDS.get(platform, Kind(key=platform))
+    if described.value_map == "required":
         fields[vol.Required(CONF_VALUE_MAP)] = _PAIRS
-    elif platform == "sensor" and _codes(kind):
+    elif described.value_map and _codes(kind):
         fields[vol.Optional(CONF_VALUE_MAP)] = _PAIRS
-    if platform == "event":
+    if described.bits:
         fields[vol.Required(CONF_BITS)] = _PAIRS
-    if _linear(platform, kind):
+    if described.linear and kind in (None, ValueKind.INTEGER, ValueKind.FLOAT):
         for key in (*LINEAR_KEYS, CONF_PRECISION):
             fields[vol.Optional(key)] = _NUMBER
-    if platform in ("switch", "binary_sensor"):
+    if described.invert:
         fields[vol.Required(CONF_INVERT, default=False)] = BooleanSelector()
-    if platform == "sensor" and kind is ValueKind.DURATION:
+    if described.as_text and kind is ValueKind.DURATION:
         fields[vol.Optional(CONF_AS_TEXT, default=False)] = BooleanSelector()
-    if platform in ("switch", "binary_sensor", "button") and _codes(kind):
+    if described.codes and _codes(kind):
         fields[vol.Optional(CONF_ON_VALUE)] = _NUMBER
         fields[vol.Optional(CONF_OFF_VALUE)] = _NUMBER
-    if platform == "button":
+    if described.pulse:
         fields[vol.Optional(CONF_PULSE)] = NumberSelector(
             NumberSelectorConfig(
                 min=PULSE_MIN, max=PULSE_MAX, step=0.1, mode=NumberSelectorMode.BOX
@@ -152,7 +135,8 @@ def kind_data(
         if key in asked and values.get(key):
             data[key] = True  # stored only when set: older points compare unchanged
     errors |= _number_errors(data)
-    if platform == "sensor" and CONF_VALUE_MAP in data and any(map(values.get, NOT_WITH_MAP)):
+    shows_labels = KINDS.get(platform, Kind(key=platform)).value_map == "optional"
+    if shows_labels and CONF_VALUE_MAP in data and any(map(values.get, NOT_WITH_MAP)):
         errors[CONF_VALUE_MAP] = "map_shows_labels"
     return data, errors, placeholders
 

@@ -37,16 +37,15 @@ from ..const import (
 )
 from ..plc import PlcAddressError, PlcClient, Point, ValueKind
 from .composite import (
-    CONF_SUPERVISION,
-    CONF_TRAVEL_TIME,
     as_platform,
     group_errors,
     is_part,
     part_data,
     takes_roles,
 )
+from .kinds import CONF_SUPERVISION, CONF_TRAVEL_TIME, CONTROLS
 from .point_kinds import KIND_COLUMNS, NUMBER_FIELDS, PAIRS_FIELDS
-from .points import CONTROLS, point_data, point_key, suggested_platform
+from .points import point_data, point_key, suggested_platform
 from .poll_classes import CONF_POLL
 from .write_rules import layout_conflicts
 

@@ -30,14 +30,14 @@ from ..const import (
     CONF_ROLE,
     CONF_SCALE,
     CONF_STEP,
-    POINT_PLATFORMS,
     PULSE_MAX,
     PULSE_MIN,
     SUBENTRY_DEVICE,
 )
 from ..plc import PlcAddressError, PlcClient, Point, ValueKind
-from .device_classes import NUMERIC, class_errors
-from .point_kinds import KIND_CONTROLS, KIND_PLATFORMS, kind_data
+from .device_classes import class_errors
+from .kinds import CONTROLS, KINDS, NUMERIC, POINT_PLATFORMS
+from .point_kinds import kind_data
 from .poll_classes import has_poll_class, point_class, poll_data
 
 
@@ -62,7 +62,8 @@ class PointConfig:
     @property
     def platforms(self) -> tuple[str, ...]:
         """Every platform with entities of the point (an alarm word: also one per named bit)."""
-        return (self.platform, *ALSO_SHOWN_ON.get(self.platform, ()))
+        kind = KINDS.get(self.platform)
+        return (self.platform, *(kind.also_shown_on if kind else ()))
 
     @property
     def name(self) -> str:
@@ -100,29 +101,10 @@ def entry_points(entry: ConfigEntry[Any]) -> dict[str, PointConfig]:
     }
 
 
-ALSO_SHOWN_ON: dict[str, tuple[str, ...]] = {"event": ("binary_sensor",)}
-"""Platforms a point shows on besides its own: an alarm word's event has a sensor per bit."""
-
-
 def pulse_seconds(data: Mapping[str, Any]) -> float:
     """Return a point's pulse in seconds, kept within 0.1-60; 0 for a single write."""
     pulse = float(data.get(CONF_PULSE) or 0.0)
     return min(max(pulse, PULSE_MIN), PULSE_MAX) if pulse else 0.0
-
-
-PLATFORM_KINDS: dict[str, tuple[frozenset[ValueKind], str]] = {
-    "binary_sensor": (frozenset({ValueKind.BOOL}), "needs_bool"),
-    "switch": (frozenset({ValueKind.BOOL}), "needs_bool"),
-    "number": (NUMERIC | {ValueKind.DURATION}, "needs_number"),
-    "datetime": (frozenset({ValueKind.DATETIME}), "needs_datetime"),
-    "text": (frozenset({ValueKind.TEXT, ValueKind.DURATION}), "needs_text"),  # hh:mm:ss.zzz
-    **KIND_PLATFORMS,
-}
-"""The kinds of value a platform can show, and the error when a point is not one (sensor: all)."""
-
-
-CONTROLS = frozenset({"switch", "number", "datetime", "text"}) | KIND_CONTROLS
-"""Platforms that write their point: a point only gets one where it asks for it."""
 
 
 def point_key(data: Mapping[str, Any]) -> Point:
@@ -136,7 +118,9 @@ def never_read_only(platform: str, role: str | None = None) -> bool:
     `platform` is the kind the point is checked as (a part's: the kind its role resembles), so
     a cover's open or set_position, a climate's mode or a light's brightness all count.
     """
-    return platform == "button" or (bool(role) and platform in CONTROLS)
+    return (platform in KINDS and not KINDS[platform].polled) or (
+        bool(role) and platform in CONTROLS
+    )
 
 
 def read_only_errors(platform: str, role: str | None, read_only: bool) -> dict[str, str]:
@@ -164,10 +148,8 @@ def check_point(
     errors: dict[str, str] = {}
     if platform not in POINT_PLATFORMS:
         errors[CONF_PLATFORM] = "invalid_platform"
-    elif (
-        platform in PLATFORM_KINDS and kind is not None and kind not in PLATFORM_KINDS[platform][0]
-    ):
-        errors[CONF_PLATFORM] = PLATFORM_KINDS[platform][1]
+    elif kind is not None and (accepted := KINDS[platform].value_kinds) and kind not in accepted:
+        errors[CONF_PLATFORM] = KINDS[platform].kind_error
     elif platform in CONTROLS and not client.address_writable(point):
         errors[CONF_PLATFORM] = "address_not_writable"
     if not str(values.get(CONF_NAME, "")).strip():
@@ -204,7 +186,7 @@ def point_data(
         if values.get(key):
             data[key] = str(values[key])
     for key in (CONF_MIN, CONF_MAX, CONF_STEP):
-        if values.get(key) is not None and platform == "number":
+        if values.get(key) is not None and platform in KINDS and KINDS[platform].bounded:
             data[key] = float(values[key])
     role = str(values.get(CONF_ROLE) or "")
     errors |= read_only_errors(platform, role, data[CONF_READ_ONLY])

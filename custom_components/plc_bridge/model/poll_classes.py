@@ -21,6 +21,7 @@ from homeassistant.helpers.selector import (
 import voluptuous as vol
 
 from ..plc import PlcClient, Point
+from .kinds import KINDS
 
 CONF_POLL: Final = "poll"
 """Point data: the point's poll class (absent: normal)."""
@@ -51,13 +52,9 @@ def poll_field() -> dict[vol.Marker, Any]:
     }
 
 
-UNPOLLED: Final = frozenset({"button"})
-"""Platforms whose points are only written (a button, pulsed or not): they have no class."""
-
-
 def has_poll_class(platform: str) -> bool:
     """True for a platform whose point shows a value, so has a poll class (not a button)."""
-    return platform not in UNPOLLED
+    return platform not in KINDS or KINDS[platform].polled
 
 
 def poll_data(

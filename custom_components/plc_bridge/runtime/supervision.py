@@ -30,7 +30,7 @@ from homeassistant.helpers.entity import Entity
 from homeassistant.helpers.event import async_call_later
 
 from ..const import DOMAIN, LOGGER
-from ..model.composite import CONF_SUPERVISION
+from ..model.kinds import CONF_SUPERVISION
 from .issues import FEEDBACK_TIMEOUT
 
 EVENT_FEEDBACK_TIMEOUT: Final = f"{DOMAIN}_feedback_timeout"
