@@ -47,8 +47,6 @@ from ..const import (
 from ..plc import PlcClient, PlcError, Point, TlsMode
 from .availability import CONF_AVAILABILITY_ADDRESS, CONF_AVAILABILITY_DATA_TYPE
 from .composite import (
-    CONF_SUPERVISION,
-    CONF_TRAVEL_TIME,
     as_platform,
     group_errors,
     is_part,
@@ -59,6 +57,7 @@ from .composite import (
 )
 from .config_keys import TEXT
 from .expose import CONF_SEND, check_expose
+from .kinds import CONF_SUPERVISION, CONF_TRAVEL_TIME
 from .point_table import Describe, plain
 from .points import PointConfig, point_data, read_only_errors
 from .poll_classes import (
