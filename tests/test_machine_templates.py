@@ -363,7 +363,8 @@ async def test_name_part_missing_and_name_pattern_refused(hass: HomeAssistant) -
     """A part no variable holds is refused on the part; names need {n}, and a free name."""
     plant = PLANTS["tecomat"]
     async with simulator(hass, "tecomat") as sim:
-        entry = await plant_entry(hass, "tecomat", sim, [shutter(plant, 1)], "nam")
+        pump = device([point("pump", "Pump", "switch", "Main.pump", "BOOL")], "pump", "shutter 3")
+        entry = await plant_entry(hass, "tecomat", sim, [shutter(plant, 1), pump], "nam")
         form = await open_copies(hass, entry, "shutter1")
         result = await step(
             hass, form, {"count": 2, "name": "Shutter {n}", "part": "Pump_1.", "stride": 1}
@@ -379,7 +380,13 @@ async def test_name_part_missing_and_name_pattern_refused(hass: HomeAssistant) -
             hass, result, {"count": 2, "name": "Shutter {n}", "part": "Shutter_2.", "stride": 1}
         )
         assert "the part that counts is not in this name" in error_message(result, "part", *MACHINE)
-        assert list(machines(entry)) == ["Shutter 1"]
+        result = await step(
+            hass, result, {"count": 2, "name": "Shutter {n}", "part": "Shutter_1.", "stride": 1}
+        )
+        assert error_message(result, "name", *MACHINE) == (
+            "Machine 3 of the series cannot be made: another machine is named Shutter 3"
+        )
+        assert sorted(machines(entry)) == ["Shutter 1", "shutter 3"]
 
 
 async def test_editing_the_original_keeps_copies_and_record(hass: HomeAssistant) -> None:
