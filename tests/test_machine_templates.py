@@ -458,6 +458,11 @@ async def test_export_and_paste_keep_template_and_copies(hass: HomeAssistant) ->
         assert refused.value.key == "config_template"
         assert "overlaps" in refused.value.placeholders["problem"]
 
+        unnamed = dict(original["data"]) | {CONF_TEMPLATE: record | {"stride": 24, "name": "X"}}
+        with pytest.raises(ConfigFileError) as refused:
+            load_config(document + _subentry_yaml("Shutter 1", unnamed), entry.version)
+        assert refused.value.placeholders["problem"] == "its names need {n}"
+
 
 def _subentry_yaml(title: str, data: dict[str, Any]) -> str:
     """Return one machine as the file's subentries list holds it."""

@@ -72,6 +72,7 @@ from .template import (
     TemplateError,
     make_copies,
     record_error,
+    record_problem,
 )
 from .write_rules import layout_conflicts
 from .yaml_text import Path, YamlText, YamlTextError, read_yaml
@@ -299,6 +300,13 @@ def _missing_copies(
     for template_id, index in templates.items():
         original = machines[index]
         template = Template.from_data(original["data"][CONF_TEMPLATE])
+        if (problem := record_problem(client, template)) is not None:
+            raise ConfigFileError(
+                "config_template",
+                line=str(read.line(("subentries", index, "data", CONF_TEMPLATE))),
+                name=original["title"],
+                problem=problem,
+            )
         missing = [
             number
             for number in range(2, template.count + 2)

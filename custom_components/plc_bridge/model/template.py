@@ -52,7 +52,9 @@ CONF_NAME_PATTERN: Final = "name"
 CONF_NUMBER: Final = "number"
 NUMBER_MARK: Final = "{n}"
 MAX_COPIES: Final = 255
-"""The most copies one template makes at once (a form's bound, and the file's)."""
+"""The most copies one template makes at once (the form's bound)."""
+MAX_RECORDED: Final = 4096
+"""The most copies a template's record may count (a pasted file's)."""
 TEMPLATE_KEYS: Final = {
     CONF_TEMPLATE_ID: str,
     CONF_COUNT: int,
@@ -133,6 +135,19 @@ def record_error(data: Any, keys: Mapping[str, type]) -> str | None:
             continue
         if isinstance(value, bool) or not isinstance(value, kind):
             return key
+    return None
+
+
+def record_problem(client: type[PlcClient], template: Template) -> str | None:
+    """Return why a stored record (a pasted file's) cannot make copies; None where it can."""
+    if template.unit not in client.shift_units:
+        return f"this PLC's addresses do not move by {template.unit}"
+    if template.unit == NAME and not template.part:
+        return "it names no part of the variable names that counts"
+    if NUMBER_MARK not in template.name:
+        return f"its names need {NUMBER_MARK}"
+    if template.stride == 0 or not 0 <= template.count <= MAX_RECORDED:
+        return f"it needs a stride other than 0 and 0 to {MAX_RECORDED} copies"
     return None
 
 
