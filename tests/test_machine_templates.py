@@ -63,6 +63,7 @@ from .plcnext_ha_fixtures import plcnext_data
 from .s7_ha_fixtures import SNAP7_THREADS, s7_data
 from .softplc_ha_fixtures import softplc_data
 from .tecomat_ha_fixtures import tecomat_data
+from .test_config_file import confirm, export, paste
 
 pytestmark = pytest.mark.no_pacing
 
@@ -470,3 +471,33 @@ def _subentry_yaml(title: str, data: dict[str, Any]) -> str:
 
     block = [{"type": SUBENTRY_DEVICE, "title": title, "unique_id": None, "data": data}]
     return yaml.safe_dump(block, sort_keys=False, allow_unicode=True)
+
+
+async def test_pasted_file_makes_the_copies_it_lacks(hass: HomeAssistant) -> None:
+    """A file holding Shutter 1 and its record alone adds the PLC with all twelve shutters."""
+    plant = PLANTS["softplc"]
+    async with simulator(hass, "softplc") as sim:
+        entry = await plant_entry(hass, "softplc", sim, [shutter(plant, 1)], "pst")
+        form = await open_copies(hass, entry, "shutter1")
+        await step(hass, form, {"count": COPIES, "name": "Shutter {n}", **plant.form})
+        made = machines(entry)
+        text = await export(hass, entry)
+        read = load_config(text, entry.version)
+        original = next(s for s in read.subentries if s["title"] == "Shutter 1")
+        document = text.split("subentries:")[0] + "subentries:\n"
+        bare = document + _subentry_yaml("Shutter 1", dict(original["data"]))
+        await hass.config_entries.async_remove(entry.entry_id)
+
+        result = await confirm(hass, await paste(hass, bare), {})
+        assert result["type"] is FlowResultType.CREATE_ENTRY, result.get("errors")
+        pasted = hass.config_entries.async_get_entry(result["result"].entry_id)
+        assert pasted is not None
+        remade = {
+            s.title: dict(s.data)
+            for s in pasted.subentries.values()
+            if s.subentry_type == SUBENTRY_DEVICE
+        }
+        assert sorted(remade) == sorted(made)
+        assert {title: layout(data) for title, data in remade.items()} == {
+            title: layout(data) for title, data in made.items()
+        }
