@@ -335,6 +335,10 @@ class DeviceFlowBase(ConfigSubentryFlow):
         except PlcError:
             return point
 
+    def _can_copy(self) -> bool:
+        """True where the menu offers copies of the machine (machine_flow.py)."""
+        return False
+
     async def async_step_menu(self, user_input: dict[str, Any] | None = None) -> SubentryFlowResult:
         """Show what can be done next, and the points so far."""
         options = ["point", "composite"]
@@ -344,6 +348,8 @@ class DeviceFlowBase(ConfigSubentryFlow):
         if self._points:
             options += ["edit", "remove"]
         options.append("device")
+        if self._can_copy():
+            options.append("copies")
         if self._points:
             options.append("save")
         return self.async_show_menu(

@@ -26,7 +26,6 @@ from ..const import (
     CONF_ROLE,
 )
 from ..model.availability import AVAILABILITY_FIELDS
-from ..model.composite import assign_entities
 from ..model.device_classes import device_classes
 from ..model.point_table import async_describe, parse_points
 from ..model.points import check_point, point_data
@@ -267,11 +266,7 @@ class DeviceSubentryFlowHandler(CompositeSteps, MachineStep):
 
     async def async_step_save(self, user_input: dict[str, Any] | None = None) -> SubentryFlowResult:
         """Store the device and its points."""
-        assign_entities(self._points)
-        data: dict[str, Any] = {CONF_POINTS: self._points}
-        if self._area:
-            data[CONF_AREA] = self._area
-        data |= self._availability
+        data = self._machine_data()
         if self.source == "reconfigure":
             return self.async_update_and_abort(
                 self._get_entry(), self._get_reconfigure_subentry(), title=self._name, data=data

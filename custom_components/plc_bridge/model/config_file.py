@@ -28,7 +28,7 @@ from ..const import (
     SUBENTRY_EXPOSE,
 )
 from ..plc import PlcClient
-from ..plc.vendors import implemented
+from ..plc.vendors import client_class, implemented
 from .config_keys import (
     CONNECTION,
     FILE,
@@ -43,6 +43,19 @@ from .config_keys import (
 )
 from .plc_config import PlcConfig
 from .point_table import Describe, plain, point_order
+from .template import (
+    CONF_COPY_OF,
+    CONF_NUMBER,
+    CONF_TEMPLATE,
+    CONF_TEMPLATE_ID,
+    COPY_KEYS,
+    TEMPLATE_KEYS,
+    Template,
+    TemplateError,
+    make_copies,
+    record_error,
+    record_problem,
+)
 from .yaml_text import Path, YamlText, YamlTextError, read_yaml
 
 FORMAT_KEY = "plc_bridge"
@@ -208,6 +221,15 @@ def load_config(text: str, version: int) -> ConfigFile:
             _refuse(read, ("secrets", index), "config_bad_value", str(secret), "secret")
     for index, _ in enumerate(document.get("subentries", [])):
         _check_subentry(read, ("subentries", index))
+    subentries = [
+        ConfigSubentryData(
+            data=subentry.get("data", {}),
+            subentry_type=subentry["type"],
+            title=subentry["title"],
+            unique_id=subentry.get("unique_id"),
+        )
+        for subentry in document.get("subentries", [])
+    ]
     return ConfigFile(
         title=document["title"],
         version=document["version"],
@@ -215,17 +237,85 @@ def load_config(text: str, version: int) -> ConfigFile:
         data={CONF_OPTIONS: {}, **data},
         secrets=tuple(dict.fromkeys(secrets)),
         options=document.get("options", {}),
-        subentries=[
-            ConfigSubentryData(
-                data=subentry.get("data", {}),
-                subentry_type=subentry["type"],
-                title=subentry["title"],
-                unique_id=subentry.get("unique_id"),
-            )
-            for subentry in document.get("subentries", [])
-        ],
+        subentries=subentries + _missing_copies(read, client_class(data[CONF_VENDOR]), subentries),
         source=read,
     )
+
+
+def _missing_copies(
+    read: YamlText, client: type[PlcClient], subentries: list[ConfigSubentryData]
+) -> list[ConfigSubentryData]:
+    """Return the copies a machine's template names that the file does not hold, made anew.
+
+    A copy the file holds is taken as written (it may have been edited since it was made);
+    each template record and copy mark is checked, and the copies made are checked as the
+    form checks them (model/template.py), on the line of their template.
+    """
+    machines = {
+        index: subentry
+        for index, subentry in enumerate(subentries)
+        if subentry["subentry_type"] == SUBENTRY_DEVICE
+    }
+    templates: dict[str, int] = {}
+    present: dict[str, set[int]] = {}
+    for index, subentry in machines.items():
+        path = ("subentries", index, "data")
+        if CONF_TEMPLATE in subentry["data"]:
+            record = subentry["data"][CONF_TEMPLATE]
+            if (key := record_error(record, TEMPLATE_KEYS)) is not None:
+                _refuse(read, (*path, CONF_TEMPLATE), "config_bad_value", key, CONF_TEMPLATE)
+            templates[str(record[CONF_TEMPLATE_ID])] = index
+        if CONF_COPY_OF in subentry["data"]:
+            mark = subentry["data"][CONF_COPY_OF]
+            if (key := record_error(mark, COPY_KEYS)) is not None:
+                _refuse(read, (*path, CONF_COPY_OF), "config_bad_value", key, CONF_COPY_OF)
+            present.setdefault(str(mark[CONF_TEMPLATE_ID]), set()).add(int(mark[CONF_NUMBER]))
+    for template_id in present.keys() - templates.keys():
+        index = next(
+            i
+            for i, subentry in machines.items()
+            if str(subentry["data"].get(CONF_COPY_OF, {}).get(CONF_TEMPLATE_ID)) == template_id
+        )
+        raise ConfigFileError(
+            "config_template",
+            line=str(read.line(("subentries", index, "data", CONF_COPY_OF))),
+            name=machines[index]["title"],
+            problem=f"no machine of the file holds the template {template_id}",
+        )
+    made: list[ConfigSubentryData] = []
+    for template_id, index in templates.items():
+        original = machines[index]
+        template = Template.from_data(original["data"][CONF_TEMPLATE])
+        if (problem := record_problem(client, template)) is not None:
+            raise ConfigFileError(
+                "config_template",
+                line=str(read.line(("subentries", index, "data", CONF_TEMPLATE))),
+                name=original["title"],
+                problem=problem,
+            )
+        missing = [
+            number
+            for number in range(2, template.count + 2)
+            if number not in present.get(template_id, set())
+        ]
+        plc = [(machine["title"], machine["data"]) for machine in machines.values()]
+        plc += [(copy["title"], copy["data"]) for copy in made]
+        try:
+            copies = make_copies(client, template, original["data"], 0, plc, numbers=missing)
+        except TemplateError as err:
+            raise ConfigFileError(
+                "config_template",
+                line=str(read.line(("subentries", index, "data", CONF_TEMPLATE))),
+                name=original["title"],
+                problem=str(err),
+            ) from err
+        made += [
+            ConfigSubentryData(
+                data=copy.data, subentry_type=SUBENTRY_DEVICE, title=copy.title, unique_id=None
+            )
+            for copy in copies
+        ]
+    return made
 
 
 def _check_connection(read: YamlText, data: Mapping[str, Any]) -> None:

@@ -69,6 +69,7 @@ from .availability import (
 from .expose import CONF_SEND
 from .kinds import CONF_SUPERVISION, CONF_TRAVEL_TIME
 from .poll_classes import CONF_FAST_INTERVAL, CONF_POLL, CONF_SLOW_INTERVAL
+from .template import CONF_COPY_OF, CONF_TEMPLATE
 from .vendor_fields import SECOND_PAGES, VENDOR_FIELDS
 
 TEXT: Final = "text"
@@ -117,6 +118,8 @@ DEVICE: Keys = {
     CONF_AVAILABILITY_ADDRESS: TEXT,
     CONF_AVAILABILITY_DATA_TYPE: TEXT,
     CONF_AVAILABILITY_VALUES: LIST,
+    CONF_TEMPLATE: MAPPING,
+    CONF_COPY_OF: MAPPING,
 }
 POINT: Keys = {
     CONF_NAME: TEXT,

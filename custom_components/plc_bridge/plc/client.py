@@ -13,7 +13,7 @@ from typing import ClassVar
 import aiohttp
 
 from .codec import IEC_KINDS
-from .errors import PlcError
+from .errors import PlcAddressError, PlcError
 from .http import client_session
 from .types import (
     BrowseItem,
@@ -56,6 +56,8 @@ class PlcClient(ABC):
     request_interval: ClassVar[float] = 0.0  # pacing between requests, in seconds
     can_browse: ClassVar[bool] = False
     uses_http: ClassVar[bool] = True  # False: the vendor never touches `session`
+    shift_units: ClassVar[tuple[str, ...]] = ()
+    """What a template's stride may count (plc/shifting.py), the usual first; none: no templates."""
 
     def __init__(
         self, config: ConnectionConfig, session: aiohttp.ClientSession | None = None
@@ -170,6 +172,16 @@ class PlcClient(ABC):
         A vendor that writes more than the point overrides it (SoftPLC writes a bit's word).
         """
         return cls.footprint(point)
+
+    @classmethod
+    def shift_point(cls, point: Point, by: int, unit: str, part: str = "") -> Point:
+        """Return a valid point moved by `by` units of `unit`, for a copy of its machine.
+
+        `part` is the part of a variable name that counts, for a vendor of names. Raise
+        PlcAddressError where the point cannot move so: out of its area, the part not in its
+        name, a unit the vendor has not.
+        """
+        raise PlcAddressError(f"{point.address}: this PLC's addresses are not moved by {unit}")
 
     @classmethod
     def address_writable(cls, point: Point) -> bool:

@@ -20,11 +20,12 @@ NI64, NAI32, NQ64, NAQ16). Where they disagree, simulators/logo/READINGS.md list
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from functools import lru_cache
 import re
 
 from ...errors import PlcAddressError
+from ...shifting import BLOCKS, BYTES
 from ...types import Point
 from ..s7.address import AREA_DB, Variable, normalize_type, variable as s7_variable
 
@@ -220,3 +221,35 @@ def variable(point: Point, generation: str) -> Variable:
 def refusal(found: LogoAddress) -> str | None:
     """Why a client cannot write the address; None where it can."""
     return _REFUSED.get(found.block)
+
+
+def shift(point: Point, by: int, unit: str) -> Point:
+    """Return a point moved by `by` bytes of VM or by `by` block numbers; raise PlcAddressError.
+
+    By bytes, VM moves by its bytes (V10.3 + 2 = V12.3), and a block by its image's bytes in
+    VM: 8 bits to a byte (I1 + 1 byte = I9), an analog word 2 (AI1 + 2 bytes = AI2, an odd
+    count refused). By blocks, a block moves by its number (I1 + 4 = I5); VM has no blocks.
+    The moved address is checked as typed (a block number some generation has, VM below 850).
+    """
+    found = parse(point)
+    if found.block == "V":
+        if unit != BYTES:
+            raise PlcAddressError(f"{found.text} is VM: it moves by bytes, not by block numbers")
+        offset = found.number + by
+        if offset < 0:
+            raise PlcAddressError(f"{found.text} + {by} bytes falls below V0")
+        moved = replace(found, number=offset)
+    elif unit == BLOCKS:
+        moved = replace(found, number=found.number + by)
+    elif unit == BYTES:
+        per_byte = 0.5 if found.block.startswith(("A", "NA")) else 8
+        if (by * per_byte) % 1:
+            raise PlcAddressError(f"{found.text} is an analog word: move it by an even count")
+        moved = replace(found, number=found.number + int(by * per_byte))
+    else:
+        raise PlcAddressError(f"{found.text}: a LOGO! address moves by bytes or block numbers")
+    if moved.number < (0 if moved.block == "V" else 1):
+        raise PlcAddressError(f"{found.text} + {by} {unit} falls below {found.block}1")
+    shifted = Point(moved.text, point.data_type)
+    parse(shifted)
+    return shifted

@@ -19,12 +19,13 @@ from typing import ClassVar
 import aiohttp
 
 from ...errors import PlcAddressError, PlcOptionError, PlcValueError, PlcWriteRefusedError
+from ...shifting import BLOCKS, BYTES
 from ...types import ConnectionConfig, DeviceInfo, Footprint, Point, PointResult, Value
 from ..s7 import S7Client
 from ..s7.address import Variable
 from ..s7.codec import check_value, span_of
 from ..s7.planner import Span, plan_reads
-from .address import DATA_TYPES, GENERATIONS, MODELS, parse, refusal, variable
+from .address import DATA_TYPES, GENERATIONS, MODELS, parse, refusal, shift, variable
 from .options import s7_options, validate_options
 
 PLANNED_GENERATION = "0ba8"  # a class plans without a PLC: for the most common generation
@@ -39,6 +40,7 @@ class LogoClient(S7Client):
     requested_pdu: ClassVar[int] = PDU
     checked_generation: ClassVar[str | None] = None
     """The generation whose blocks the class methods accept (None: any generation's)."""
+    shift_units: ClassVar[tuple[str, ...]] = (BYTES, BLOCKS)
 
     def __init__(
         self, config: ConnectionConfig, session: aiohttp.ClientSession | None = None
@@ -81,6 +83,11 @@ class LogoClient(S7Client):
         found = parse(point)
         generation = cls.checked_generation or PLANNED_GENERATION
         return Point(found.text, variable(point, generation).data_type)
+
+    @classmethod
+    def shift_point(cls, point: Point, by: int, unit: str, part: str = "") -> Point:
+        """Return the point moved by VM bytes (VW10 + 24 = VW34) or block numbers (I1 + 4)."""
+        return shift(point, by, unit)
 
     @classmethod
     def footprint(cls, point: Point) -> Footprint:

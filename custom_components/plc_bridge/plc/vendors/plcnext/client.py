@@ -21,6 +21,7 @@ from ...errors import (
     PlcWriteRefusedError,
 )
 from ...planning import distinct
+from ...shifting import NAME
 from ...types import (
     BrowseItem,
     ConnectionConfig,
@@ -46,7 +47,7 @@ from .browse import (
 from .codec import KINDS, TYPES, check_value, data_type, encode
 from .errors import ApiError, request_error
 from .info import device_info, plc_status
-from .paths import VariablePath, parse_path
+from .paths import VariablePath, parse_path, shift
 from .placing import Reading
 from .reading import Reader
 from .results import Plan, outcome, results
@@ -60,6 +61,7 @@ class PlcnextClient(PlcClient):
     """A Phoenix Contact PLCnext Control through its REST data interface."""
 
     vendor: ClassVar[str] = "plcnext"
+    shift_units: ClassVar[tuple[str, ...]] = (NAME,)
     default_port: ClassVar[int] = 443
     default_tls: ClassVar[TlsMode] = TlsMode.PIN
     tls_modes: ClassVar[tuple[TlsMode, ...]] = (TlsMode.PIN, TlsMode.VERIFY, TlsMode.OFF)
@@ -87,6 +89,13 @@ class PlcnextClient(PlcClient):
     def validate_point(cls, point: Point) -> Point:
         """Return the point with its full path and type name; raise PlcAddressError."""
         return Point(parse_path(point.address).text, data_type(point.data_type))
+
+    @classmethod
+    def shift_point(cls, point: Point, by: int, unit: str, part: str = "") -> Point:
+        """Return the point whose counting part moved (`Shutter[1].` + 1: `Shutter[2].`)."""
+        if unit != NAME:
+            raise PlcAddressError(f"{point.address}: a PLCnext name moves by the number in it")
+        return cls.validate_point(Point(shift(point.address, part, by), point.data_type))
 
     @classmethod
     def footprint(cls, point: Point) -> Footprint:

@@ -9,6 +9,7 @@ import re
 from urllib.parse import quote
 
 from ...errors import PlcAddressError
+from ...shifting import shift_segments
 
 DEFAULT_PREFIX = "Arp.Plc.Eclr/"
 """The IEC 61131-3 runtime's component: a path without a component lives there."""
@@ -97,3 +98,25 @@ def variables_uri(base: str, paths: Iterable[VariablePath], session: str | None)
     if session:
         query = f"sessionID={quote(session, safe='')}&{query}"
     return f"{base}/variables?{query}"
+
+
+def shift(address: str, part: str, by: int) -> str:
+    """Return a path whose counting part moves by `by` (`Shutter[1].` + 1: `Shutter[2].`).
+
+    `part` is the part of the names that counts, as the user wrote it (`HomeInstance.
+    Shutter[1].`, `Pump_1`): its last index or its last name's number moves. A part with a
+    component must name the point's; names are compared without case (IEC names).
+    Raise PlcAddressError.
+    """
+    path = parse_path(address)
+    text = part.strip().rstrip(".").rstrip()
+    counting = parse_path(text)
+    if "/" in text and folded(counting.component) != folded(path.component):
+        raise PlcAddressError(f"{path.text} is not in {counting.component}")
+    try:
+        segments = shift_segments(path.segments, counting.segments, by, folded)
+    except PlcAddressError as err:
+        raise PlcAddressError(f"{path.text} ({counting.name}): {err}") from err
+    if any(isinstance(item, int) and item < 0 for item in segments):
+        raise PlcAddressError(f"{path.text} + {by}: an index would fall below 0")
+    return parse_path(VariablePath(path.component, segments).text).text

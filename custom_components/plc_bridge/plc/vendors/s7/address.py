@@ -13,6 +13,7 @@ from functools import lru_cache
 import re
 
 from ...errors import PlcAddressError
+from ...shifting import BYTES, DATA_BLOCKS
 from ...types import Point, ValueKind
 
 AREA_P = 0x80  # peripheral I/O: reads reach the inputs, writes the outputs
@@ -324,3 +325,31 @@ def _counted(letter: str, number: int, data_type: str) -> Variable:
     return Variable(
         AREA_T if name == "T" else AREA_C, 0, number, data_type, None, f"{name}{number}"
     )
+
+
+def shift(point: Point, by: int, unit: str) -> Point:
+    """Return a point moved by `by` bytes, or `by` DB numbers; raise PlcAddressError.
+
+    A bit moves with its byte (DB10.DBX0.3 + 24 bytes = DB10.DBX24.3); timers and counters,
+    numbered rather than addressed by byte, do not move by bytes; only DB addresses move by
+    DB numbers. The moved address is checked as typed (its end within byte 65535, DB 1..65535).
+    """
+    found = variable(point)
+    if unit == DATA_BLOCKS:
+        if found.area != AREA_DB or found.text.startswith("V"):
+            raise PlcAddressError(f"{found.text} is in no data block: it does not move by DBs")
+        moved = re.sub(rf"^DB{found.db}\.", f"DB{found.db + by}.", found.text)
+        if not 1 <= found.db + by <= 0xFFFF:
+            raise PlcAddressError(f"{moved}: DB numbers run from 1 to 65535")
+    elif unit == BYTES:
+        if found.counted:
+            raise PlcAddressError(f"{found.text} is numbered, not addressed by byte")
+        match = re.fullmatch(rf"(DB{_N}\.DB[XBWD]|[A-Z]+?[BWD]?)({_N})(\.[0-7])?", found.text)
+        assert match is not None  # every normalized byte address is spelled so
+        offset = found.start + by
+        moved = f"{match[1]}{offset}{match[3] or ''}"
+        if offset < 0:
+            raise PlcAddressError(f"{found.text} + {by} bytes falls below byte 0")
+    else:
+        raise PlcAddressError(f"{found.text}: an S7 address moves by bytes or DB numbers")
+    return Point(variable(Point(moved, found.data_type)).text, point.data_type)

@@ -12,6 +12,7 @@ import aiohttp
 
 from ...client import PlcClient
 from ...errors import PlcAddressError, PlcWriteRefusedError
+from ...shifting import BYTES, DATA_BLOCKS
 from ...types import (
     ConnectionConfig,
     DeviceInfo,
@@ -23,7 +24,16 @@ from ...types import (
     Value,
     ValueKind,
 )
-from .address import AREA_I, AREA_P, DATA_TYPES, Variable, on_s7_200, value_kind, variable
+from .address import (
+    AREA_I,
+    AREA_P,
+    DATA_TYPES,
+    Variable,
+    on_s7_200,
+    shift,
+    value_kind,
+    variable,
+)
 from .codec import check_value, plc_time, span_of
 from .items import ItemLimit
 from .link import S7Link, S7RequestError, endpoint, tsap_text, validate_options
@@ -46,6 +56,7 @@ class S7Client(PlcClient):
     tls_modes: ClassVar[tuple[TlsMode, ...]] = (TlsMode.NONE,)
     needs_credentials: ClassVar[bool] = False
     uses_http: ClassVar[bool] = False
+    shift_units: ClassVar[tuple[str, ...]] = (BYTES, DATA_BLOCKS)
     data_types: ClassVar[tuple[str, ...]] = DATA_TYPES
     default_scan_interval: ClassVar[float] = 2.0
     requested_pdu: ClassVar[int] = 960  # the PLC answers with what it can (240, 480, 960)
@@ -86,6 +97,11 @@ class S7Client(PlcClient):
         """Return the point with address and type normalized; raise PlcAddressError."""
         found = variable(point)
         return Point(found.text, found.data_type)
+
+    @classmethod
+    def shift_point(cls, point: Point, by: int, unit: str, part: str = "") -> Point:
+        """Return the point moved by bytes (DB10.DBW0 + 24 = DB10.DBW24) or by DB numbers."""
+        return shift(point, by, unit)
 
     @classmethod
     def footprint(cls, point: Point) -> Footprint:

@@ -2,10 +2,11 @@
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 import re
 
 from ...errors import PlcAddressError
+from ...shifting import BYTES
 
 MODES = ("signed", "unsigned", "float", "string", "raw")
 """The Web API's data modes (manual 8.2), also the point form's data types."""
@@ -199,3 +200,24 @@ def point_kind(address: Address, mode: str) -> str:
             f"{address.text} cannot hold a string; strings start at a byte (VB, IB, QB, MB, SMB)"
         )
     return mode
+
+
+def shift(text: str, by: int, unit: str) -> str:
+    """Return an address moved by `by` bytes (VB100 + 20 = VB120, V10.3 + 2 = V12.3).
+
+    Analog words move by an even count; timers, counters and high-speed counters (numbered,
+    not addressed by byte) and the clock (DATE, one per PLC) do not move. The moved address
+    is checked as typed (within its area). Raise PlcAddressError.
+    """
+    address = parse_address(text)
+    if unit != BYTES:
+        raise PlcAddressError(f"{address.text}: an S7-200 SMART address moves by bytes")
+    if address.area == "DATE":
+        raise PlcAddressError("DATE is the PLC's clock: it has no place to move to")
+    if address.area in COUNTS:
+        raise PlcAddressError(f"{address.text} is numbered, not addressed by byte")
+    if address.area in ("AIW", "AQW") and by % 2:
+        raise PlcAddressError(f"{address.text} is an analog word: move it by an even count")
+    if address.index + by < 0:
+        raise PlcAddressError(f"{address.text} + {by} bytes falls below byte 0")
+    return parse_address(replace(address, index=address.index + by).text).text

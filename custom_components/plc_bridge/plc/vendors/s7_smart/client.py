@@ -12,6 +12,7 @@ from zoneinfo import ZoneInfo
 import aiohttp
 
 from ...errors import PlcError, PlcProtocolError
+from ...shifting import BYTES
 from ...types import (
     ConnectionConfig,
     DeviceInfo,
@@ -24,7 +25,7 @@ from ...types import (
     Value,
     ValueKind,
 )
-from .address import BOOL, DATE, MAX_STRING, MODES, Address, covered, writable
+from .address import BOOL, DATE, MAX_STRING, MODES, Address, covered, shift, writable
 from .codec import (
     MAX_NODES,
     Node,
@@ -81,6 +82,7 @@ class S7SmartClient(WebSession):
     tls_modes: ClassVar[tuple[TlsMode, ...]] = (TlsMode.PIN, TlsMode.VERIFY, TlsMode.OFF)
     needs_credentials: ClassVar[bool] = True
     data_types: ClassVar[tuple[str, ...]] = MODES
+    shift_units: ClassVar[tuple[str, ...]] = (BYTES,)
     default_scan_interval: ClassVar[float] = 10.0
     max_points_per_request: ClassVar[int] = MAX_NODES
     request_interval: ClassVar[float] = 1.0  # "call less than once a second" (manual 4.2)
@@ -101,6 +103,11 @@ class S7SmartClient(WebSession):
         node = node_for(point)
         mode = f"string[{node.length}]" if node.length else point.data_type.strip().lower()
         return Point(node.address.text, mode)
+
+    @classmethod
+    def shift_point(cls, point: Point, by: int, unit: str, part: str = "") -> Point:
+        """Return the point moved by bytes (VB100 + 20 = VB120), checked as `validate_point`."""
+        return cls.validate_point(Point(shift(point.address, by, unit), point.data_type))
 
     @classmethod
     def footprint(cls, point: Point) -> Footprint:

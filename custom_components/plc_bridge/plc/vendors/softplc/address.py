@@ -9,10 +9,11 @@ a reply's form (I:3). Where it is silent we follow the PLC-5 layout, said so bel
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 import re
 
 from ...errors import PlcAddressError
+from ...shifting import ELEMENTS
 
 MAX_FILE = 9999  # "the top most array can hold up to 10,000 sub-arrays"
 MAX_ELEMENT = 99999  # the manual shows PD12:3000; no upper bound is given
@@ -236,3 +237,22 @@ def opaque_keys(address: Address) -> frozenset[tuple[str, int, int, str]]:
 def word_name(type_: str, word: int) -> str:
     """Return the name of word `word` of a T, C or R element ("" for word 0)."""
     return next((k for k, v in STRUCTURE_WORDS.get(type_, {}).items() if v == word), "")
+
+
+def shift(text: str, by: int, unit: str) -> str:
+    """Return an address moved by `by` elements of its file (N7:10 + 5 = N7:15, B3:0/5 too).
+
+    A timer's word or bit moves with its element (T4:0.PRE + 1 = T4:1.PRE). Tags, and O3 or I1
+    without a colon (whose element is the PLC's reading), do not move. The moved address is
+    checked as typed. Raise PlcAddressError.
+    """
+    address = parse_address(text)
+    if unit != ELEMENTS:
+        raise PlcAddressError(f"{address.text}: a SoftPLC address moves by elements")
+    if address.is_tag:
+        raise PlcAddressError(f"{address.text} is a tag name: it has no element to move")
+    if address.is_opaque:
+        raise PlcAddressError(f"{address.text}: write its element ({address.type}1:3) to move it")
+    if address.element + by < 0:
+        raise PlcAddressError(f"{address.text} + {by} elements falls below element 0")
+    return parse_address(replace(address, element=address.element + by).text).text

@@ -23,6 +23,7 @@ from ...errors import (
     PlcWriteRefusedError,
 )
 from ...http import HttpTransport
+from ...shifting import ELEMENTS
 from ...types import (
     ConnectionConfig,
     DeviceInfo,
@@ -34,7 +35,7 @@ from ...types import (
     Value,
     ValueKind,
 )
-from .address import Address, parse_address
+from .address import Address, parse_address, shift
 from .codec import KINDS, TYPES, check_value, data_type
 from .document import MAX_REPLY, request_body
 from .exchange import Answers, Busy, Patience, Refused, exchange, send
@@ -70,6 +71,7 @@ class SoftplcClient(PlcClient):
     """A SoftPLC runtime through its WEB.TLM REST server (XML)."""
 
     vendor: ClassVar[str] = "softplc"
+    shift_units: ClassVar[tuple[str, ...]] = (ELEMENTS,)
     default_port: ClassVar[int] = 80
     default_tls: ClassVar[TlsMode] = TlsMode.NONE
     tls_modes: ClassVar[tuple[TlsMode, ...]] = (
@@ -106,6 +108,11 @@ class SoftplcClient(PlcClient):
         """Return the point in the manual's request form (N7:3, I1:3; tags and I1 as typed)."""
         address = parse_address(point.address)
         return Point(address.text, data_type(address, point.data_type))
+
+    @classmethod
+    def shift_point(cls, point: Point, by: int, unit: str, part: str = "") -> Point:
+        """Return the point moved by elements of its file (N7:10 + 5 = N7:15)."""
+        return cls.validate_point(Point(shift(point.address, by, unit), point.data_type))
 
     @classmethod
     def footprint(cls, point: Point) -> Footprint:

@@ -23,6 +23,7 @@ from ...errors import (
     PlcWriteRefusedError,
 )
 from ...planning import chunks, distinct
+from ...shifting import NAME
 from ...types import (
     BrowseItem,
     ConnectionConfig,
@@ -57,6 +58,7 @@ from .paths import (
     check_writable,
     parse_path,
     plan,
+    shift,
 )
 from .reading import Plan, Reading, results, under
 from .unknown import UnknownVariables
@@ -79,6 +81,7 @@ class TecomatClient(PlcClient):
     """A Tecomat Foxtrot or TC700 PLC through its web server's TecoApi."""
 
     vendor: ClassVar[str] = "tecomat"
+    shift_units: ClassVar[tuple[str, ...]] = (NAME,)
     default_port: ClassVar[int] = 80
     default_tls: ClassVar[TlsMode] = TlsMode.NONE
     tls_modes: ClassVar[tuple[TlsMode, ...]] = (
@@ -131,6 +134,13 @@ class TecomatClient(PlcClient):
     def validate_point(cls, point: Point) -> Point:
         """Return the point with its path and type normalized; raise PlcAddressError."""
         return Point(parse_path(point.address).text, data_type(point.data_type))
+
+    @classmethod
+    def shift_point(cls, point: Point, by: int, unit: str, part: str = "") -> Point:
+        """Return the point whose counting part moved (`Shutter_1.` + 1: `Shutter_2.`)."""
+        if unit != NAME:
+            raise PlcAddressError(f"{point.address}: a TecoApi name moves by the number in it")
+        return cls.validate_point(Point(shift(point.address, part, by), point.data_type))
 
     @classmethod
     def footprint(cls, point: Point) -> Footprint:

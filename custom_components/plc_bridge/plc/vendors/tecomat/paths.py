@@ -10,6 +10,7 @@ import re
 from typing import Any
 
 from ...errors import PlcAddressError, PlcValueError
+from ...shifting import shift_segments
 
 SERVICE = "/TecoApi/"
 GET_OBJECT = SERVICE + "GetObject?"
@@ -252,3 +253,19 @@ def nest(items: Iterable[tuple[VariablePath, Any]]) -> dict[str, Any]:
                 raise PlcValueError(f"{path.text} lies inside a variable written as a value")
             node = child
     return body
+
+
+def shift(address: str, part: str, by: int) -> str:
+    """Return a path whose counting part moves by `by` (`Shutter_1.` + 1: Shutter_2.Position).
+
+    `part` is the part of the names that counts, as the user wrote it (`Shutter_1.`,
+    `Main.Shutter_1`, `arr[1]`): its last name's number or its last index moves. Names are
+    compared case-insensitively, as the PLC does. Raise PlcAddressError.
+    """
+    path = parse_path(address)
+    counting = parse_path(part.strip().rstrip(".").rstrip())
+    try:
+        segments = shift_segments(path.segments, counting.segments, by, str.casefold)
+    except PlcAddressError as err:
+        raise PlcAddressError(f"{path.text} ({counting.text}): {err}") from err
+    return parse_path(VariablePath(segments).text).text
