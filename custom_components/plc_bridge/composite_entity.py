@@ -20,7 +20,8 @@ from homeassistant.helpers.entity_platform import AddConfigEntryEntitiesCallback
 
 from .const import DOMAIN
 from .coordinator import PlcBridgeConfigEntry
-from .entity import PlcEntity, device_of, entity_name, point_fields
+from .entity import PlcEntity, device_of, entity_name, entity_policy, point_fields
+from .model.availability import CONF_AVAILABILITY_POLICY
 from .model.composite import Composite, composites, group_key
 from .model.conversion import Conversion
 from .model.points import PointConfig, entry_points, pulse_seconds
@@ -98,6 +99,10 @@ class PlcCompositeEntity(PlcEntity):
         self._label = group.name  # what messages call it, whatever Home Assistant shows
         self._attr_device_info = device_of(group.subentry_id)
         self._machine = group.subentry_id
+        stated = [
+            p.config.data for p in parts.values() if CONF_AVAILABILITY_POLICY in p.config.data
+        ]
+        self._policy = entity_policy(entry, group.subentry_id, stated[0] if stated else {})
         self.parts = parts
         self._key = group.key
         self._writing = asyncio.Lock()  # one write of commands and releases at a time
@@ -137,10 +142,14 @@ class PlcCompositeEntity(PlcEntity):
         """The points of the entity's parts."""
         return [part.point for part in self.parts.values()]
 
+    def restore_roles(self) -> dict[str, Point]:
+        """The parts' points, whose values the entity stores across restarts."""
+        return {role: part.point for role, part in self.parts.items()}
+
     def result(self, role: str) -> PointResult | None:
-        """The outcome of a part's point in the last poll, None without that part."""
+        """A part's outcome in the last poll (restored if shown before its first read), or None."""
         part = self.parts.get(role)
-        return None if part is None else self.coordinator.data.values.get(part.point)
+        return None if part is None else self.point_result(role, part.point)
 
     def raw(self, role: str) -> Value | None:
         """A part's raw value; None without the part or while its read fails."""

@@ -13,6 +13,7 @@ from .coordinator import PlcBridgeConfigEntry
 from .entity import PlcPointDescription, PlcPointEntity, point_fields
 from .model.alarm import bit_set, word_bits
 from .model.points import PointConfig
+from .plc import Point
 
 PARALLEL_UPDATES = 0
 RAISED = "raised"
@@ -46,7 +47,8 @@ async def async_setup_entry(
     entry.runtime_data.points.async_setup_platform("event", point_event, async_add_entities)
 
 
-class PlcAlarmEvent(PlcPointEntity, EventEntity):
+# PlcEntity's restore data hands over to EventEntity's (the event restores no point values).
+class PlcAlarmEvent(PlcPointEntity, EventEntity):  # type: ignore[misc]
     """Fires when a named bit of the word is set (`raised`) or reset (`cleared`).
 
     The first value read is the baseline: bits already set when Home Assistant starts fire
@@ -55,6 +57,10 @@ class PlcAlarmEvent(PlcPointEntity, EventEntity):
 
     entity_description: PlcEventDescription
     _last: int | None = None
+
+    def restore_roles(self) -> dict[str, Point]:
+        """None: an event restores its last event as Home Assistant's event entities do."""
+        return {}
 
     async def async_added_to_hass(self) -> None:
         """Take the word as read now as the baseline."""
