@@ -169,7 +169,7 @@ def check_policy(values: Mapping[str, Any], *, data_valid: bool) -> tuple[dict[s
 
     The one check of the forms, the tables and the pasted file.
     """
-    policy = str(values.get(CONF_AVAILABILITY_POLICY) or "").strip().lower()
+    policy = str(values.get(CONF_AVAILABILITY_POLICY) or "").strip()
     if not policy:
         return {}, ""
     if policy not in POLICIES:

@@ -32,7 +32,12 @@ from ..const import (
 )
 from ..plc import PlcClient, PlcError, Point, TlsMode
 from ..plc.vendors import implemented
-from .availability import CONF_AVAILABILITY_ADDRESS, CONF_AVAILABILITY_DATA_TYPE
+from .availability import (
+    CONF_AVAILABILITY_ADDRESS,
+    CONF_AVAILABILITY_DATA_TYPE,
+    check_policy,
+    has_data_valid,
+)
 from .composite import as_platform, is_part, point_classes, supervision_data, travel_data
 from .config_keys import (
     CONNECTION,
@@ -325,7 +330,8 @@ def check_points(client: type[PlcClient], pasted: ConfigFile) -> None:
     """Raise ConfigFileError for the first point the forms would refuse as it is laid out.
 
     A command stored read only, a travel or supervision time out of bounds or on an entity
-    without travel or supervision, and a write that would meet read-only data (another
+    without travel or supervision, an unknown availability policy or one following a data-valid
+    address its machine does not name, and a write that would meet read-only data (another
     point's, or data its vendor writes with it) are refused as the forms and tables refuse them.
     """
     points = [
@@ -334,6 +340,11 @@ def check_points(client: type[PlcClient], pasted: ConfigFile) -> None:
         for data in (subentry["data"].get(CONF_POINTS) or {}).values()
         if isinstance(data, Mapping) and CONF_ADDRESS in data and CONF_DATA_TYPE in data
     ]
+    for subentry in pasted.subentries:
+        data_valid = has_data_valid(subentry["data"])
+        for data in (subentry["data"].get(CONF_POINTS) or {}).values():
+            if isinstance(data, Mapping) and check_policy(data, data_valid=data_valid)[1]:
+                raise ConfigFileError("config_availability_policy", point=_named(data))
     for data in points:
         platform, role = str(data.get(CONF_PLATFORM, "")), str(data.get(CONF_ROLE) or "")
         read_only = bool(data.get(CONF_READ_ONLY))

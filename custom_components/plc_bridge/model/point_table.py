@@ -36,6 +36,7 @@ from ..const import (
     SUBENTRY_DEVICE,
 )
 from ..plc import PlcAddressError, PlcClient, Point, ValueKind
+from .availability import CONF_AVAILABILITY_POLICY, check_policy
 from .composite import (
     CONF_SUPERVISION,
     CONF_TRAVEL_TIME,
@@ -70,11 +71,13 @@ COLUMNS = (
     CONF_AS_TEXT,
     CONF_SUPERVISION,
     CONF_TRAVEL_TIME,
+    CONF_AVAILABILITY_POLICY,
 )
 """The columns of the format, in the order export writes them (rows of one entity of several
 addresses share its name and platform, and each names its role); an empty poll is normal,
 `as_text` shows a duration as hh:mm:ss.zzz, and a cover's or valve's rows carry its travel
-time in seconds (empty: none), a supervised entity's its supervision time."""
+time in seconds (empty: none), a supervised entity's its supervision time; an empty
+availability is the machine's default (availability.py)."""
 COMMENT = "comment"
 HEADERS: dict[str, str] = {
     **{column: column for column in COLUMNS},
@@ -242,6 +245,8 @@ def _values(
     for key in (*PAIRS_FIELDS, CONF_POLL):
         if cells.get(key, "").strip():
             values[key] = cells[key].strip()
+    if policy := cells.get(CONF_AVAILABILITY_POLICY, "").strip().lower():
+        values[CONF_AVAILABILITY_POLICY] = policy
     for key, column in (
         (CONF_UNIT_OF_MEASUREMENT, "unit"),
         (CONF_DEVICE_CLASS, CONF_DEVICE_CLASS),
@@ -264,6 +269,7 @@ def parse_points(
     assumed: list[tuple[int, str]] | None = None,
     known: Iterable[Mapping[str, Any]] = (),
     plc: Iterable[Mapping[str, Any]] = (),
+    data_valid: bool = False,
 ) -> tuple[list[dict[str, Any]], list[tuple[int, str]]]:
     """Return the points of a pasted table and the errors by line; no points unless no errors.
 
@@ -272,7 +278,8 @@ def parse_points(
     `assumed` receives, by line, the data types taken where the table names none. `known`:
     the machine's points already, which new parts of an entity of several points join.
     `plc`: the PLC's points already (stored data), whose read-only data no new point's write
-    may meet, nor a new read-only point the writes of theirs.
+    may meet, nor a new read-only point the writes of theirs. `data_valid`: the machine names
+    a data-valid address (its points may follow it).
     """
     header, rows = _rows(text)
     columns = [_column(cell) for cell in header]
@@ -301,6 +308,10 @@ def parse_points(
             found[CONF_TRAVEL_TIME] = "travel_time_not_here"
         if not part and values.get(CONF_SUPERVISION):
             found[CONF_SUPERVISION] = "supervision_not_here"
+        policy, wrong = check_policy(values, data_valid=data_valid)
+        if wrong:
+            found[CONF_AVAILABILITY_POLICY] = wrong
+        data |= policy
         if found:
             texts = dict.fromkeys(describe(key, placeholders) for key in found.values())
             errors.append((line, " ".join(texts)))
