@@ -68,16 +68,16 @@ COLUMNS = (
     *KIND_COLUMNS,
     CONF_ROLE,
     CONF_POLL,
+    CONF_AVAILABILITY_POLICY,
     CONF_AS_TEXT,
     CONF_SUPERVISION,
     CONF_TRAVEL_TIME,
-    CONF_AVAILABILITY_POLICY,
 )
 """The columns of the format, in the order export writes them (rows of one entity of several
-addresses share its name and platform, and each names its role); an empty poll is normal,
-`as_text` shows a duration as hh:mm:ss.zzz, and a cover's or valve's rows carry its travel
-time in seconds (empty: none), a supervised entity's its supervision time; an empty
-availability is the machine's default (availability.py)."""
+addresses share its name and platform, and each names its role); an empty poll is normal, an
+empty availability the machine's default (availability.py), `as_text` shows a duration as
+hh:mm:ss.zzz, and a cover's or valve's rows carry its travel time in seconds (empty: none), a
+supervised entity's its supervision time."""
 COMMENT = "comment"
 HEADERS: dict[str, str] = {
     **{column: column for column in COLUMNS},
