@@ -29,7 +29,7 @@ from pytest_homeassistant_custom_component.common import (
 from custom_components.plc_bridge.plc.vendors.s7_smart import S7SmartClient
 from simulators.s7_smart import S7SmartSimulator
 
-from .ha_fixtures import PointData, make_entry, point, poll, set_up
+from .ha_fixtures import PointData, edit_point, make_entry, point, poll, read_edits, set_up
 
 pytestmark = pytest.mark.no_pacing
 
@@ -216,3 +216,33 @@ async def test_event_restores_as_home_assistant_does(
     alarms = entity_ids(hass, entry)["alarms"]
     written = await restart(hass, entry, monkeypatch, freezer)
     assert all("restored" not in state.attributes for state in written[alarms])
+
+
+async def test_an_edited_address_shows_no_value_of_the_old_one(
+    hass: HomeAssistant, s7_smart_sim: S7SmartSimulator, freezer: FrozenDateTimeFactory
+) -> None:
+    """A point moved to another address: its entity shows no value until the new one is read.
+
+    The entity is made anew with its id (and the state it stored at its removal), but the value
+    stored is of the old address. (Unavailable states marked restored are Home Assistant's own,
+    written for an entity removed while its registry entry stays.)
+    """
+    hold(s7_smart_sim, BEFORE)
+    s7_smart_sim.set("VD104", 30.5, "float")
+    entry = await set_up(hass, make_entry(hass, s7_smart_sim, [*FIRST, *KINDS]))
+    sensor = entity_ids(hass, entry)["temp"]
+    written: list[State] = []
+
+    @callback
+    def note(event: Event[EventStateChangedData]) -> None:
+        """Keep each state the sensor writes."""
+        if (state := event.data["new_state"]) is not None and state.entity_id == sensor:
+            written.append(state)
+
+    unsubscribe = hass.bus.async_listen(EVENT_STATE_CHANGED, note)
+    edit_point(hass, entry, "temp", address="VD104")
+    await hass.async_block_till_done()
+    await read_edits(hass, freezer)
+    unsubscribe()
+    shown = [state for state in written if state.state != STATE_UNAVAILABLE]
+    assert [(state.state, "restored" in state.attributes) for state in shown] == [("30.5", False)]

@@ -142,14 +142,10 @@ class PlcCompositeEntity(PlcEntity):
         """The points of the entity's parts."""
         return [part.point for part in self.parts.values()]
 
-    def restore_roles(self) -> dict[str, Point]:
-        """The parts' points, whose values the entity stores across restarts."""
-        return {role: part.point for role, part in self.parts.items()}
-
     def result(self, role: str) -> PointResult | None:
         """A part's outcome in the last poll (restored if shown before its first read), or None."""
         part = self.parts.get(role)
-        return None if part is None else self.point_result(role, part.point)
+        return None if part is None else self.point_result(part.point)
 
     def raw(self, role: str) -> Value | None:
         """A part's raw value; None without the part or while its read fails."""

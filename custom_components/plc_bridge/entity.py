@@ -193,7 +193,9 @@ class PlcEntity(CoordinatorEntity[PlcCoordinator], RestoreEntity):
     _policy: str = POLICY_DATA_VALID
     """The availability policy (model/availability.py); the PLC's own entities follow the PLC."""
     _restored: Mapping[str, Any] | None = None
-    """The raw values by role stored at the last stop, until a poll reads every point."""
+    """The raw values by point stored at the last stop, until a poll reads every point."""
+    _restores = True
+    """False where the platform restores its own state (an event its last event)."""
     _showing = False
     _shown_note: str | None = None
 
@@ -230,26 +232,25 @@ class PlcEntity(CoordinatorEntity[PlcCoordinator], RestoreEntity):
             return {"last_read": read_at.isoformat()}
         return None
 
-    def restore_roles(self) -> dict[str, Point]:
-        """The points whose values the entity stores across restarts, by role (none here)."""
-        return {}
+    def restored_points(self) -> list[Point]:
+        """The points whose values the entity stores across restarts: those it shows."""
+        return self.read_points() if self._restores else []
 
-    def point_result(self, role: str, point: Point) -> PointResult | None:
+    def point_result(self, point: Point) -> PointResult | None:
         """A point's outcome in the last poll; while shown before its first read, its restored."""
         result = self.coordinator.data.values.get(point)
         if result is None and self._showing:
-            return restored_result(self._restored, role)
+            return restored_result(self._restored, point)
         return result
 
     @property
     def extra_restore_state_data(self) -> ExtraStoredData | None:
-        """The raw value of each point by role: the last read, else the one restored."""
-        roles = self.restore_roles()
-        if not roles:
+        """The raw value of each point: the last read, else the one restored."""
+        points = self.restored_points()
+        if not points:
             return super().extra_restore_state_data
         values = self.coordinator.data.values
-        results = {role: values.get(point) for role, point in roles.items()}
-        return extra_data(results, self._restored)
+        return extra_data({point: values.get(point) for point in points}, self._restored)
 
     def _note(self) -> str | None:
         """What the attributes say beside the state: restored, kept, or nothing."""
@@ -281,8 +282,8 @@ class PlcEntity(CoordinatorEntity[PlcCoordinator], RestoreEntity):
         """Take the values stored at the last stop where a point is not read yet; follow polls."""
         await super().async_added_to_hass()
         read = self.coordinator.data.values
-        if any(point not in read for point in self.restore_roles().values()):
-            self._restored = stored_values(await self.async_get_last_extra_data())
+        if unread := [point for point in self.restored_points() if point not in read]:
+            self._restored = stored_values(await self.async_get_last_extra_data(), unread)
         self._shown_available, self._shown, self._shown_note = self._shown_now()
 
     def _shown_now(self) -> tuple[bool, Any, str | None]:
@@ -298,7 +299,7 @@ class PlcEntity(CoordinatorEntity[PlcCoordinator], RestoreEntity):
         """Write the state only when availability or the value changed: a quiet poll writes none."""
         if self._restored is not None:
             read = self.coordinator.data.values
-            if all(point in read for point in self.restore_roles().values()):
+            if all(point in read for point in self.restored_points()):
                 self._restored = None
         available, shown, note = self._shown_now()
         if (
@@ -328,11 +329,7 @@ class PlcPointEntity(PlcEntity):
     @property
     def result(self) -> PointResult | None:
         """The point's outcome in the last poll (restored where shown before its first read)."""
-        return self.point_result("value", self.entity_description.point)
-
-    def restore_roles(self) -> dict[str, Point]:
-        """The entity's point, whose value it stores across restarts."""
-        return {"value": self.entity_description.point}
+        return self.point_result(self.entity_description.point)
 
     @property
     def available(self) -> bool:

@@ -13,7 +13,6 @@ from .coordinator import PlcBridgeConfigEntry
 from .entity import PlcPointDescription, PlcPointEntity, point_fields
 from .model.alarm import bit_set, word_bits
 from .model.points import PointConfig
-from .plc import Point
 
 PARALLEL_UPDATES = 0
 RAISED = "raised"
@@ -56,11 +55,8 @@ class PlcAlarmEvent(PlcPointEntity, EventEntity):  # type: ignore[misc]
     """
 
     entity_description: PlcEventDescription
+    _restores = False  # its last event, as Home Assistant's event entities restore it
     _last: int | None = None
-
-    def restore_roles(self) -> dict[str, Point]:
-        """None: an event restores its last event as Home Assistant's event entities do."""
-        return {}
 
     async def async_added_to_hass(self) -> None:
         """Take the word as read now as the baseline."""
