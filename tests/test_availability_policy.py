@@ -313,3 +313,59 @@ async def test_pasted_file_keeps_a_good_policy(
     assert await hass.config_entries.async_remove(entry.entry_id)
     result = await paste(hass, text)
     assert result.get("errors") in (None, {})
+
+
+def test_parts_of_one_entity_agree() -> None:
+    """Rows of one entity giving different availabilities are refused on its first line."""
+    head = "name,address,platform,role,read_only,availability\n"
+    rows = {
+        "Pump,I0.1,switch,state,true,keep\nPump,Q0.4,switch,command,false,keep\n": [],
+        "Pump,I0.1,switch,state,true,keep\nPump,Q0.4,switch,command,false,\n": [
+            (2, "availability_differs")
+        ],
+    }
+    for lines, expected in rows.items():
+        assert parse_points(SMART, head + lines, describe=key_only)[1] == expected, lines
+
+
+async def test_pasted_file_refuses_parts_that_differ(
+    hass: HomeAssistant, flow_sim: S7SmartSimulator
+) -> None:
+    """A pasted file whose entity's parts give different availabilities adds no PLC."""
+    points = [
+        point("s", "Pump", "switch", "I0.1", "signed", role="state", read_only=True, **KEEP),
+        point("c", "Pump", "switch", "Q0.4", "signed", role="command"),
+    ]
+    entry = make_entry(hass, flow_sim, points)
+    text = dump_config(entry)
+    assert await hass.config_entries.async_remove(entry.entry_id)
+    result = await paste(hass, text)
+    assert result["errors"] == {"configuration": "config_availability_policy"}
+    assert hass.config_entries.async_entries(DOMAIN) == []
+
+
+async def test_composite_edit_changes_every_part(
+    hass: HomeAssistant, smart_entry: MockConfigEntry
+) -> None:
+    """Editing one part's address form sets the availability of the whole entity."""
+    result = await step(
+        hass,
+        await machine_menu(hass, smart_entry, data_valid=False),
+        {"next_step_id": "composite"},
+    )
+    result = await step(hass, result, {"platform": "switch", "name": "Pump"})
+    parts = {"state": "I0.1", "command": "Q0.4"}
+    result = await step(hass, result, parts)
+    for part in parts:
+        result = await step(hass, result, {"read_only": part == "state"})
+    result = await step(hass, result, {"next_step_id": "edit"})
+    (marker,) = result["data_schema"].schema
+    first = result["data_schema"].schema[marker].config["options"][0]
+    result = await step(hass, result, {"point": first["value"]})
+    assert result["step_id"] == "composite_edit"
+    assert offered(result) == ["plc", "keep"]
+    address, role = (result["description_placeholders"][key] for key in ("address", "role"))
+    result = await step(hass, result, {"address": address, "availability": "keep"})
+    result = await step(hass, result, {"read_only": role == "state"})
+    await step(hass, result, {"next_step_id": "save"})
+    assert [data.get("availability") for data in machines(smart_entry)] == ["keep", "keep"]

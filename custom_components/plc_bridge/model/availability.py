@@ -17,6 +17,7 @@ from __future__ import annotations
 from collections.abc import Iterable, Mapping
 from typing import Any, Final
 
+from homeassistant.const import CONF_NAME
 from homeassistant.helpers.selector import (
     SelectSelector,
     SelectSelectorConfig,
@@ -25,8 +26,9 @@ from homeassistant.helpers.selector import (
 )
 import voluptuous as vol
 
-from ..const import CONF_DATA_TYPE, SUBENTRY_DEVICE
+from ..const import CONF_DATA_TYPE, CONF_PLATFORM, CONF_ROLE, SUBENTRY_DEVICE
 from ..plc import PlcClient, PlcError, Point, Value
+from .composite import is_part
 
 CONF_AVAILABILITY_ADDRESS: Final = "availability_address"
 CONF_AVAILABILITY_DATA_TYPE: Final = "availability_data_type"
@@ -179,3 +181,14 @@ def check_policy(values: Mapping[str, Any], *, data_valid: bool) -> tuple[dict[s
     if policy == default_policy(data_valid=data_valid):
         return {}, ""
     return {CONF_AVAILABILITY_POLICY: policy}, ""
+
+
+def policy_differs(rows: Iterable[Mapping[str, Any]]) -> list[str]:
+    """Return the names of entities of several points whose parts store different policies."""
+    policies: dict[tuple[str, str], set[str]] = {}
+    for data in rows:
+        platform = str(data.get(CONF_PLATFORM, ""))
+        if is_part(platform, data.get(CONF_ROLE)):
+            key = (platform, str(data.get(CONF_NAME, "")))
+            policies.setdefault(key, set()).add(str(data.get(CONF_AVAILABILITY_POLICY, "")))
+    return [name for (_, name), found in policies.items() if len(found) > 1]

@@ -37,6 +37,7 @@ from .availability import (
     CONF_AVAILABILITY_DATA_TYPE,
     check_policy,
     has_data_valid,
+    policy_differs,
 )
 from .composite import as_platform, is_part, point_classes, supervision_data, travel_data
 from .config_keys import (
@@ -345,6 +346,9 @@ def check_points(client: type[PlcClient], pasted: ConfigFile) -> None:
         for data in (subentry["data"].get(CONF_POINTS) or {}).values():
             if isinstance(data, Mapping) and check_policy(data, data_valid=data_valid)[1]:
                 raise ConfigFileError("config_availability_policy", point=_named(data))
+        rows = (subentry["data"].get(CONF_POINTS) or {}).values()
+        for name in policy_differs(data for data in rows if isinstance(data, Mapping))[:1]:
+            raise ConfigFileError("config_availability_policy", point=name)
     for data in points:
         platform, role = str(data.get(CONF_PLATFORM, "")), str(data.get(CONF_ROLE) or "")
         read_only = bool(data.get(CONF_READ_ONLY))

@@ -36,7 +36,7 @@ from ..const import (
     SUBENTRY_DEVICE,
 )
 from ..plc import PlcAddressError, PlcClient, Point, ValueKind
-from .availability import CONF_AVAILABILITY_POLICY, check_policy
+from .availability import CONF_AVAILABILITY_POLICY, check_policy, policy_differs
 from .composite import (
     CONF_SUPERVISION,
     CONF_TRAVEL_TIME,
@@ -331,6 +331,10 @@ def parse_points(
     for name, key, details in group_errors([*known, *points]):
         if name in firsts:
             errors.append((firsts[name], describe(key, details)))
+    differs = policy_differs([*known, *points]) if not errors else []
+    errors += [
+        (firsts[n], describe("availability_differs", {"name": n})) for n in differs if n in firsts
+    ]
     for made, conflict in [] if errors else layout_conflicts(client, [*plc], points):
         wording = {"written": conflict.point.address}
         wording["point"] = conflict.other.address if conflict.other else ""
