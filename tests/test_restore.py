@@ -12,6 +12,7 @@ once, while the coordinator plans as for the paced PLC.
 
 from __future__ import annotations
 
+import asyncio
 from datetime import timedelta
 from typing import Any
 
@@ -246,3 +247,52 @@ async def test_an_edited_address_shows_no_value_of_the_old_one(
     unsubscribe()
     shown = [state for state in written if state.state != STATE_UNAVAILABLE]
     assert [(state.state, "restored" in state.attributes) for state in shown] == [("30.5", False)]
+
+
+async def test_commands_before_the_first_read_send_nothing(
+    hass: HomeAssistant,
+    s7_smart_sim: S7SmartSimulator,
+    freezer: FrozenDateTimeFactory,
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    """A restored switch, number, select and cover take no command until their points are read.
+
+    The poll after the setup's is held until the commands were given: the PLC gets no write.
+    """
+    hold(s7_smart_sim, BEFORE)
+    entry = await set_up(hass, make_entry(hass, s7_smart_sim, [*FIRST, *KINDS]))
+    ids = entity_ids(hass, entry)
+    assert await hass.config_entries.async_unload(entry.entry_id)
+    await hass.async_block_till_done()
+    await async_mock_restore_state_shutdown_restart(hass)
+    paced_after_connect(monkeypatch)
+    gate, reads = asyncio.Event(), []
+    read = S7SmartClient.read
+
+    async def held(self: S7SmartClient, points: Any, **kwargs: Any) -> Any:
+        """Read the setup's points; hold the reads after it until the gate opens."""
+        reads.append(len(points))
+        if len(reads) > 1:
+            await gate.wait()
+        return await read(self, points, **kwargs)
+
+    monkeypatch.setattr(S7SmartClient, "read", held)
+    await set_up(hass, entry)
+    assert reads == [32]
+    for key in ("pump", "set", "kmode", "shutter"):
+        assert hass.states.get(ids[key]).attributes["restored"] is True  # type: ignore[union-attr]
+    calls = [
+        ("switch", "turn_off", ids["pump"], {}),
+        ("number", "set_value", ids["set"], {"value": 10}),
+        ("select", "select_option", ids["kmode"], {"option": "Off"}),
+        ("cover", "set_cover_position", ids["shutter"], {"position": 0}),
+    ]
+    for domain, service, entity_id, data in calls:
+        await hass.services.async_call(
+            domain, service, {"entity_id": entity_id, **data}, blocking=True
+        )
+    assert s7_smart_sim.calls["write"] == 0
+    gate.set()
+    await poll(hass, freezer)
+    assert s7_smart_sim.calls["write"] == 0
+    assert "restored" not in hass.states.get(ids["pump"]).attributes  # type: ignore[union-attr]
