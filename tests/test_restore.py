@@ -80,6 +80,7 @@ BEFORE: dict[str, Any] = {
     "VW52": (220, None),
     "VW54": (1, None),
     "I0.3": (True, None),
+    "VW70": (1, None),
 }
 """What the PLC holds before the restart (address: value, simulator type)."""
 AFTER: dict[str, Any] = {
@@ -101,6 +102,7 @@ AFTER: dict[str, Any] = {
     "VW52": (200, None),
     "VW54": (0, None),
     "I0.3": (False, None),
+    "VW70": (0, None),
 }
 """What it holds while Home Assistant is down: every value differs."""
 
@@ -124,7 +126,7 @@ def entity_ids(hass: HomeAssistant, entry: MockConfigEntry) -> dict[str, str]:
     return {key: found[key] for key in ("temp", "door", "pump", "set", "kmode", "name")} | {
         name: entity_id
         for entity_id in found.values()
-        for name in ("shutter", "mixer", "vent", "lamp", "boiler", "heater", "alarms")
+        for name in ("shutter", "mixer", "vent", "lamp", "boiler", "heater", "alarms", "overheat")
         if entity_id.endswith(f"_{name}")
     }
 
@@ -185,6 +187,7 @@ async def test_every_kind_shows_its_last_value_until_polled(
     hold(s7_smart_sim, BEFORE)
     entry = await set_up(hass, make_entry(hass, s7_smart_sim, [*FIRST, *KINDS]))
     ids = entity_ids(hass, entry)
+    assert len(ids) == 14  # the six plain kinds, six of several points, an alarm word, its bit
     before = {key: hass.states.get(entity_id) for key, entity_id in ids.items()}
     assert all(state is not None and state.state != STATE_UNAVAILABLE for state in before.values())
     hold(s7_smart_sim, AFTER)
