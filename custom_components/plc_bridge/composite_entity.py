@@ -21,7 +21,8 @@ from homeassistant.helpers.entity_platform import AddConfigEntryEntitiesCallback
 
 from .const import CONF_MAX, CONF_MIN, CONF_STEP, DOMAIN
 from .coordinator import PlcBridgeConfigEntry
-from .entity import PlcEntity, device_of, entity_name, point_fields
+from .entity import PlcEntity, device_of, entity_name, entity_policy, point_fields
+from .model.availability import CONF_AVAILABILITY_POLICY
 from .model.composite import Composite, composites, group_key
 from .model.conversion import Conversion
 from .model.kinds import KINDS
@@ -118,6 +119,10 @@ class PlcCompositeEntity(PlcEntity):
         self._label = group.name  # what messages call it, whatever Home Assistant shows
         self._attr_device_info = device_of(group.subentry_id)
         self._machine = group.subentry_id
+        stated = [
+            p.config.data for p in parts.values() if CONF_AVAILABILITY_POLICY in p.config.data
+        ]
+        self._policy = entity_policy(entry, group.subentry_id, stated[0] if stated else {})
         self.parts = parts
         self._key = group.key
         self._platform = group.platform
@@ -172,9 +177,9 @@ class PlcCompositeEntity(PlcEntity):
         return [part.point for part in self.parts.values()]
 
     def result(self, role: str) -> PointResult | None:
-        """The outcome of a part's point in the last poll, None without that part."""
+        """A part's outcome in the last poll (restored if shown before its first read), or None."""
         part = self.parts.get(role)
-        return None if part is None else self.coordinator.data.values.get(part.point)
+        return None if part is None else self.point_result(part.point)
 
     def raw(self, role: str) -> Value | None:
         """A part's raw value; None without the part or while its read fails."""

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 from dataclasses import dataclass
 from enum import StrEnum
 from functools import lru_cache
@@ -12,14 +13,17 @@ from homeassistant.core import HomeAssistant, callback
 from homeassistant.helpers import device_registry as dr, entity_registry as er
 from homeassistant.helpers.device_registry import CONNECTION_NETWORK_MAC, DeviceInfo, format_mac
 from homeassistant.helpers.entity import EntityDescription
+from homeassistant.helpers.restore_state import ExtraStoredData, RestoreEntity
 from homeassistant.helpers.update_coordinator import CoordinatorEntity
 from yarl import URL
 
 from .const import CONF_MAC, CONF_TLS, DOMAIN
 from .coordinator import PlcBridgeConfigEntry, PlcCoordinator
+from .model.availability import POLICY_DATA_VALID, POLICY_KEEP, has_data_valid, policy_of
 from .model.conversion import Conversion, conversion_of
 from .model.points import PointConfig
 from .plc import PlcError, Point, PointResult, TlsMode, Value, ValueKind
+from .runtime.restore import extra_data, restored_result, stored_values
 
 MANUFACTURERS = {
     "s7_smart": "Siemens",
@@ -171,10 +175,29 @@ def plc_device(hass: HomeAssistant, entry: PlcBridgeConfigEntry) -> str:
     return registry.async_get_or_create(config_entry_id=entry.entry_id, **device_info(entry)).id
 
 
-class PlcEntity(CoordinatorEntity[PlcCoordinator]):
-    """An entity of one PLC's device: unique id and device set once."""
+def entity_policy(entry: PlcBridgeConfigEntry, subentry_id: str, data: Mapping[str, Any]) -> str:
+    """Return the availability policy a point's data gives its entity on its machine."""
+    machine = entry.subentries.get(subentry_id)
+    return policy_of(data, data_valid=machine is not None and has_data_valid(machine.data))
+
+
+class PlcEntity(CoordinatorEntity[PlcCoordinator], RestoreEntity):
+    """An entity of one PLC's device: unique id and device set once.
+
+    An entity of points shows the values it stored at the last stop, marked restored, until a
+    poll reads its points; they are seen only while its state is written (`_showing`), so no
+    command is ever decided from them.
+    """
 
     _attr_has_entity_name = True
+    _policy: str = POLICY_DATA_VALID
+    """The availability policy (model/availability.py); the PLC's own entities follow the PLC."""
+    _restored: Mapping[str, Any] | None = None
+    """The raw values by point stored at the last stop, until a poll reads every point."""
+    _restores = True
+    """False where the platform restores its own state (an event its last event)."""
+    _showing = False
+    _shown_note: str | None = None
 
     def __init__(self, entry: PlcBridgeConfigEntry, key: str, point: Point | None = None) -> None:
         """Attach the entity to the entry's coordinator (for `point`) and the PLC's device."""
@@ -186,9 +209,61 @@ class PlcEntity(CoordinatorEntity[PlcCoordinator]):
         self._machine: str | None = None  # the device subentry whose availability applies
 
     @property
+    def held(self) -> bool:
+        """True while the PLC cannot be reached and the entity keeps showing its last values."""
+        return self._policy == POLICY_KEEP and not self.coordinator.last_update_success
+
+    @property
     def available(self) -> bool:
-        """Available while the PLC answers and the entity's machine says its data is valid."""
-        return super().available and self._machine not in self.coordinator.availability.invalid
+        """Available while the PLC answers (or its values are kept) and its data valid, if asked."""
+        if not super().available:
+            return self.held
+        return (
+            self._policy != POLICY_DATA_VALID
+            or self._machine not in self.coordinator.availability.invalid
+        )
+
+    @property
+    def extra_state_attributes(self) -> dict[str, Any] | None:
+        """Say that values are restored, or when the values kept were read."""
+        if self._restored is not None:
+            return {"restored": True}
+        if self.held and (read_at := self.coordinator.availability.read_at) is not None:
+            return {"last_read": read_at.isoformat()}
+        return None
+
+    def restored_points(self) -> list[Point]:
+        """The points whose values the entity stores across restarts: those it shows."""
+        return self.read_points() if self._restores else []
+
+    def point_result(self, point: Point) -> PointResult | None:
+        """A point's outcome in the last poll; while shown before its first read, its restored."""
+        result = self.coordinator.data.values.get(point)
+        if result is None and self._showing:
+            return restored_result(self._restored, point)
+        return result
+
+    @property
+    def extra_restore_state_data(self) -> ExtraStoredData | None:
+        """The raw value of each point: the last read, else the one restored."""
+        points = self.restored_points()
+        if not points:
+            return super().extra_restore_state_data
+        values = self.coordinator.data.values
+        return extra_data({point: values.get(point) for point in points}, self._restored)
+
+    def _note(self) -> str | None:
+        """What the attributes say beside the state: restored, kept, or nothing."""
+        return "restored" if self._restored is not None else "held" if self.held else None
+
+    @callback
+    def _async_write_ha_state(self) -> None:
+        """Write the state, restored values included where no poll has read their point yet."""
+        self._showing = True
+        try:
+            super()._async_write_ha_state()
+        finally:
+            self._showing = False
 
     def observed(self) -> Any:
         """What this entity shows of the last poll; its state is written only when this changes."""
@@ -204,16 +279,35 @@ class PlcEntity(CoordinatorEntity[PlcCoordinator]):
         await super().async_update()
 
     async def async_added_to_hass(self) -> None:
-        """Remember what the first state shows, then follow the coordinator."""
+        """Take the values stored at the last stop where a point is not read yet; follow polls."""
         await super().async_added_to_hass()
-        self._shown_available, self._shown = self.available, self.observed()
+        read = self.coordinator.data.values
+        if unread := [point for point in self.restored_points() if point not in read]:
+            self._restored = stored_values(await self.async_get_last_extra_data(), unread)
+        self._shown_available, self._shown, self._shown_note = self._shown_now()
+
+    def _shown_now(self) -> tuple[bool, Any, str | None]:
+        """Return the availability, what is observed and the note as the state would show them."""
+        self._showing = True
+        try:
+            return self.available, self.observed(), self._note()
+        finally:
+            self._showing = False
 
     @callback
     def _handle_coordinator_update(self) -> None:
         """Write the state only when availability or the value changed: a quiet poll writes none."""
-        available, shown = self.available, self.observed()
-        if available != self._shown_available or not (shown is self._shown or shown == self._shown):
-            self._shown_available, self._shown = available, shown
+        if self._restored is not None:
+            read = self.coordinator.data.values
+            if all(point in read for point in self.restored_points()):
+                self._restored = None
+        available, shown, note = self._shown_now()
+        if (
+            available != self._shown_available
+            or note != self._shown_note
+            or not (shown is self._shown or shown == self._shown)
+        ):
+            self._shown_available, self._shown, self._shown_note = available, shown, note
             super()._handle_coordinator_update()
 
 
@@ -229,12 +323,13 @@ class PlcPointEntity(PlcEntity):
         super().__init__(entry, description.key, description.point)
         self._attr_device_info = device_of(config.subentry_id)
         self._machine = config.subentry_id
+        self._policy = entity_policy(entry, config.subentry_id, config.data)
         self.entity_description = description
 
     @property
     def result(self) -> PointResult | None:
-        """The point's outcome in the last poll."""
-        return self.coordinator.data.values.get(self.entity_description.point)
+        """The point's outcome in the last poll (restored where shown before its first read)."""
+        return self.point_result(self.entity_description.point)
 
     @property
     def available(self) -> bool:

@@ -46,7 +46,8 @@ async def async_setup_entry(
     entry.runtime_data.points.async_setup_platform("event", point_event, async_add_entities)
 
 
-class PlcAlarmEvent(PlcPointEntity, EventEntity):
+# PlcEntity's restore data hands over to EventEntity's (the event restores no point values).
+class PlcAlarmEvent(PlcPointEntity, EventEntity):  # type: ignore[misc]
     """Fires when a named bit of the word is set (`raised`) or reset (`cleared`).
 
     The first value read is the baseline: bits already set when Home Assistant starts fire
@@ -54,6 +55,7 @@ class PlcAlarmEvent(PlcPointEntity, EventEntity):
     """
 
     entity_description: PlcEventDescription
+    _restores = False  # its last event, as Home Assistant's event entities restore it
     _last: int | None = None
 
     async def async_added_to_hass(self) -> None:

@@ -37,6 +37,12 @@ from ..const import (
     CONF_READ_ONLY,
     CONF_ROLE,
 )
+from ..model.availability import (
+    CONF_AVAILABILITY_POLICY,
+    check_policy,
+    has_data_valid,
+    policy_field,
+)
 from ..model.composite import (
     as_platform,
     entity_time,
@@ -61,8 +67,9 @@ from ..plc import PlcAddressError, PlcClient, Point
 from .base import DeviceFlowBase
 from .point_form import BASE_FIELDS, details_schema
 
-SHARED = (CONF_POLL, CONF_TRAVEL_TIME, CONF_SUPERVISION)
-"""What every part of one entity has alike: its poll class, travel and supervision time."""
+SHARED = (CONF_POLL, CONF_TRAVEL_TIME, CONF_SUPERVISION, CONF_AVAILABILITY_POLICY)
+"""What every part of one entity has alike: its poll class, travel and supervision time, and
+its availability policy."""
 TIMES = (CONF_TRAVEL_TIME, CONF_SUPERVISION)
 """The entity's times the first form (or a part's address form) asks, stored on every part."""
 _SECONDS = NumberSelector(NumberSelectorConfig(mode=NumberSelectorMode.BOX, step="any"))
@@ -73,6 +80,11 @@ TYPE_SUFFIX = "_data_type"
 
 class CompositeSteps(DeviceFlowBase):
     """Steps of the device flow for an entity of several points (its handler's base)."""
+
+    @property
+    def _data_valid(self) -> bool:
+        """True when the machine names a data-valid address (its entities may follow it)."""
+        return has_data_valid(self._availability)
 
     async def async_step_composite(
         self, user_input: dict[str, Any] | None = None
@@ -93,7 +105,12 @@ class CompositeSteps(DeviceFlowBase):
             else:
                 self._composite = {CONF_NAME: name, CONF_PLATFORM: platform}
                 self._composite[CONF_POLL] = user_input.get(CONF_POLL, NORMAL)
-                return await self.async_step_composite_parts()
+                policy, wrong = check_policy(user_input, data_valid=self._data_valid)
+                self._composite |= policy
+                if wrong:
+                    errors[CONF_AVAILABILITY_POLICY] = wrong
+                else:
+                    return await self.async_step_composite_parts()
         schema = vol.Schema(
             {
                 vol.Required(CONF_PLATFORM, default="cover"): SelectSelector(
@@ -103,6 +120,7 @@ class CompositeSteps(DeviceFlowBase):
                 ),
                 vol.Required(CONF_NAME): TextSelector(),
                 **poll_field(),
+                **policy_field(data_valid=self._data_valid),
             }
         )
         return self.async_show_form(
@@ -221,6 +239,7 @@ class CompositeSteps(DeviceFlowBase):
         if user_input is not None:
             base = {key: values[key] for key in (*BASE_FIELDS, CONF_ROLE, *SHARED) if key in values}
             data, errors, found = part_data(self._client, base | user_input)
+            data |= {k: base[k] for k in (CONF_AVAILABILITY_POLICY,) if k in base}
             placeholders |= found
             others = [*self._made, *self._parts[len(self._made) + 1 :]]
             for _part, key, details in self._layout_errors([data], others) if not errors else []:
@@ -289,14 +308,16 @@ class CompositeSteps(DeviceFlowBase):
             travel, errors = travel_data(platform, user_input)
             supervision, wrong = supervision_data(platform, user_input)
             errors |= wrong
-            kept = {k: v for k, v in values.items() if k not in TIMES}
+            policy, refused = check_policy(user_input, data_valid=self._data_valid)
+            errors |= {CONF_AVAILABILITY_POLICY: refused} if refused else {}
+            kept = {k: v for k, v in values.items() if k not in (*TIMES, CONF_AVAILABILITY_POLICY)}
             part, found_errors, found = self._part_at(
                 values[CONF_ROLE], address, data_type, self._taken()
             )
             errors |= found_errors
             placeholders |= found
             if part is not None and not errors:
-                part = {**kept, **part, **travel, **supervision}
+                part = {**kept, **part, **travel, **supervision, **policy}
                 rows = [
                     {k: v for k, v in row.items() if k not in TIMES}
                     for row in self._entity_rows(self._part_ids[0])
@@ -318,6 +339,7 @@ class CompositeSteps(DeviceFlowBase):
         )
         if time := entity_time(platform):
             schema = schema.extend({vol.Optional(time): _SECONDS})
+        schema = schema.extend(policy_field(data_valid=self._data_valid))
         return self.async_show_form(
             step_id="composite_edit",
             data_schema=self.add_suggested_values_to_schema(schema, user_input or values),

@@ -25,7 +25,13 @@ from ..const import (
     CONF_READ_ONLY,
     CONF_ROLE,
 )
-from ..model.availability import AVAILABILITY_FIELDS
+from ..model.availability import (
+    AVAILABILITY_FIELDS,
+    CONF_AVAILABILITY_POLICY,
+    check_policy,
+    has_data_valid,
+    policy_field,
+)
 from ..model.device_classes import device_classes
 from ..model.point_table import async_describe, parse_points
 from ..model.points import check_point, point_data
@@ -111,6 +117,9 @@ class DeviceSubentryFlowHandler(CompositeSteps, MachineStep):
         if user_input is not None:
             data, errors, found = point_data(self._client, {**self._base, **user_input})
             placeholders |= found
+            policy, wrong = check_policy(user_input, data_valid=has_data_valid(self._availability))
+            errors |= {CONF_AVAILABILITY_POLICY: wrong} if wrong else {}
+            data |= policy
             for _data, key, details in (
                 layout_errors(self._client, self._plc_points(), [data]) if not errors else []
             ):
@@ -130,7 +139,10 @@ class DeviceSubentryFlowHandler(CompositeSteps, MachineStep):
         return self.async_show_form(
             step_id="details",
             data_schema=self.add_suggested_values_to_schema(
-                details_schema(platform, kind, device_class), suggested
+                details_schema(platform, kind, device_class).extend(
+                    policy_field(data_valid=has_data_valid(self._availability))
+                ),
+                suggested,
             ),
             errors=errors,
             description_placeholders={
@@ -245,6 +257,7 @@ class DeviceSubentryFlowHandler(CompositeSteps, MachineStep):
                 assumed=assumed,
                 known=known,
                 plc=self._plc_points(),
+                data_valid=has_data_valid(self._availability),
             )
             if not problems and (not assumed or table == self._confirmed):
                 self._points |= {secrets.token_hex(6): data for data in points}

@@ -5,6 +5,11 @@ valid, the machine's points with it, whatever their poll class: coordinator.py).
 valid while that point reads true or non-zero, or, where a list of values is given, one of
 them. While it reads "not valid" or fails, every entity of the machine is unavailable; the log
 says so once on each change.
+
+Each entity has an availability policy, stored on its point (on every part of an entity of
+several points): follow the PLC (unavailable while its value cannot be read), keep the last
+value while the PLC cannot be reached, or follow the machine's data-valid address as well (only
+where the machine names one, and its default there). No key: the machine's default.
 """
 
 from __future__ import annotations
@@ -12,6 +17,7 @@ from __future__ import annotations
 from collections.abc import Iterable, Mapping
 from typing import Any, Final
 
+from homeassistant.const import CONF_NAME
 from homeassistant.helpers.selector import (
     SelectSelector,
     SelectSelectorConfig,
@@ -20,12 +26,18 @@ from homeassistant.helpers.selector import (
 )
 import voluptuous as vol
 
-from ..const import CONF_DATA_TYPE, SUBENTRY_DEVICE
+from ..const import CONF_DATA_TYPE, CONF_PLATFORM, CONF_ROLE, SUBENTRY_DEVICE
 from ..plc import PlcClient, PlcError, Point, Value
+from .composite import is_part
 
 CONF_AVAILABILITY_ADDRESS: Final = "availability_address"
 CONF_AVAILABILITY_DATA_TYPE: Final = "availability_data_type"
 CONF_AVAILABILITY_VALUES: Final = "availability_values"
+CONF_AVAILABILITY_POLICY: Final = "availability"
+POLICY_PLC: Final = "plc"
+POLICY_KEEP: Final = "keep"
+POLICY_DATA_VALID: Final = "data_valid"
+POLICIES: Final = (POLICY_PLC, POLICY_KEEP, POLICY_DATA_VALID)
 AVAILABILITY_FIELDS: Final = (
     CONF_AVAILABILITY_ADDRESS,
     CONF_AVAILABILITY_DATA_TYPE,
@@ -118,3 +130,65 @@ def availability_points(subentries: Iterable[Any]) -> dict[str, Point]:
         if subentry.subentry_type == SUBENTRY_DEVICE
         and subentry.data.get(CONF_AVAILABILITY_ADDRESS)
     }
+
+
+def has_data_valid(machine: Mapping[str, Any]) -> bool:
+    """Return whether a machine's stored data names a data-valid address."""
+    return bool(machine.get(CONF_AVAILABILITY_ADDRESS))
+
+
+def default_policy(*, data_valid: bool) -> str:
+    """Return the policy of a point that stores none: today's behaviour of its machine."""
+    return POLICY_DATA_VALID if data_valid else POLICY_PLC
+
+
+def policy_of(data: Mapping[str, Any], *, data_valid: bool) -> str:
+    """Return a stored point's policy; `data_valid` on a machine without the address: `plc`."""
+    policy = data.get(CONF_AVAILABILITY_POLICY)
+    if policy not in POLICIES or (policy == POLICY_DATA_VALID and not data_valid):
+        return default_policy(data_valid=data_valid)
+    return str(policy)
+
+
+def policy_field(*, data_valid: bool) -> dict[vol.Optional, Any]:
+    """Return the forms' availability policy field (`data_valid` only where the machine has it)."""
+    options = [p for p in POLICIES if data_valid or p != POLICY_DATA_VALID]
+    return {
+        vol.Optional(
+            CONF_AVAILABILITY_POLICY, default=default_policy(data_valid=data_valid)
+        ): SelectSelector(
+            SelectSelectorConfig(
+                options=options,
+                translation_key=CONF_AVAILABILITY_POLICY,
+                mode=SelectSelectorMode.DROPDOWN,
+            )
+        )
+    }
+
+
+def check_policy(values: Mapping[str, Any], *, data_valid: bool) -> tuple[dict[str, str], str]:
+    """Return what a point stores of its policy (nothing for the default), or the error key.
+
+    The one check of the forms, the tables and the pasted file.
+    """
+    policy = str(values.get(CONF_AVAILABILITY_POLICY) or "").strip()
+    if not policy:
+        return {}, ""
+    if policy not in POLICIES:
+        return {}, "invalid_availability_policy"
+    if policy == POLICY_DATA_VALID and not data_valid:
+        return {}, "availability_policy_no_address"
+    if policy == default_policy(data_valid=data_valid):
+        return {}, ""
+    return {CONF_AVAILABILITY_POLICY: policy}, ""
+
+
+def policy_differs(rows: Iterable[Mapping[str, Any]]) -> list[str]:
+    """Return the names of entities of several points whose parts store different policies."""
+    policies: dict[tuple[str, str], set[str]] = {}
+    for data in rows:
+        platform = str(data.get(CONF_PLATFORM, ""))
+        if is_part(platform, data.get(CONF_ROLE)):
+            key = (platform, str(data.get(CONF_NAME, "")))
+            policies.setdefault(key, set()).add(str(data.get(CONF_AVAILABILITY_POLICY, "")))
+    return [name for (_, name), found in policies.items() if len(found) > 1]

@@ -45,7 +45,14 @@ from ..const import (
     SUBENTRY_POINT,
 )
 from ..plc import PlcClient, PlcError, Point, TlsMode
-from .availability import CONF_AVAILABILITY_ADDRESS, CONF_AVAILABILITY_DATA_TYPE
+from .availability import (
+    CONF_AVAILABILITY_ADDRESS,
+    CONF_AVAILABILITY_DATA_TYPE,
+    CONF_AVAILABILITY_POLICY,
+    check_policy,
+    has_data_valid,
+    policy_differs,
+)
 from .composite import (
     as_platform,
     group_errors,
@@ -439,6 +446,7 @@ class PlcConfig:
         ]
         for subentry in self.subentries:
             points = subentry.points()
+            problems += _policy_problems(subentry, points)
             for name, key, details in group_errors([data for _, data, _ in points]):
                 path = next(path for _, data, path in points if data.get(CONF_NAME) == name)
                 problems.append(
@@ -559,6 +567,40 @@ def _point(
             field_name,
             key,
         )
+
+
+def _policy_problems(
+    subentry: Subentry, points: list[tuple[str, Mapping[str, Any], Path]]
+) -> list[Problem]:
+    """Return the availability policies the forms refuse.
+
+    Unknown ones, one following a data-valid address the machine does not name, and parts of
+    one entity that differ.
+    """
+    data_valid = has_data_valid(subentry.data)
+    problems = [
+        Problem(
+            (*path, CONF_AVAILABILITY_POLICY),
+            "config_availability_policy",
+            {"point": _named(data)},
+            CONF_AVAILABILITY_POLICY,
+            key,
+        )
+        for _, data, path in points
+        if (key := check_policy(data, data_valid=data_valid)[1])
+    ]
+    for name in policy_differs(data for _, data, _ in points)[:1]:
+        path = next(path for _, data, path in points if data.get(CONF_NAME) == name)
+        problems.append(
+            Problem(
+                (*path, CONF_AVAILABILITY_POLICY),
+                "config_availability_policy",
+                {"point": name},
+                CONF_AVAILABILITY_POLICY,
+                "availability_policy_differs",
+            )
+        )
+    return problems
 
 
 def _named(data: Mapping[str, Any]) -> str:

@@ -36,6 +36,7 @@ from ..const import (
     SUBENTRY_DEVICE,
 )
 from ..plc import PlcAddressError, PlcClient, Point, ValueKind
+from .availability import CONF_AVAILABILITY_POLICY, check_policy, policy_differs
 from .composite import (
     as_platform,
     group_errors,
@@ -66,14 +67,16 @@ COLUMNS = (
     *KIND_COLUMNS,
     CONF_ROLE,
     CONF_POLL,
+    CONF_AVAILABILITY_POLICY,
     CONF_AS_TEXT,
     CONF_SUPERVISION,
     CONF_TRAVEL_TIME,
 )
 """The columns of the format, in the order export writes them (rows of one entity of several
-addresses share its name and platform, and each names its role); an empty poll is normal,
-`as_text` shows a duration as hh:mm:ss.zzz, and a cover's or valve's rows carry its travel
-time in seconds (empty: none), a supervised entity's its supervision time."""
+addresses share its name and platform, and each names its role); an empty poll is normal, an
+empty availability the machine's default (availability.py), `as_text` shows a duration as
+hh:mm:ss.zzz, and a cover's or valve's rows carry its travel time in seconds (empty: none), a
+supervised entity's its supervision time."""
 COMMENT = "comment"
 HEADERS: dict[str, str] = {
     **{column: column for column in COLUMNS},
@@ -241,6 +244,8 @@ def _values(
     for key in (*PAIRS_FIELDS, CONF_POLL):
         if cells.get(key, "").strip():
             values[key] = cells[key].strip()
+    if policy := cells.get(CONF_AVAILABILITY_POLICY, "").strip().lower():
+        values[CONF_AVAILABILITY_POLICY] = policy
     for key, column in (
         (CONF_UNIT_OF_MEASUREMENT, "unit"),
         (CONF_DEVICE_CLASS, CONF_DEVICE_CLASS),
@@ -263,6 +268,7 @@ def parse_points(
     assumed: list[tuple[int, str]] | None = None,
     known: Iterable[Mapping[str, Any]] = (),
     plc: Iterable[Mapping[str, Any]] = (),
+    data_valid: bool = False,
 ) -> tuple[list[dict[str, Any]], list[tuple[int, str]]]:
     """Return the points of a pasted table and the errors by line; no points unless no errors.
 
@@ -271,7 +277,8 @@ def parse_points(
     `assumed` receives, by line, the data types taken where the table names none. `known`:
     the machine's points already, which new parts of an entity of several points join.
     `plc`: the PLC's points already (stored data), whose read-only data no new point's write
-    may meet, nor a new read-only point the writes of theirs.
+    may meet, nor a new read-only point the writes of theirs. `data_valid`: the machine names
+    a data-valid address (its points may follow it).
     """
     header, rows = _rows(text)
     columns = [_column(cell) for cell in header]
@@ -300,6 +307,10 @@ def parse_points(
             found[CONF_TRAVEL_TIME] = "travel_time_not_here"
         if not part and values.get(CONF_SUPERVISION):
             found[CONF_SUPERVISION] = "supervision_not_here"
+        policy, wrong = check_policy(values, data_valid=data_valid)
+        if wrong:
+            found[CONF_AVAILABILITY_POLICY] = wrong
+        data |= policy
         if found:
             texts = dict.fromkeys(describe(key, placeholders) for key in found.values())
             errors.append((line, " ".join(texts)))
@@ -319,6 +330,10 @@ def parse_points(
     for name, key, details in group_errors([*known, *points]):
         if name in firsts:
             errors.append((firsts[name], describe(key, details)))
+    differs = policy_differs([*known, *points]) if not errors else []
+    errors += [
+        (firsts[n], describe("availability_differs", {"name": n})) for n in differs if n in firsts
+    ]
     for made, conflict in [] if errors else layout_conflicts(client, [*plc], points):
         wording = {"written": conflict.point.address}
         wording["point"] = conflict.other.address if conflict.other else ""

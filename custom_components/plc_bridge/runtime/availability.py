@@ -3,7 +3,10 @@
 from __future__ import annotations
 
 from collections.abc import Iterable, Mapping
+from datetime import datetime
 from typing import Any
+
+from homeassistant.util import dt as dt_util
 
 from ..const import LOGGER
 from ..model.availability import (
@@ -24,6 +27,8 @@ class MachineAvailability:
         self._values: dict[str, list[float]] = {}
         self._titles: dict[str, str] = {}
         self.invalid: set[str] = set()
+        self.read_at: datetime | None = None
+        """When the last poll that reached the PLC ended: what values kept were read by."""
 
     def configure(self, subentries: Iterable[Any]) -> None:
         """Take the availability point of every machine that names one."""
@@ -39,6 +44,7 @@ class MachineAvailability:
 
     def watch(self, values: Mapping[Point, PointResult]) -> bool:
         """Follow one poll's results; return True when a machine's availability changed."""
+        self.read_at = dt_util.utcnow()
         invalid, reasons = set(self.invalid), dict[str, str]()
         for sid, point in self.points.items():
             result = values.get(point)
