@@ -196,7 +196,9 @@ ALIASES = dump_config(plc()).replace(
 async def test_refused_on_the_field(hass: HomeAssistant, text: str, key: str, message: str) -> None:
     """A text that cannot become a PLC is refused on its field, said why; nothing is created."""
     result = await hass.config_entries.flow.async_init(DOMAIN, context={"source": SOURCE_USER})
-    result = await hass.config_entries.flow.async_configure(result["flow_id"], {CONF_VENDOR: PASTE})
+    result = await hass.config_entries.flow.async_configure(
+        result["flow_id"], {"next_step_id": PASTE}
+    )
     result = translated(
         await hass.config_entries.flow.async_configure(
             result["flow_id"], {CONF_CONFIGURATION: text}

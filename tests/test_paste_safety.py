@@ -19,7 +19,7 @@ import pytest
 from pytest_homeassistant_custom_component.common import MockConfigEntry
 import yaml
 
-from custom_components.plc_bridge.const import CONF_VENDOR, DOMAIN, SUBENTRY_EXPOSE
+from custom_components.plc_bridge.const import DOMAIN, SUBENTRY_EXPOSE
 from custom_components.plc_bridge.flows.config_file_flow import CONF_CONFIGURATION, PASTE
 from custom_components.plc_bridge.model.config_file import dump_config
 from custom_components.plc_bridge.model.expose import CONF_SEND
@@ -54,7 +54,9 @@ def with_line(text: str, after: str, added: str) -> str:
 async def refused(hass: HomeAssistant, text: str) -> tuple[str, str]:
     """Paste the text; return the error key and message on the field; nothing is created."""
     result = await hass.config_entries.flow.async_init(DOMAIN, context={"source": SOURCE_USER})
-    result = await hass.config_entries.flow.async_configure(result["flow_id"], {CONF_VENDOR: PASTE})
+    result = await hass.config_entries.flow.async_configure(
+        result["flow_id"], {"next_step_id": PASTE}
+    )
     result = translated(
         await hass.config_entries.flow.async_configure(
             result["flow_id"], {CONF_CONFIGURATION: text}
