@@ -172,5 +172,5 @@ class ExposeSubentryFlowHandler(ConfigSubentryFlow):
         if self._asked == asked:
             return None
         self._asked = asked
-        names = ", ".join(f"`{name}`" for name in sorted(state.attributes)) or "none"
+        names = ", ".join(sorted(state.attributes)) or "none"
         return {"entity": state.entity_id, "attribute": str(attribute), "attributes": names}
