@@ -98,6 +98,7 @@ async def test_one_point_or_a_list(
     hass: HomeAssistant,
     s7_smart_sim: S7SmartSimulator,
     setup_integration: MockConfigEntry,
+    *,
     action: str,
     data: dict[str, Any],
     key: str,
