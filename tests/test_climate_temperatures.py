@@ -41,7 +41,7 @@ def test_native_names_only_where_home_assistant_has_them(newer_climate: ModuleTy
 def test_old_names_kept_for_this_home_assistant() -> None:
     """Without `native_*` in Home Assistant's climate, the old names carry the same values."""
     has_native = hasattr(ClimateEntity, "native_current_temperature")
-    assert climate.NATIVE_TEMPERATURES == has_native
+    assert has_native == climate.NATIVE_TEMPERATURES
     defined = set(vars(climate.PlcClimate))
     assert {"native_current_temperature", "native_target_temperature"} <= defined
     assert ({"current_temperature", "target_temperature"} <= defined) != has_native
