@@ -58,7 +58,7 @@ from .connection_form import (
     second_page,
     vendor_options,
 )
-from .flow_lists import async_type_names, menu_listing
+from .flow_lists import async_point_words, menu_listing
 from .vendor_steps import Input
 
 INTEGRATION_NAME = "PLC Bridge"
@@ -363,6 +363,8 @@ class DeviceFlowBase(ConfigSubentryFlow):
             description_placeholders={
                 "name": self._name,
                 "count": str(len(self._points)),
-                "points": menu_listing(self._points, await async_type_names(self.hass)),
+                "points": menu_listing(
+                    self._points, self._client, await async_point_words(self.hass)
+                ),
             },
         )
