@@ -27,7 +27,7 @@ from homeassistant.const import CONF_NAME
 
 from ..const import CONF_ENTITY, CONF_INVERT, CONF_PLATFORM, CONF_ROLE, CONF_VALUE_MAP
 from ..plc import PlcClient, Point
-from .conversion import stored_pairs
+from .conversion import spelled_as_states, stored_pairs
 from .points import CONTROLS, point_data
 from .poll_classes import POLL_CLASSES
 
@@ -246,6 +246,9 @@ def part_data(
     """Check one part as the kind its role resembles; return its data, errors, placeholders."""
     platform = str(values.get(CONF_PLATFORM, ""))
     role = str(values.get(CONF_ROLE) or "")
+    if role in LABELS and values.get(CONF_VALUE_MAP):
+        value_map = spelled_as_states(str(values[CONF_VALUE_MAP]), LABELS[role])
+        values = {**values, CONF_VALUE_MAP: value_map}
     errors = part_errors(platform, values)
     if CONF_ROLE in errors:
         return {}, errors, {"role": role, "platform": platform}
