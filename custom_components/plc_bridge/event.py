@@ -1,4 +1,8 @@
-"""Events: an alarm or status word fires `raised` / `cleared` as its named bits change."""
+"""Events: an alarm or status word fires `<bit's name> raised` / `cleared` as its bits change.
+
+The event type names the alarm, so that the logbook and an automation's event trigger say which
+one: `Overheat raised`. The event data carries the bit, its name and the change.
+"""
 
 from __future__ import annotations
 
@@ -26,13 +30,20 @@ class PlcEventDescription(EventEntityDescription, PlcPointDescription):
     bits: tuple[tuple[int, str], ...] = ()
 
 
+def event_type(label: str, change: str) -> str:
+    """Return the event type of a named bit's change: `Overheat raised`."""
+    return f"{label} {change}"
+
+
 def point_event(entry: PlcBridgeConfigEntry, config: PointConfig) -> PlcAlarmEvent:
-    """Return the event entity of an alarm word."""
+    """Return the event entity of an alarm word: two event types per named bit."""
+    bits = word_bits(config)
+    types = [event_type(label, change) for _, label in bits for change in (RAISED, CLEARED)]
     description = PlcEventDescription(
         **point_fields(entry, config),
         translation_key="alarm_word",
-        event_types=[RAISED, CLEARED],
-        bits=word_bits(config),
+        event_types=types or [RAISED, CLEARED],  # a word without names fires nothing
+        bits=bits,
     )
     return PlcAlarmEvent(entry, config, description)
 
@@ -47,7 +58,7 @@ async def async_setup_entry(
 
 
 class PlcAlarmEvent(PlcPointEntity, EventEntity):
-    """Fires when a named bit of the word is set (`raised`) or reset (`cleared`).
+    """Fires when a named bit of the word is set (`<name> raised`) or reset (`<name> cleared`).
 
     The first value read is the baseline: bits already set when Home Assistant starts fire
     nothing. A failed read keeps the baseline, so a bit that changed meanwhile fires after.
@@ -78,7 +89,10 @@ class PlcAlarmEvent(PlcPointEntity, EventEntity):
             for bit, label in self.entity_description.bits:
                 now, before = bit_set(word, bit), bit_set(self._last, bit)
                 if now != before:
-                    self._trigger_event(RAISED if now else CLEARED, {"bit": bit, "name": label})
+                    change = RAISED if now else CLEARED
+                    self._trigger_event(
+                        event_type(label, change), {"bit": bit, "name": label, "change": change}
+                    )
                     self.async_write_ha_state()
         if word is not None:
             self._last = word
