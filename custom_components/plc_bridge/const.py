@@ -97,3 +97,5 @@ POINT_PLATFORMS: Final = (
 ATTR_CONFIG_ENTRY_ID: Final = "config_entry_id"
 ATTR_POINTS: Final = "points"
 ATTR_VALUE: Final = "value"
+EVENT_ALARM: Final = "plc_bridge_alarm"
+"""Fired on the bus when a named bit of an alarm word changes (the logbook names the alarm)."""

@@ -1,7 +1,9 @@
 """Events: an alarm or status word fires `<bit's name> raised` / `cleared` as its bits change.
 
-The event type names the alarm, so that the logbook and an automation's event trigger say which
-one: `Overheat raised`. The event data carries the bit, its name and the change.
+The event type names the alarm, so that an automation's event trigger says which one: `Overheat
+raised`; the event data carries the bit, its name and the change. The same change is fired on
+the bus as `plc_bridge_alarm`, which the logbook describes (logbook.py): the frontend's logbook
+shows an event entity's change without its type.
 """
 
 from __future__ import annotations
@@ -10,9 +12,11 @@ from dataclasses import dataclass
 from typing import Any
 
 from homeassistant.components.event import EventEntity, EventEntityDescription
+from homeassistant.const import ATTR_ENTITY_ID
 from homeassistant.core import HomeAssistant, callback
 from homeassistant.helpers.entity_platform import AddConfigEntryEntitiesCallback
 
+from .const import EVENT_ALARM
 from .coordinator import PlcBridgeConfigEntry
 from .entity import PlcPointDescription, PlcPointEntity, point_fields
 from .model.alarm import bit_set, word_bits
@@ -90,9 +94,9 @@ class PlcAlarmEvent(PlcPointEntity, EventEntity):
                 now, before = bit_set(word, bit), bit_set(self._last, bit)
                 if now != before:
                     change = RAISED if now else CLEARED
-                    self._trigger_event(
-                        event_type(label, change), {"bit": bit, "name": label, "change": change}
-                    )
+                    data = {"bit": bit, "name": label, "change": change}
+                    self._trigger_event(event_type(label, change), data)
+                    self.hass.bus.async_fire(EVENT_ALARM, {ATTR_ENTITY_ID: self.entity_id, **data})
                     self.async_write_ha_state()
         if word is not None:
             self._last = word
