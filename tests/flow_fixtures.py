@@ -229,3 +229,12 @@ def listed(result: Any) -> dict[str, str]:
     """Return the pick list's labels and their values."""
     (selector,) = result["data_schema"].schema.values()
     return {option["label"]: option["value"] for option in selector.config["options"]}
+
+
+async def polling_form(hass: HomeAssistant, entry: MockConfigEntry) -> Any:
+    """Open the PLC's options and choose the poll intervals' page."""
+    result = await hass.config_entries.options.async_init(entry.entry_id)
+    assert result["type"] is FlowResultType.MENU
+    return await hass.config_entries.options.async_configure(
+        result["flow_id"], {"next_step_id": "polling"}
+    )

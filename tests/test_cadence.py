@@ -22,7 +22,7 @@ from custom_components.plc_bridge.plc.vendors.s7_smart import S7SmartClient
 from custom_components.plc_bridge.runtime import polling
 from simulators.s7_smart import S7SmartSimulator
 
-from .flow_fixtures import smart_data
+from .flow_fixtures import polling_form, smart_data
 from .ha_fixtures import (
     DEVICE_ID,
     PointData,
@@ -243,7 +243,7 @@ async def test_options_form_shows_the_real_cycle(
         version=2,
     )
     entry.add_to_hass(hass)
-    result = await hass.config_entries.options.async_init(entry.entry_id)
+    result = await polling_form(hass, entry)
     assert result["description_placeholders"]["cycle"] == "32"
     assert result["description_placeholders"]["minimum"] == "32"
 

@@ -21,7 +21,6 @@ from pytest_homeassistant_custom_component.common import MockConfigEntry
 
 from custom_components.plc_bridge.const import (
     CONF_SEND_ON_START,
-    CONF_VENDOR,
     DOMAIN,
     SUBENTRY_EXPOSE,
 )
@@ -180,7 +179,9 @@ async def export(hass: HomeAssistant, entry: ConfigEntry) -> str:
 async def paste(hass: HomeAssistant, text: str) -> Any:
     """Start adding a PLC, choose to paste a configuration, and paste the text."""
     result = await hass.config_entries.flow.async_init(DOMAIN, context={"source": SOURCE_USER})
-    result = await hass.config_entries.flow.async_configure(result["flow_id"], {CONF_VENDOR: PASTE})
+    result = await hass.config_entries.flow.async_configure(
+        result["flow_id"], {"next_step_id": PASTE}
+    )
     assert result["step_id"] == PASTE
     translated(result, *CONFIG)
     return translated(

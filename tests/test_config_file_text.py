@@ -193,7 +193,9 @@ async def test_refused_as_the_forms_refuse(
 ) -> None:
     """A point a form or table would refuse is refused in the file too, on its line."""
     result = await hass.config_entries.flow.async_init(DOMAIN, context={"source": SOURCE_USER})
-    result = await hass.config_entries.flow.async_configure(result["flow_id"], {CONF_VENDOR: PASTE})
+    result = await hass.config_entries.flow.async_configure(
+        result["flow_id"], {"next_step_id": PASTE}
+    )
     result = translated(
         await hass.config_entries.flow.async_configure(
             result["flow_id"], {CONF_CONFIGURATION: text}
@@ -250,7 +252,9 @@ async def test_refused_as_the_forms_refuse(
 async def test_refused_on_the_field(hass: HomeAssistant, text: str, key: str, message: str) -> None:
     """A text that cannot become a PLC is refused on its field, said why; nothing is created."""
     result = await hass.config_entries.flow.async_init(DOMAIN, context={"source": SOURCE_USER})
-    result = await hass.config_entries.flow.async_configure(result["flow_id"], {CONF_VENDOR: PASTE})
+    result = await hass.config_entries.flow.async_configure(
+        result["flow_id"], {"next_step_id": PASTE}
+    )
     result = translated(
         await hass.config_entries.flow.async_configure(
             result["flow_id"], {CONF_CONFIGURATION: text}

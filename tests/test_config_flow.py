@@ -44,8 +44,13 @@ CONFIG = ("config",)
 async def start(hass: HomeAssistant, vendor: str = "s7_smart") -> dict[str, Any]:
     """Start a user flow and pick the vendor; return the connection form."""
     result = await hass.config_entries.flow.async_init(DOMAIN, context={"source": SOURCE_USER})
-    assert result["type"] is FlowResultType.FORM
-    assert result["step_id"] == "user"
+    assert result["type"] is FlowResultType.MENU
+    assert result["menu_options"] == ["vendor", PASTE]
+    assert set(result["menu_options"]) == set(strings_at("config", "step", "user", "menu_options"))
+    result = await hass.config_entries.flow.async_configure(
+        result["flow_id"], {"next_step_id": "vendor"}
+    )
+    assert result["step_id"] == "vendor"
     translated(result, *CONFIG)
     return await hass.config_entries.flow.async_configure(result["flow_id"], {CONF_VENDOR: vendor})
 
@@ -76,11 +81,14 @@ def test_strings_copied_to_english() -> None:
 
 
 async def test_only_implemented_vendors_listed(hass: HomeAssistant) -> None:
-    """The vendor list offers what PLC Bridge implements, nothing to be refused afterwards, and
-    last the way to paste an exported configuration."""
+    """The family list offers what PLC Bridge implements, nothing to be refused afterwards; the
+    way to paste an exported configuration is the first page's other choice, not a family."""
     result = await hass.config_entries.flow.async_init(DOMAIN, context={"source": SOURCE_USER})
+    result = await hass.config_entries.flow.async_configure(
+        result["flow_id"], {"next_step_id": "vendor"}
+    )
     selector = result["data_schema"].schema[CONF_VENDOR].config
-    assert selector["options"] == [*implemented(), PASTE]
+    assert selector["options"] == implemented()
     assert implemented() == list(VENDORS)
     assert selector["translation_key"] == CONF_VENDOR
     assert set(selector["options"]) <= set(strings_at("selector", CONF_VENDOR, "options"))
@@ -96,7 +104,7 @@ async def test_name_asked_once(
         result["flow_id"], connection(flow_sim, tls="off")
     )
     assert result["type"] is FlowResultType.CREATE_ENTRY
-    assert result["title"] == "S7-200 SMART"
+    assert result["title"] == "S7-200 SMART 127.0.0.1"  # no name of its own: model and host
     assert "name" not in strings_at("config", "step")
 
 
@@ -116,7 +124,7 @@ async def test_pin_mode_shows_and_stores_fingerprint(
     assert placeholders[CONF_HOST] == "127.0.0.1"
     result = await submit(hass, result, {})
     assert result["type"] is FlowResultType.CREATE_ENTRY
-    assert result["title"] == "S7-200 SMART"
+    assert result["title"] == "S7-200 SMART 127.0.0.1"  # no name of its own: model and host
     assert result["data"] == smart_data(flow_sim)
     assert result["result"].unique_id == f"127.0.0.1:{flow_sim.port}"
     assert flow_sim.calls["login"] == 1
@@ -242,7 +250,7 @@ async def test_vendor_without_tls_choice_or_credentials(
         result["flow_id"], {CONF_HOST: " plc.local ", CONF_PORT: 8080.0, "rack": 2.0}
     )
     assert result["type"] is FlowResultType.CREATE_ENTRY
-    assert result["title"] == "Fake PLC"
+    assert result["title"] == "Fake PLC plc.local"
     assert result["result"].unique_id == "FAKE-1"
     assert result["data"] == {
         CONF_VENDOR: FAKE_VENDOR,

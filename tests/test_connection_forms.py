@@ -78,7 +78,7 @@ async def test_vendor_pages_shown_again_without_input(hass: HomeAssistant) -> No
     flow = PlcBridgeConfigFlow()
     flow.hass, flow.handler, flow.flow_id = hass, DOMAIN, "pages"
     flow.context = {"source": SOURCE_USER}
-    await flow.async_step_user({CONF_VENDOR: "s7"})
+    await flow.async_step_vendor({CONF_VENDOR: "s7"})
     assert (await flow.async_step_connection_s7())["step_id"] == "connection_s7"
     result = await flow.async_step_connection_s7(
         {CONF_HOST: "plc", CONF_PORT: 102, "connection": "tsap"}

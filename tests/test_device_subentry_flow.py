@@ -229,7 +229,7 @@ async def test_import_500_lines(hass: HomeAssistant, smart_entry: MockConfigEntr
     assert result["type"] is FlowResultType.MENU
     assert result["description_placeholders"]["count"] == "500"
     assert result["description_placeholders"]["points"].splitlines() == [
-        *(f"- Word {i}: VW{100 + 2 * i} (Signed integer)" for i in range(5)),  # named type
+        *(f"- Word {i} (sensor): VW{100 + 2 * i} (Signed integer)" for i in range(5)),
         "- … (+495)",
     ]
     result = await step(hass, result, {"next_step_id": "save"})

@@ -99,8 +99,8 @@ async def test_add_an_expose(hass: HomeAssistant) -> None:
         ({"address": "VB11", "data_type": "signed"}, "address", "expose_read_only", "VB11"),
         ({"address": "DATE", "data_type": "signed"}, "data_type", "expose_data_type", ""),
         ({"scale": 0.0}, "scale", "scale_zero", ""),
-        ({"value_map": "on"}, "value_map", "map_not_a_pair", "`on`"),
-        ({"value_map": "on=1;ON=2"}, "value_map", "map_repeated", "`ON=2`"),
+        ({"value_map": "on"}, "value_map", "map_not_a_pair", '"on"'),
+        ({"value_map": "on=1;ON=2"}, "value_map", "map_repeated", '"ON=2"'),
         ({"default": "warm"}, "default", "invalid_default", "warm"),
     ],
 )
@@ -227,8 +227,8 @@ async def test_attribute_the_entity_lacks(hass: HomeAssistant) -> None:
     result = await submit(hass, await start(hass, entry), values)
     assert result["errors"] == {"attribute": "expose_attribute_missing"}
     message = error_message(result, "attribute", *EXPOSE)
-    assert "`azimut`" in message
-    assert "`azimuth`, `elevation`" in message
+    assert '"azimut"' in message
+    assert "azimuth, elevation" in message
     assert not exposes(entry)
     result = await submit(hass, result, values)
     assert result["type"] is FlowResultType.CREATE_ENTRY

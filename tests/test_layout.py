@@ -20,7 +20,7 @@ import pytest
 PACKAGE = Path(__file__).resolve().parents[1] / "custom_components" / "plc_bridge"
 NAME = "custom_components.plc_bridge"
 ENTITY_BASES = frozenset({"entity", "composite_entity", "link"})
-FACE = frozenset({"__init__", "config_flow", "diagnostics", "services", "repairs"})
+FACE = frozenset({"__init__", "config_flow", "diagnostics", "services", "repairs", "logbook"})
 PLATFORMS = frozenset(platform.value for platform in Platform)
 TOP = FACE | ENTITY_BASES | {"const", "coordinator"}
 """The modules allowed at the package top, besides the entity platforms."""

@@ -34,6 +34,9 @@ async def tsap_page(hass: HomeAssistant, sim: LogoSimulator) -> Any:
     """Pick LOGO!, give host, port and generation; return the TSAP page."""
     result = await hass.config_entries.flow.async_init(DOMAIN, context={"source": SOURCE_USER})
     result = await hass.config_entries.flow.async_configure(
+        result["flow_id"], {"next_step_id": "vendor"}
+    )
+    result = await hass.config_entries.flow.async_configure(
         result["flow_id"], {CONF_VENDOR: "logo"}
     )
     assert translated(result, *CONFIG)["step_id"] == "connection_logo"

@@ -199,7 +199,7 @@ async def test_alarm_word(
     s7_smart_sim: S7SmartSimulator,
     machines: MockConfigEntry,
 ) -> None:
-    """Each named bit is a binary sensor; the event entity fires raised and cleared by name."""
+    """Each named bit is a binary sensor; the event entity fires `<name> raised` and `cleared`."""
     fired: list[tuple[str, str]] = []
 
     @callback
@@ -218,7 +218,11 @@ async def test_alarm_word(
     assert hass.states.get("binary_sensor.s7_200_smart_overheat").state == STATE_OFF
     assert hass.states.get("binary_sensor.s7_200_smart_low_water").state == STATE_ON
     await hass.async_block_till_done()  # 2026.2 hands state changes to trackers a loop later
-    assert fired == [("raised", "Overheat"), ("cleared", "Overheat"), ("raised", "Low water")]
+    assert fired == [
+        ("Overheat raised", "Overheat"),
+        ("Overheat cleared", "Overheat"),
+        ("Low water raised", "Low water"),
+    ]
     assert s7_smart_sim.calls["read"] - reads == 2  # one read per poll for every kind
 
 

@@ -11,7 +11,7 @@ from pytest_homeassistant_custom_component.common import MockConfigEntry
 from custom_components.plc_bridge.const import DOMAIN
 from custom_components.plc_bridge.plc.vendors.s7_smart import S7SmartClient
 from simulators.s7_smart import S7SmartSimulator
-from tests.flow_fixtures import error_message, smart_data, suggested, translated
+from tests.flow_fixtures import error_message, polling_form, smart_data, suggested, translated
 from tests.ha_fixtures import PointData, device, point
 
 pytestmark = pytest.mark.no_pacing
@@ -40,8 +40,8 @@ async def test_minimum_follows_the_points(hass: HomeAssistant, flow_sim: S7Smart
         version=2,
     )
     entry.add_to_hass(hass)
-    result = translated(await hass.config_entries.options.async_init(entry.entry_id), *OPTIONS)
-    assert result["step_id"] == "init"
+    result = translated(await polling_form(hass, entry), *OPTIONS)
+    assert result["step_id"] == "polling"
     assert suggested(result, CONF_SCAN_INTERVAL) == 10.0
     assert result["description_placeholders"] == {
         "minimum": "4",
@@ -73,7 +73,7 @@ async def test_current_interval_suggested(hass: HomeAssistant, flow_sim: S7Smart
         domain=DOMAIN, data=smart_data(flow_sim), options={CONF_SCAN_INTERVAL: 2.5}
     )
     entry.add_to_hass(hass)
-    result = await hass.config_entries.options.async_init(entry.entry_id)
+    result = await polling_form(hass, entry)
     assert suggested(result, CONF_SCAN_INTERVAL) == 2.5
     assert result["description_placeholders"]["minimum"] == "1"
     result = await hass.config_entries.options.async_configure(

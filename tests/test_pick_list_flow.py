@@ -111,7 +111,7 @@ async def test_menu_keeps_save_in_view_in_a_stable_order(
     result = await step(hass, menu, {"next_step_id": "import_points"})
     menu = await step(hass, result, {"table": table})
     assert menu["description_placeholders"]["points"].splitlines() == [
-        *(f"- W {i}: w{i} (INT)" for i in range(1, 6)),
+        *(f"- W {i} (sensor): w{i} (INT)" for i in range(1, 6)),
         "- … (+7)",
     ]
     assert menu["menu_options"][-1] == "save"

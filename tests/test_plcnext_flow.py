@@ -49,6 +49,9 @@ async def submit(hass: HomeAssistant, result: Any, values: dict[str, Any]) -> An
 async def connection_form(hass: HomeAssistant) -> dict[str, Any]:
     """Start a user flow and pick PLCnext; return its connection page."""
     result = await hass.config_entries.flow.async_init(DOMAIN, context={"source": SOURCE_USER})
+    result = await hass.config_entries.flow.async_configure(
+        result["flow_id"], {"next_step_id": "vendor"}
+    )
     result = await submit(hass, result, {CONF_VENDOR: "plcnext"})
     assert result["step_id"] == "connection_plcnext"
     return result
@@ -96,7 +99,7 @@ async def test_pin_name_and_entry(hass: HomeAssistant, plcnext_sim: PlcnextSimul
     )
     result = await submit(hass, result, {})
     assert result["type"] is FlowResultType.CREATE_ENTRY
-    assert result["title"] == "PLCnext Control"
+    assert result["title"] == "PLCnext Control 127.0.0.1"
     assert result["result"].unique_id == f"{plcnext_sim.host}:{plcnext_sim.port}"
     assert result["data"] == plcnext_data(plcnext_sim)
     assert plcnext_sim.access.logins == 1

@@ -20,7 +20,7 @@ from custom_components.plc_bridge.plc.vendors import client_class
 from custom_components.plc_bridge.plc.vendors.s7_smart import S7SmartClient
 from simulators.s7_smart import S7SmartSimulator
 
-from .flow_fixtures import MACHINE, error_message, smart_data, translated
+from .flow_fixtures import MACHINE, error_message, polling_form, smart_data, translated
 from .ha_fixtures import PointData, device, point
 
 pytestmark = pytest.mark.no_pacing
@@ -66,7 +66,7 @@ async def test_options_refuse_bad_intervals(
         version=2,
     )
     entry.add_to_hass(hass)
-    result = await hass.config_entries.options.async_init(entry.entry_id)
+    result = await polling_form(hass, entry)
     values = {"fast_interval": 4.0, CONF_SCAN_INTERVAL: 10.0, "slow_interval": 60.0}
     result = translated(
         await hass.config_entries.options.async_configure(result["flow_id"], values | given),
@@ -94,7 +94,7 @@ async def test_fast_default_follows_the_pace(
         version=2,
     )
     entry.add_to_hass(hass)
-    result = await hass.config_entries.options.async_init(entry.entry_id)
+    result = await polling_form(hass, entry)
     shown = {str(key): key.description["suggested_value"] for key in result["data_schema"].schema}
     assert shown == {"fast_interval": 2.0, CONF_SCAN_INTERVAL: 10.0, "slow_interval": 60.0}
     assert result["description_placeholders"]["fast_minimum"] == "2"

@@ -22,7 +22,7 @@ from .s7_ha_fixtures import SimFactory, s7_data
 
 CONFIG = ("config",)
 SERIAL = S7Simulator.serial
-TITLE = "PLC Bridge"  # the station name the CPU reports (SZL 0x001C)
+TITLE = "CPU 315-2 PN/DP 127.0.0.1"  # its station name (SZL 0x001C) is "PLC Bridge": not taken
 
 pytestmark = pytest.mark.usefixtures("mock_setup_entry")
 
@@ -30,6 +30,9 @@ pytestmark = pytest.mark.usefixtures("mock_setup_entry")
 async def connection_form(hass: HomeAssistant) -> dict[str, Any]:
     """Start a user flow, pick S7; return the connection form."""
     result = await hass.config_entries.flow.async_init(DOMAIN, context={"source": SOURCE_USER})
+    result = await hass.config_entries.flow.async_configure(
+        result["flow_id"], {"next_step_id": "vendor"}
+    )
     result = await hass.config_entries.flow.async_configure(result["flow_id"], {CONF_VENDOR: "s7"})
     assert result["step_id"] == "connection_s7"
     return translated(result, *CONFIG)

@@ -33,6 +33,9 @@ async def connection_form(hass: HomeAssistant) -> dict[str, Any]:
     """Start a user flow and pick SoftPLC; return its connection form."""
     result = await hass.config_entries.flow.async_init(DOMAIN, context={"source": SOURCE_USER})
     result = await hass.config_entries.flow.async_configure(
+        result["flow_id"], {"next_step_id": "vendor"}
+    )
+    result = await hass.config_entries.flow.async_configure(
         result["flow_id"], {CONF_VENDOR: "softplc"}
     )
     assert result["step_id"] == "connection_softplc"

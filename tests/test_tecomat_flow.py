@@ -35,6 +35,9 @@ async def connection_form(hass: HomeAssistant) -> dict[str, Any]:
     """Start a user flow and pick the Tecomat vendor; return the connection form."""
     result = await hass.config_entries.flow.async_init(DOMAIN, context={"source": SOURCE_USER})
     result = await hass.config_entries.flow.async_configure(
+        result["flow_id"], {"next_step_id": "vendor"}
+    )
+    result = await hass.config_entries.flow.async_configure(
         result["flow_id"], {CONF_VENDOR: "tecomat"}
     )
     assert result["step_id"] == "connection_tecomat"
@@ -83,7 +86,7 @@ async def test_creates_entry(
         result["flow_id"], connection(auth_sim, method)
     )
     assert result["type"] is FlowResultType.CREATE_ENTRY
-    assert result["title"] == "Fx2 CP2080"
+    assert result["title"] == "Fx2 CP2080 127.0.0.1"
     assert result["result"].unique_id == TECOMAT_SERIAL
     assert result["data"] == {
         CONF_VENDOR: "tecomat",

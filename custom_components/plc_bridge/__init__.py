@@ -17,6 +17,7 @@ from .model.kinds import PLATFORMS
 from .plc import PlcError
 from .runtime.connection import create_polling_client
 from .runtime.entities import PointEntities, async_register_devices
+from .runtime.entry_title import async_follow_device_name
 from .runtime.expose import async_start_exposes
 from .runtime.issues import (
     CERTIFICATE_CHANGED,
@@ -61,7 +62,9 @@ async def async_setup_entry(hass: HomeAssistant, entry: PlcBridgeConfigEntry) ->
     entry.runtime_data = PlcRuntimeData(
         client=client, coordinator=coordinator, device=device, points=points, settings=settings
     )
-    async_register_devices(hass, entry, plc_device(hass, entry), points.areas)
+    device_id = plc_device(hass, entry)
+    async_register_devices(hass, entry, device_id, points.areas)
+    async_follow_device_name(hass, entry, device_id)
     await hass.config_entries.async_forward_entry_setups(entry, PLATFORMS)
     async_start_exposes(hass, entry)
     entry.async_on_unload(entry.add_update_listener(async_update_entry))

@@ -29,6 +29,8 @@ from .model.composite import Composite
 from .plc import Value, ValueKind
 
 PARALLEL_UPDATES = 1
+NATIVE_TEMPERATURES = hasattr(ClimateEntity, "native_current_temperature")
+"""Home Assistant 2026.11 reads temperatures as `native_*` (the old names go in 2027.11)."""
 
 
 async def async_setup_entry(
@@ -58,7 +60,7 @@ class PlcClimate(PlcCompositeEntity, ClimateEntity):
         features = ClimateEntityFeature(self.features())
         if HVACMode.OFF in modes:
             features |= ClimateEntityFeature.TURN_OFF | ClimateEntityFeature.TURN_ON
-        self._attr_temperature_unit = UnitOfTemperature.CELSIUS
+        unit = UnitOfTemperature.CELSIUS
         target = parts.get("target_temperature")
         if target is not None:
             data = target.config.data
@@ -78,17 +80,33 @@ class PlcClimate(PlcCompositeEntity, ClimateEntity):
         self._attr_supported_features = features
         for part in parts.values():
             if part.config.data.get(CONF_UNIT_OF_MEASUREMENT) == UnitOfTemperature.FAHRENHEIT:
-                self._attr_temperature_unit = UnitOfTemperature.FAHRENHEIT
+                unit = UnitOfTemperature.FAHRENHEIT
+        if NATIVE_TEMPERATURES:
+            self._attr_native_temperature_unit = unit
+        else:
+            self._attr_temperature_unit = unit
 
     @property
-    def current_temperature(self) -> float | None:
-        """The temperature read."""
+    def native_current_temperature(self) -> float | None:
+        """The temperature read, in its part's unit."""
         return self.number("current_temperature")
 
     @property
-    def target_temperature(self) -> float | None:
-        """The set temperature read back."""
+    def native_target_temperature(self) -> float | None:
+        """The set temperature read back, in its part's unit."""
         return self.number("target_temperature")
+
+    if not NATIVE_TEMPERATURES:
+
+        @property
+        def current_temperature(self) -> float | None:
+            """The temperature read (what Home Assistant before 2026.11 reads)."""
+            return self.native_current_temperature
+
+        @property
+        def target_temperature(self) -> float | None:
+            """The set temperature read back (what Home Assistant before 2026.11 reads)."""
+            return self.native_target_temperature
 
     @property
     def hvac_mode(self) -> HVACMode | None:

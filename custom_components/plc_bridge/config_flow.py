@@ -29,10 +29,13 @@ from .flows.reauth_flow import ReauthSteps
 from .flows.subentry_flow import DeviceSubentryFlowHandler
 from .flows.vendor_steps import Input, with_vendor_steps
 
+VENDOR = "vendor"
+"""The first page's choice of connecting to a PLC, and the step picking its family."""
+
 
 @with_vendor_steps
 class PlcBridgeConfigFlow(ConfigFileSteps, DiscoveryFlow, ReauthSteps, domain=DOMAIN):
-    """Add a PLC: vendor (or a DHCP discovery, or a pasted file), connection, certificate.
+    """Add a PLC: family (or a DHCP discovery, or a pasted file), connection, certificate.
 
     Each vendor's connection pages have step ids of their own, worded for its PLC family in
     strings.json; `with_vendor_steps` binds them to the shared steps of flows/base.py.
@@ -59,14 +62,16 @@ class PlcBridgeConfigFlow(ConfigFileSteps, DiscoveryFlow, ReauthSteps, domain=DO
         }
 
     async def async_step_user(self, user_input: Input = None) -> ConfigFlowResult:
-        """Pick the vendor among those PLC Bridge implements, or paste an exported file."""
-        if user_input is not None and user_input[CONF_VENDOR] == PASTE:
-            return await self.async_step_paste_configuration()
+        """Offer the two ways in: connect to a PLC of a family, or paste an exported file."""
+        return self.async_show_menu(step_id="user", menu_options=[VENDOR, PASTE])
+
+    async def async_step_vendor(self, user_input: Input = None) -> ConfigFlowResult:
+        """Pick the PLC family among those PLC Bridge implements."""
         if user_input is not None:
             self._vendor = user_input[CONF_VENDOR]
             self._data = {CONF_VENDOR: self._vendor, CONF_USERNAME: "", CONF_PASSWORD: ""}
             return self._connection_form({})
-        return self.async_show_form(step_id="user", data_schema=vendor_schema(PASTE))
+        return self.async_show_form(step_id=VENDOR, data_schema=vendor_schema())
 
     async def async_step_reconfigure(self, user_input: Input = None) -> ConfigFlowResult:
         """Show a configured PLC's connection page, filled in; its name stays as it is."""

@@ -1,4 +1,10 @@
-"""Events: an alarm or status word fires `raised` / `cleared` as its named bits change."""
+"""Events: an alarm or status word fires `<bit's name> raised` / `cleared` as its bits change.
+
+The event type names the alarm, so that an automation's event trigger says which one: `Overheat
+raised`; the event data carries the bit, its name and the change. The same change is fired on
+the bus as `plc_bridge_alarm`, which the logbook describes (logbook.py): the frontend's logbook
+shows an event entity's change without its type.
+"""
 
 from __future__ import annotations
 
@@ -6,9 +12,11 @@ from dataclasses import dataclass
 from typing import Any
 
 from homeassistant.components.event import EventEntity, EventEntityDescription
+from homeassistant.const import ATTR_ENTITY_ID
 from homeassistant.core import HomeAssistant, callback
 from homeassistant.helpers.entity_platform import AddConfigEntryEntitiesCallback
 
+from .const import EVENT_ALARM
 from .coordinator import PlcBridgeConfigEntry
 from .entity import PlcPointDescription, PlcPointEntity, point_fields
 from .model.alarm import bit_set, word_bits
@@ -26,13 +34,20 @@ class PlcEventDescription(EventEntityDescription, PlcPointDescription):
     bits: tuple[tuple[int, str], ...] = ()
 
 
+def event_type(label: str, change: str) -> str:
+    """Return the event type of a named bit's change: `Overheat raised`."""
+    return f"{label} {change}"
+
+
 def point_event(entry: PlcBridgeConfigEntry, config: PointConfig) -> PlcAlarmEvent:
-    """Return the event entity of an alarm word."""
+    """Return the event entity of an alarm word: two event types per named bit."""
+    bits = word_bits(config)
+    types = [event_type(label, change) for _, label in bits for change in (RAISED, CLEARED)]
     description = PlcEventDescription(
         **point_fields(entry, config),
         translation_key="alarm_word",
-        event_types=[RAISED, CLEARED],
-        bits=word_bits(config),
+        event_types=types or [RAISED, CLEARED],  # a word without names fires nothing
+        bits=bits,
     )
     return PlcAlarmEvent(entry, config, description)
 
@@ -48,7 +63,7 @@ async def async_setup_entry(
 
 # PlcEntity's restore data hands over to EventEntity's (the event restores no point values).
 class PlcAlarmEvent(PlcPointEntity, EventEntity):  # type: ignore[misc]
-    """Fires when a named bit of the word is set (`raised`) or reset (`cleared`).
+    """Fires when a named bit of the word is set (`<name> raised`) or reset (`<name> cleared`).
 
     The first value read is the baseline: bits already set when Home Assistant starts fire
     nothing. A failed read keeps the baseline, so a bit that changed meanwhile fires after.
@@ -80,7 +95,10 @@ class PlcAlarmEvent(PlcPointEntity, EventEntity):  # type: ignore[misc]
             for bit, label in self.entity_description.bits:
                 now, before = bit_set(word, bit), bit_set(self._last, bit)
                 if now != before:
-                    self._trigger_event(RAISED if now else CLEARED, {"bit": bit, "name": label})
+                    change = RAISED if now else CLEARED
+                    data = {"bit": bit, "name": label, "change": change}
+                    self._trigger_event(event_type(label, change), data)
+                    self.hass.bus.async_fire(EVENT_ALARM, {ATTR_ENTITY_ID: self.entity_id, **data})
                     self.async_write_ha_state()
         if word is not None:
             self._last = word

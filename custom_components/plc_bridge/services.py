@@ -44,22 +44,47 @@ SERVICE_EXPORT_CONFIG = "export_config"
 POINT = {vol.Required(CONF_ADDRESS): cv.string, vol.Required(CONF_DATA_TYPE): cv.string}
 VALUE = vol.Any(bool, int, float, str, [vol.Coerce(int)])
 ENTRY_SCHEMA = vol.Schema({vol.Required(ATTR_CONFIG_ENTRY_ID): cv.string})
-WRITE_SCHEMA = ENTRY_SCHEMA.extend(
-    {
-        vol.Required(ATTR_POINTS): vol.All(
-            cv.ensure_list, [vol.Schema({**POINT, vol.Required(ATTR_VALUE): VALUE})], vol.Length(1)
-        )
-    }
-)
 MAX_READ = 100
 """Points one read action may name: at most a few requests, even at an S7-200 SMART's pace."""
-READ_SCHEMA = ENTRY_SCHEMA.extend(
+ONE_POINT = {vol.Optional(CONF_ADDRESS): cv.string, vol.Optional(CONF_DATA_TYPE): cv.string}
+"""One point in fields of its own, as the action's form offers it (the list is for scripts)."""
+WRITE_SCHEMA = ENTRY_SCHEMA.extend(
     {
-        vol.Required(ATTR_POINTS): vol.All(
-            cv.ensure_list, [vol.Schema(POINT)], vol.Length(1, MAX_READ)
-        )
+        **ONE_POINT,
+        vol.Optional(ATTR_VALUE): VALUE,
+        vol.Optional(ATTR_POINTS): vol.All(
+            cv.ensure_list, [vol.Schema({**POINT, vol.Required(ATTR_VALUE): VALUE})], vol.Length(1)
+        ),
     }
 )
+READ_SCHEMA = ENTRY_SCHEMA.extend(
+    {
+        **ONE_POINT,
+        vol.Optional(ATTR_POINTS): vol.All(
+            cv.ensure_list, [vol.Schema(POINT)], vol.Length(1, MAX_READ)
+        ),
+    }
+)
+
+
+def named_points(call: ServiceCall, *fields: str) -> list[dict[str, Any]]:
+    """Return the points an action names: its list, or the one point of its own fields.
+
+    Both, or neither, or a point lacking one of `fields`, is refused before anything is sent.
+    """
+    single = {key: call.data[key] for key in fields if key in call.data}
+    listed: list[dict[str, Any]] | None = call.data.get(ATTR_POINTS)
+    if bool(single) == bool(listed):
+        raise ServiceValidationError(translation_domain=DOMAIN, translation_key="one_point_or_list")
+    if listed:
+        return listed
+    if missing := [key for key in fields if key not in single]:
+        raise ServiceValidationError(
+            translation_domain=DOMAIN,
+            translation_key="point_incomplete",
+            translation_placeholders={"fields": ", ".join(missing)},
+        )
+    return [single]
 
 
 def named_entry(call: ServiceCall) -> PlcBridgeConfigEntry:
@@ -109,7 +134,7 @@ async def async_write(call: ServiceCall) -> None:
     client = entry.runtime_data.client
     coordinator = entry.runtime_data.coordinator
     values: dict[Point, Value] = {}
-    for item in call.data[ATTR_POINTS]:
+    for item in named_points(call, CONF_ADDRESS, CONF_DATA_TYPE, ATTR_VALUE):
         point = checked_point(client, item)
         coordinator.write_guard.check(point)
         values[point] = checked_value(client, point, item[ATTR_VALUE])
@@ -120,7 +145,9 @@ async def async_read(call: ServiceCall) -> ServiceResponse:
     """Read the given points in one poll; return each value, or its error."""
     entry = loaded_entry(call)
     client = entry.runtime_data.client
-    points = [checked_point(client, item) for item in call.data[ATTR_POINTS]]
+    points = [
+        checked_point(client, item) for item in named_points(call, CONF_ADDRESS, CONF_DATA_TYPE)
+    ]
     with translated_errors(call.hass, entry):
         result = await client.read(points, poll=False)
     values: dict[str, Any] = {}

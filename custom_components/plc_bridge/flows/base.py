@@ -58,9 +58,10 @@ from .connection_form import (
     second_page,
     vendor_options,
 )
-from .flow_lists import async_type_names, menu_listing
+from .flow_lists import async_point_words, menu_listing
 from .vendor_steps import Input
 
+INTEGRATION_NAME = "PLC Bridge"
 CERTIFICATE_TIMEOUT = 10.0
 """Seconds to wait for the PLC's TLS handshake when fetching its certificate."""
 
@@ -72,6 +73,17 @@ def device_unique_id(device: DeviceInfo, data: Mapping[str, Any]) -> str:
     if device.mac:
         return format_mac(device.mac)
     return f"{data[CONF_HOST]}:{data[CONF_PORT]}"
+
+
+def entry_title(device: DeviceInfo, host: str) -> str:
+    """Return a new entry's title: the PLC's own name, else its model and host.
+
+    Never the integration's name, which some PLCs report as their station name.
+    """
+    name = (device.name or "").strip()
+    if name and name.casefold() != INTEGRATION_NAME.casefold():
+        return name
+    return f"{device.model} {host}"
 
 
 class PlcFlowBase(ConfigFlow):
@@ -187,7 +199,7 @@ class PlcFlowBase(ConfigFlow):
             self._abort_if_unique_id_configured()
             # Named after what the PLC reports: Home Assistant's own dialog then asks the device's
             # name and area (and renames the entity ids), so the name is asked once.
-            return self._create_entry(device.name or device.model)
+            return self._create_entry(entry_title(device, self._data[CONF_HOST]))
         entry = self._get_reconfigure_entry()
         if device.serial or device.mac:
             self._abort_if_unique_id_mismatch()
@@ -358,6 +370,8 @@ class DeviceFlowBase(ConfigSubentryFlow):
             description_placeholders={
                 "name": self._name,
                 "count": str(len(self._points)),
-                "points": menu_listing(self._points, await async_type_names(self.hass)),
+                "points": menu_listing(
+                    self._points, self._client, await async_point_words(self.hass)
+                ),
             },
         )

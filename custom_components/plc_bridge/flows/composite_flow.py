@@ -23,7 +23,6 @@ from homeassistant.helpers.selector import (
     NumberSelectorMode,
     SelectSelector,
     SelectSelectorConfig,
-    SelectSelectorMode,
     TextSelector,
 )
 import voluptuous as vol
@@ -60,7 +59,7 @@ from ..model.kinds import (
     KINDS,
 )
 from ..model.point_table import first_type
-from ..model.points import check_point, point_key
+from ..model.points import check_point, data_type_selector, point_key
 from ..model.poll_classes import CONF_POLL, NORMAL, poll_field
 from ..model.write_rules import layout_conflicts
 from ..plc import PlcAddressError, PlcClient, Point
@@ -372,14 +371,7 @@ class CompositeSteps(DeviceFlowBase):
 
 def data_types(client: type[PlcClient]) -> SelectSelector:
     """Return a part's data type field: the vendor's types, or one typed (its parser checks it)."""
-    return SelectSelector(
-        SelectSelectorConfig(
-            options=list(client.data_types),
-            translation_key=CONF_DATA_TYPE,
-            mode=SelectSelectorMode.DROPDOWN,
-            custom_value=True,
-        )
-    )
+    return data_type_selector(client)
 
 
 def defaulted(data: Mapping[str, Any]) -> Mapping[str, Any]:

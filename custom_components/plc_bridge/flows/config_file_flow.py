@@ -34,7 +34,7 @@ from ..plc.vendors import client_class
 from .base import PlcFlowBase
 
 PASTE = "paste_configuration"
-"""The first page's choice (beside the vendors) and the step taking the pasted file."""
+"""The first page's menu choice (beside connecting to a PLC) and the step taking the file."""
 CONF_CONFIGURATION = "configuration"
 PASTE_SCHEMA = vol.Schema(
     {vol.Required(CONF_CONFIGURATION): TextSelector(TextSelectorConfig(multiline=True))}

@@ -20,9 +20,6 @@ from homeassistant.helpers.selector import (
     NumberSelector,
     NumberSelectorConfig,
     NumberSelectorMode,
-    SelectSelector,
-    SelectSelectorConfig,
-    SelectSelectorMode,
     TextSelector,
 )
 import voluptuous as vol
@@ -50,6 +47,7 @@ from ..model.expose import (
     feeds_back,
 )
 from ..model.plc_config import PlcConfig
+from ..model.points import data_type_selector
 from ..plc import PlcClient
 from ..plc.vendors import client_class
 
@@ -74,14 +72,7 @@ def expose_schema(client: type[PlcClient]) -> vol.Schema:
             vol.Required(CONF_ENTITY_ID): EntitySelector(),
             vol.Optional(CONF_ATTRIBUTE): TextSelector(),
             vol.Required(CONF_ADDRESS): TextSelector(),
-            vol.Required(CONF_DATA_TYPE, default=client.data_types[0]): SelectSelector(
-                SelectSelectorConfig(
-                    options=list(client.data_types),
-                    translation_key=CONF_DATA_TYPE,
-                    mode=SelectSelectorMode.DROPDOWN,
-                    custom_value=True,
-                )
-            ),
+            vol.Required(CONF_DATA_TYPE, default=client.data_types[0]): data_type_selector(client),
             vol.Required(CONF_SCALE, default=1.0): _NUMBER,
             vol.Required(CONF_OFFSET, default=0.0): _NUMBER,
             vol.Optional(CONF_VALUE_MAP): TextSelector(),
@@ -173,5 +164,5 @@ class ExposeSubentryFlowHandler(ConfigSubentryFlow):
         if self._asked == asked:
             return None
         self._asked = asked
-        names = ", ".join(f"`{name}`" for name in sorted(state.attributes)) or "none"
+        names = ", ".join(sorted(state.attributes)) or "none"
         return {"entity": state.entity_id, "attribute": str(attribute), "attributes": names}

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from collections import Counter
 from collections.abc import Collection, Iterable, Mapping
+from dataclasses import dataclass
 import re
 from typing import Any
 
@@ -18,10 +19,10 @@ from homeassistant.helpers.selector import (
 from homeassistant.helpers.translation import async_get_translations
 import voluptuous as vol
 
-from ..const import CONF_ADDRESS, CONF_DATA_TYPE, DOMAIN
+from ..const import CONF_ADDRESS, CONF_DATA_TYPE, CONF_PLATFORM, CONF_ROLE, DOMAIN
 from ..model.point_table import Describe, point_order
 from ..model.points import point_data
-from ..plc import BrowseItem, PlcClient, Point
+from ..plc import BrowseItem, PlcClient, PlcError, Point, ValueKind
 from .point_form import browse_values
 
 CONF_FILTER = "filter"
@@ -48,29 +49,78 @@ def in_order(points: Mapping[str, Mapping[str, Any]]) -> list[tuple[str, Mapping
     return sorted(points.items(), key=lambda pair: point_order(pair[1]))
 
 
-def menu_listing(points: Mapping[str, Mapping[str, Any]], types: Mapping[str, str]) -> str:
-    """Return the menu's list of a machine's first points, by name, with their types' names."""
-    lines = [
-        f"{data[CONF_NAME]}: {data[CONF_ADDRESS]} "
-        f"({types.get(data[CONF_DATA_TYPE], data[CONF_DATA_TYPE])})"
-        for _, data in in_order(points)
-    ]
-    return listing(lines, MENU_SHOWN)
+LISTING = "point_listing"
+"""The selector translations naming a point's role in lists (and a bit's data type)."""
+
+
+@dataclass(frozen=True, slots=True)
+class PointWords:
+    """How lists name a point's kind, role and data type, in Home Assistant's language."""
+
+    types: Mapping[str, str]
+    kinds: Mapping[str, str]
+    roles: Mapping[str, str]
+
+
+async def async_point_words(hass: HomeAssistant) -> PointWords:
+    """Return the words lists name points with, in Home Assistant's language."""
+    texts = await async_get_translations(hass, hass.config.language, "selector", [DOMAIN])
+
+    def options(key: str) -> dict[str, str]:
+        """Return one selector's option labels by option."""
+        prefix = f"component.{DOMAIN}.selector.{key}.options."
+        return {k.removeprefix(prefix): text for k, text in texts.items() if k.startswith(prefix)}
+
+    kinds = {**options("composite_platform"), **options(CONF_PLATFORM)}
+    return PointWords(options(CONF_DATA_TYPE), kinds, options(LISTING))
+
+
+def lowered(label: str) -> str:
+    """Return a label as it reads inside a sentence: `Cover` gives cover, `HVAC mode` stays."""
+    label = re.sub(r" \(.*\)$", "", label)  # a kind's own explanation, in its list only
+    return label[:1].lower() + label[1:] if label[1:2].islower() else label
+
+
+def point_label(client: type[PlcClient], data: Mapping[str, Any], words: PointWords) -> str:
+    """Return how lists name a point: `Shutter (cover) – open command: V60.0 (bit)`."""
+    platform, role = str(data[CONF_PLATFORM]), str(data.get(CONF_ROLE) or "")
+    kind = lowered(words.kinds.get(platform, platform))
+    point = Point(str(data[CONF_ADDRESS]), str(data[CONF_DATA_TYPE]))
+    try:
+        bit = client.value_kind(client.validate_point(point)) is ValueKind.BOOL
+    except PlcError:
+        bit = False
+    data_type = words.roles.get("bit", "bit") if bit else words.types.get(point.data_type)
+    role_words = f" – {words.roles.get(role, role)}" if role else ""
+    return (
+        f"{data[CONF_NAME]} ({kind}){role_words}: {point.address} ({data_type or point.data_type})"
+    )
+
+
+def menu_listing(
+    points: Mapping[str, Mapping[str, Any]], client: type[PlcClient], words: PointWords
+) -> str:
+    """Return the menu's list of a machine's first points, by name, each named in full."""
+    return listing([point_label(client, data, words) for _, data in in_order(points)], MENU_SHOWN)
 
 
 async def async_type_names(hass: HomeAssistant) -> dict[str, str]:
     """Return the data types' names in Home Assistant's language (an IEC type is its own)."""
-    texts = await async_get_translations(hass, hass.config.language, "selector", [DOMAIN])
-    prefix = f"component.{DOMAIN}.selector.{CONF_DATA_TYPE}.options."
-    return {key.removeprefix(prefix): text for key, text in texts.items() if key.startswith(prefix)}
+    return dict((await async_point_words(hass)).types)
 
 
-def point_choice(points: Mapping[str, Mapping[str, Any]], *, multiple: bool) -> SelectSelector:
-    """Return the device's points by name and address: a dropdown, or boxes to tick."""
+def point_choice(
+    points: Mapping[str, Mapping[str, Any]],
+    client: type[PlcClient],
+    words: PointWords,
+    *,
+    multiple: bool,
+) -> SelectSelector:
+    """Return the device's points, each named in full: a dropdown, or boxes to tick."""
     return SelectSelector(
         SelectSelectorConfig(
             options=[
-                SelectOptionDict(value=pid, label=f"{data[CONF_NAME]} ({data[CONF_ADDRESS]})")
+                SelectOptionDict(value=pid, label=point_label(client, data, words))
                 for pid, data in in_order(points)
             ],
             multiple=multiple,

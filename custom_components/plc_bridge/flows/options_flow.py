@@ -1,7 +1,8 @@
-"""Options flow of PLC Bridge: the poll intervals, never shorter than the vendor allows."""
+"""Options flow of PLC Bridge: the poll intervals, and the PLC's file to copy (Export)."""
 
 from __future__ import annotations
 
+import re
 from typing import Any
 
 from homeassistant.config_entries import ConfigFlowResult, OptionsFlow
@@ -14,6 +15,7 @@ from homeassistant.helpers.selector import (
 import voluptuous as vol
 
 from ..const import CONF_OPTIONS, CONF_VENDOR
+from ..model.config_file import dump_config
 from ..model.plc_config import PlcConfig
 from ..model.poll_classes import (
     CONF_FAST_INTERVAL,
@@ -45,10 +47,35 @@ SCHEMA = vol.Schema(
 )
 
 
+def code_block(text: str) -> str:
+    """Return a YAML text as a Markdown code block, its fence longer than any backticks in it."""
+    longest = max((len(run) for run in re.findall(r"`+", text)), default=0)
+    fence = "`" * max(3, longest + 1)
+    return f"{fence}yaml\n{text.rstrip()}\n{fence}"
+
+
 class PlcBridgeOptionsFlow(OptionsFlow):
-    """Set how often the PLC is polled; the entry's update listener applies it."""
+    """Set how often the PLC is polled (the entry's update listener applies it); export it."""
 
     async def async_step_init(self, user_input: dict[str, Any] | None = None) -> ConfigFlowResult:
+        """Offer the poll intervals and the export of the configuration."""
+        return self.async_show_menu(step_id="init", menu_options=["polling", "export"])
+
+    async def async_step_export(self, user_input: dict[str, Any] | None = None) -> ConfigFlowResult:
+        """Show the PLC's configuration file to copy (secrets left out); change nothing."""
+        if user_input is not None:
+            return self.async_create_entry(data=dict(self.config_entry.options))
+        return self.async_show_form(
+            step_id="export",
+            description_placeholders={
+                "title": self.config_entry.title,
+                "configuration": code_block(dump_config(self.config_entry)),
+            },
+        )
+
+    async def async_step_polling(
+        self, user_input: dict[str, Any] | None = None
+    ) -> ConfigFlowResult:
         """Ask for the poll intervals; refuse those the vendor's pace or their order forbid."""
         data = self.config_entry.data
         client = client_class(data[CONF_VENDOR], data.get(CONF_OPTIONS, {}))
@@ -65,7 +92,7 @@ class PlcBridgeOptionsFlow(OptionsFlow):
                 return self.async_create_entry(data={**options, **given})
         current = unset(client, current, minimums)
         return self.async_show_form(
-            step_id="init",
+            step_id="polling",
             data_schema=self.add_suggested_values_to_schema(SCHEMA, user_input or current),
             errors=errors,
             description_placeholders={

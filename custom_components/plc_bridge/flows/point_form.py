@@ -38,7 +38,7 @@ from ..const import (
 from ..model.device_classes import device_classes, takes_unit, unit_selector
 from ..model.kinds import CONTROLS, KINDS, NUMERIC, POINT_PLATFORMS
 from ..model.point_kinds import kind_fields
-from ..model.points import suggested_platform
+from ..model.points import data_type_selector, suggested_platform
 from ..model.poll_classes import has_poll_class, poll_field
 from ..plc import BrowseItem, PlcAddressError, PlcClient, Point, ValueKind
 
@@ -55,14 +55,7 @@ def base_schema(client: type[PlcClient]) -> vol.Schema:
                 SelectSelectorConfig(options=list(POINT_PLATFORMS), translation_key=CONF_PLATFORM)
             ),
             vol.Required(CONF_ADDRESS): TextSelector(),
-            vol.Required(CONF_DATA_TYPE, default=client.data_types[0]): SelectSelector(
-                SelectSelectorConfig(
-                    options=list(client.data_types),
-                    translation_key=CONF_DATA_TYPE,
-                    mode=SelectSelectorMode.DROPDOWN,
-                    custom_value=True,  # e.g. STRING[20]; the vendor's parser checks it
-                )
-            ),
+            vol.Required(CONF_DATA_TYPE, default=client.data_types[0]): data_type_selector(client),
         }
     )
 

@@ -41,6 +41,7 @@ from .flow_lists import (
     CONF_FILTER,
     CONF_VARIABLES,
     MAX_LISTED,
+    async_point_words,
     async_type_names,
     listing,
     matching,
@@ -162,7 +163,14 @@ class DeviceSubentryFlowHandler(CompositeSteps, MachineStep):
         return self.async_show_form(
             step_id="edit",
             data_schema=vol.Schema(
-                {vol.Required(CONF_POINT): point_choice(self._points, multiple=False)}
+                {
+                    vol.Required(CONF_POINT): point_choice(
+                        self._points,
+                        self._client,
+                        await async_point_words(self.hass),
+                        multiple=False,
+                    )
+                }
             ),
         )
 
@@ -175,7 +183,13 @@ class DeviceSubentryFlowHandler(CompositeSteps, MachineStep):
         if user_input is not None and not errors:
             self._points = {k: v for k, v in self._points.items() if k not in chosen}
             return await self.async_step_menu()
-        schema = vol.Schema({vol.Optional(CONF_POINT): point_choice(self._points, multiple=True)})
+        schema = vol.Schema(
+            {
+                vol.Optional(CONF_POINT): point_choice(
+                    self._points, self._client, await async_point_words(self.hass), multiple=True
+                )
+            }
+        )
         return self.async_show_form(
             step_id="remove",
             data_schema=self.add_suggested_values_to_schema(schema, {CONF_POINT: chosen}),

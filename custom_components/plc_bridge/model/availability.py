@@ -26,9 +26,10 @@ from homeassistant.helpers.selector import (
 )
 import voluptuous as vol
 
-from ..const import CONF_DATA_TYPE, CONF_PLATFORM, CONF_ROLE, SUBENTRY_DEVICE
+from ..const import CONF_PLATFORM, CONF_ROLE, SUBENTRY_DEVICE
 from ..plc import PlcClient, PlcError, Point, Value
 from .composite import is_part
+from .points import data_type_selector
 
 CONF_AVAILABILITY_ADDRESS: Final = "availability_address"
 CONF_AVAILABILITY_DATA_TYPE: Final = "availability_data_type"
@@ -74,14 +75,7 @@ def availability_fields(client: type[PlcClient]) -> dict[vol.Optional, Any]:
     types = list(client.data_types)
     return {
         vol.Optional(CONF_AVAILABILITY_ADDRESS): TextSelector(),
-        vol.Optional(CONF_AVAILABILITY_DATA_TYPE, default=types[0]): SelectSelector(
-            SelectSelectorConfig(
-                options=types,
-                translation_key=CONF_DATA_TYPE,
-                mode=SelectSelectorMode.DROPDOWN,
-                custom_value=True,  # the vendor's parser checks it
-            )
-        ),
+        vol.Optional(CONF_AVAILABILITY_DATA_TYPE, default=types[0]): data_type_selector(client),
         vol.Optional(CONF_AVAILABILITY_VALUES): TextSelector(),
     }
 

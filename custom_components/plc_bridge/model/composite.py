@@ -26,7 +26,7 @@ from homeassistant.const import CONF_NAME
 
 from ..const import CONF_ENTITY, CONF_INVERT, CONF_PLATFORM, CONF_ROLE, CONF_VALUE_MAP
 from ..plc import PlcClient, Point
-from .conversion import stored_pairs
+from .conversion import spelled_as_states, stored_pairs
 from .kinds import CONF_SUPERVISION, CONF_TRAVEL_TIME, CONTROLS, KINDS, Role
 from .points import point_data
 from .poll_classes import POLL_CLASSES
@@ -171,8 +171,11 @@ def part_data(
     """Check one part as the kind its role resembles; return its data, errors, placeholders."""
     platform = str(values.get(CONF_PLATFORM, ""))
     role = str(values.get(CONF_ROLE) or "")
-    errors = part_errors(platform, values)
     described = role_of(platform, role)
+    if described is not None and described.labels and values.get(CONF_VALUE_MAP):
+        value_map = spelled_as_states(str(values[CONF_VALUE_MAP]), described.labels)
+        values = {**values, CONF_VALUE_MAP: value_map}
+    errors = part_errors(platform, values)
     kind = KINDS.get(platform)
     wording = {"role": role, "platform": platform}
     wording["roles"] = ", ".join(kind.role_keys if kind else ())

@@ -17,7 +17,7 @@ stored data; a point stored before they existed loads unchanged:
 
 from __future__ import annotations
 
-from collections.abc import Mapping
+from collections.abc import Collection, Mapping
 from dataclasses import dataclass
 from decimal import Decimal
 from functools import lru_cache
@@ -95,6 +95,20 @@ def parse_pairs(text: str, *, low: int | None = None, high: int | None = None) -
 def format_pairs(pairs: Pairs) -> str:
     """Return pairs in their stored and exported form, `0=Off;1=Auto`."""
     return ";".join(f"{key}={label}" for key, label in pairs)
+
+
+def spelled_as_states(text: str, states: Collection[str]) -> str:
+    """Return a map's text with each label naming a state in another case spelled as the state.
+
+    `0=Closed;2=OPEN` gives `0=closed;2=open`; a text that cannot be read is returned as it is
+    (its check names the fault).
+    """
+    try:
+        pairs = parse_pairs(text)
+    except InvalidPairs:
+        return text
+    spelled = {state.casefold(): state for state in states}
+    return format_pairs(tuple((key, spelled.get(label.casefold(), label)) for key, label in pairs))
 
 
 def stored_pairs(data: Mapping[str, Any], key: str) -> Pairs:

@@ -16,6 +16,11 @@ from typing import Any
 from homeassistant.components.sensor import CONF_STATE_CLASS
 from homeassistant.config_entries import ConfigEntry
 from homeassistant.const import CONF_DEVICE_CLASS, CONF_NAME, CONF_UNIT_OF_MEASUREMENT
+from homeassistant.helpers.selector import (
+    SelectSelector,
+    SelectSelectorConfig,
+    SelectSelectorMode,
+)
 
 from ..const import (
     CONF_ADDRESS,
@@ -155,6 +160,23 @@ def check_point(
     if not str(values.get(CONF_NAME, "")).strip():
         errors[CONF_NAME] = "name_required"
     return point, kind, errors, placeholders
+
+
+def data_type_selector(client: type[PlcClient]) -> SelectSelector:
+    """Return a data type field: the family's types by their labels (typed too where needed).
+
+    Typed values are taken where the family's types take parameters (STRING[20]; the parser
+    checks it). A field that takes a typed value shows the raw key once chosen, not its label: it is
+    offered only where the family needs it.
+    """
+    return SelectSelector(
+        SelectSelectorConfig(
+            options=list(client.data_types),
+            translation_key=CONF_DATA_TYPE,
+            mode=SelectSelectorMode.DROPDOWN,
+            custom_value=client.typed_data_types,
+        )
+    )
 
 
 def point_data(

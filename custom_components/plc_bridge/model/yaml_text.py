@@ -10,6 +10,7 @@ text: `read_yaml` is blocking work, for an executor.
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass, field
 import math
 import textwrap
@@ -73,26 +74,54 @@ def check_size(text: str) -> None:
 def read_yaml(text: str) -> YamlText:
     """Return the text's plain data (blocking); raise YamlTextError on what is not plain.
 
-    The `export_config` action's response (the file under a `yaml:` key, literal or folded)
-    is taken as the file itself; lines then count in the pasted text.
+    The `export_config` action's response (the file under a `yaml:` key, literal `|` or folded
+    `>` with its long lines wrapped, as the action's response view shows it) is taken as the
+    file itself, and so is the body of that block copied without its `yaml:` line; lines then
+    count in the pasted text.
     """
     check_size(text)
-    read = _read(text, 0)
+    body = textwrap.dedent(text)
+    if body == text or not body.strip():
+        return _file(text, _shifted(0))
+    try:
+        return _file(body, _shifted(0))  # a literal block's body: the file, indented
+    except YamlTextError as err:
+        literal = err
+    try:  # a folded block's body: its lines wrapped, a blank line between the file's lines
+        return _file(f"{RESPONSE_KEY}: >\n{text}", _shifted(-1))
+    except YamlTextError as err:
+        # the reading that went further tells the problem
+        if int(err.placeholders.get("line", 0)) > int(literal.placeholders.get("line", 0)):
+            raise
+        raise literal from None
+
+
+type LineOf = Callable[[int], int]
+"""The pasted line (1-based) of a line (0-based) of the text being read."""
+
+
+def _shifted(offset: int) -> LineOf:
+    """Return where the lines of a text are in the paste when it starts `offset` lines later."""
+    return lambda index: index + 1 + offset
+
+
+def _file(text: str, line_of: LineOf) -> YamlText:
+    """Return a file's data, or that of the file an action response holds under `yaml:`."""
+    read = _read(text, line_of)
     inner = read.data.get(RESPONSE_KEY) if isinstance(read.data, dict) else None
-    if isinstance(inner, _Block) and len(read.data) == 1:
-        return _read(inner.text, inner.offset)
+    if isinstance(inner, _Text) and len(read.data) == 1:
+        read = _read(inner.value, inner.line_of)
     if isinstance(read.data, dict):
-        read.data = {k: v.value if isinstance(v, _Block) else v for k, v in read.data.items()}
+        read.data = {k: v.value if isinstance(v, _Text) else v for k, v in read.data.items()}
     return read
 
 
 @dataclass(frozen=True, slots=True)
-class _Block:
-    """A top-level text value: its value, and its source as a file (folded kept as written)."""
+class _Text:
+    """A top-level text value, and where each of its lines stands in the paste."""
 
     value: str
-    text: str
-    offset: int
+    line_of: LineOf
 
 
 class _Collection:
@@ -107,14 +136,14 @@ class _Collection:
         self.key: str | None = None
 
 
-def _read(text: str, offset: int) -> YamlText:
-    """Return the data of one YAML text whose first line is line `offset` + 1 of the paste."""
+def _read(text: str, line_of: LineOf) -> YamlText:
+    """Return the data of one YAML text whose lines stand in the paste where `line_of` says."""
     result = YamlText(None)
     stack: list[_Collection] = []
     documents = 0
     try:
         for event in yaml.parse(text, Loader=yaml.SafeLoader):
-            line = int(event.start_mark.line) + 1 + offset
+            line = line_of(int(event.start_mark.line))
             if isinstance(event, yaml.AliasEvent) or getattr(event, "anchor", None):
                 raise YamlTextError("config_alias", line=str(line))
             if getattr(event, "tag", None) is not None:
@@ -139,12 +168,12 @@ def _read(text: str, offset: int) -> YamlText:
                     _key(result, top, event, line)
                     continue
                 value = _scalar(event, line)
-                if len(stack) == 1 and isinstance(value, str) and event.style in ("|", ">"):
-                    value = _Block(value, _source(text, event), line)
+                if len(stack) == 1 and isinstance(value, str):
+                    value = _Text(value, _value_lines(text, event, value, line_of))
                 _place(result, stack, value, line)
     except yaml.YAMLError as err:
         mark = getattr(err, "problem_mark", None)
-        line = int(mark.line) + 1 + offset if mark is not None else offset + 1
+        line = line_of(int(mark.line) if mark is not None else 0)
         raise YamlTextError("config_malformed", line=str(line)) from err
     return result
 
@@ -195,12 +224,32 @@ def _scalar(event: yaml.ScalarEvent, line: int) -> Any:
     return value
 
 
-def _source(text: str, event: yaml.ScalarEvent) -> str:
-    """Return a block scalar's lines as written, without its indicator line and indentation.
+def _value_lines(text: str, event: yaml.ScalarEvent, value: str, line_of: LineOf) -> LineOf:
+    """Return where each line of a top-level text value stands in the paste.
 
-    A folded (`>`) block joins the lines of a file; read from the source they stay lines.
+    A literal block's lines follow its indicator one to one; a folded block's line starts at
+    the first line of the block it begins with (its wrapped rest and the blank lines that keep
+    line breaks follow); a quoted or plain text is all on its first line.
     """
+    first = int(event.start_mark.line)
     if event.style == "|":
-        return str(event.value)
-    body = text[event.start_mark.index : event.end_mark.index].split("\n", 1)
-    return textwrap.dedent(body[1]) if len(body) > 1 else ""
+        return lambda index: line_of(first + 1 + index)
+    if event.style != ">":
+        return lambda index: line_of(first)
+    source = text[event.start_mark.index : event.end_mark.index].split("\n")[1:]
+    indent = min((len(s) - len(s.lstrip(" ")) for s in source if s.strip()), default=0)
+    starts: list[int] = []
+    at = 0
+    for line in value.split("\n"):
+        found = next(
+            (
+                j
+                for j in range(at, len(source))
+                if line and source[j].strip() and line.startswith(source[j][indent:])
+            ),
+            None,
+        )
+        at = at if found is None else found
+        starts.append(first + 1 + at)
+        at += found is not None
+    return lambda index: line_of(starts[min(index, len(starts) - 1)] if starts else first)

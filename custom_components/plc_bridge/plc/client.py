@@ -51,6 +51,9 @@ class PlcClient(ABC):
     credentials_optional: ClassVar[bool] = False  # asked, but may stay empty (auth may be off)
     credential_option: ClassVar[str | None] = None  # the option that authenticates, if not a user
     data_types: ClassVar[tuple[str, ...]]
+    typed_data_types: ClassVar[bool] = (
+        True  # False: a form offers `data_types` only (STRING[20]: a table)
+    )
     default_scan_interval: ClassVar[float] = 5.0
     max_points_per_request: ClassVar[int] = 0  # 0: the vendor packs by size, not count
     request_interval: ClassVar[float] = 0.0  # pacing between requests, in seconds

@@ -83,6 +83,9 @@ class S7SmartClient(WebSession):
     needs_credentials: ClassVar[bool] = True
     data_types: ClassVar[tuple[str, ...]] = MODES
     shift_units: ClassVar[tuple[str, ...]] = (BYTES,)
+    typed_data_types: ClassVar[bool] = (
+        False  # the modes cover every address; a string's length is read
+    )
     default_scan_interval: ClassVar[float] = 10.0
     max_points_per_request: ClassVar[int] = MAX_NODES
     request_interval: ClassVar[float] = 1.0  # "call less than once a second" (manual 4.2)
