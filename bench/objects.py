@@ -31,6 +31,7 @@ import shlex
 import subprocess
 import sys
 import time
+import tracemalloc
 from types import BuiltinFunctionType, CodeType, FunctionType, ModuleType
 from typing import Any
 
@@ -232,6 +233,134 @@ def ours(entity: object) -> list[object]:
     ]
 
 
+def stop_set(hass: HomeAssistant, shared: Iterable[object] = ()) -> set[int]:
+    """The ids the walks stop at: functions, what `hass.data` holds near its top, `shared`."""
+    stop = shared_functions() | near(hass.data.values(), depth=3)
+    for root in shared:
+        stop |= reachable(root, stop).keys()
+    return stop
+
+
+OURS = "ours"
+HOME_ASSISTANT = "Home Assistant"
+OWNERS: tuple[tuple[str, str], ...] = (
+    ("the entity instance and its __dict__", OURS),
+    ("what our code sets on the entity (description, parts, ...)", OURS),
+    ("coordinator listener: remover partial in _on_remove", OURS),
+    ("coordinator listener: (callback, context) in the coordinator", OURS),
+    ("other removal callbacks of ours (outputs, supervision)", OURS),
+    ("entity registry entry", HOME_ASSISTANT),
+    ("platform's removal closure (remove_entity_cb)", HOME_ASSISTANT),
+    ("entity registry updates listener", HOME_ASSISTANT),
+    ("device registry updates listener", HOME_ASSISTANT),
+    ("device entry", HOME_ASSISTANT),
+    ("Home Assistant's attributes and cached properties on the entity", HOME_ASSISTANT),
+    ("State in the state machine (attributes, Context)", HOME_ASSISTANT),
+)
+"""Who keeps what per entity, in the order objects reached from several are attributed."""
+
+
+def _removal_owner(callback: object) -> int:
+    """The index in OWNERS of one of an entity's `_on_remove` callbacks."""
+    func = getattr(callback, "func", callback)
+    name = getattr(func, "__qualname__", "")
+    module = getattr(func, "__module__", "") or ""
+    if "remove_listener_internal" in name:
+        return 2
+    if "remove_entity_cb" in name:
+        return 6
+    if name == "_remove_listener":
+        return 7
+    if "unsubscribe_device_updates" in name:
+        return 8
+    return 4 if module.startswith("custom_components.") else 10
+
+
+def _owned_roots(
+    entity: Entity, listeners: dict[int, list[object]], state: object
+) -> list[tuple[int, object]]:
+    """Each root an entity's objects are reached from, with the index of its owner in OWNERS."""
+    own = {id(value) for value in ours(entity)}
+    roots: list[tuple[int, object]] = []
+    for name, value in vars(entity).items():
+        if name == "_on_remove":  # the list is Home Assistant's, each callback its owner's
+            roots += [(_removal_owner(item), item) for item in value or ()]
+            roots.append((10, value))
+        elif name == "registry_entry":
+            roots.append((5, value))
+        elif name == "_unsub_device_updates":
+            roots.append((8, value))
+        elif name == "device_entry":
+            roots.append((9, value))
+        else:
+            roots.append((1 if id(value) in own else 10, value))
+    roots += [(3, item) for item in listeners.get(id(entity), [])]
+    if state is not None:
+        roots.append((11, state))
+    return roots
+
+
+def count_owners(
+    hass: HomeAssistant,
+    entities: Iterable[Entity],
+    coordinators: Iterable[DataUpdateCoordinator[Any]],
+    shared: Iterable[object] = (),
+) -> list[dict[str, Any]]:
+    """Objects and bytes per entity by who keeps them (OWNERS), also what the entity cannot reach.
+
+    The walk of count_objects plus the entity's State in the state machine and the entries
+    of the coordinator's listener dict (a tuple of the callback and its context each, reached
+    only from the coordinator); objects reached from half the entities or more are left out.
+    """
+    entities = list(entities)
+    stop = stop_set(hass, shared) | {id(entity) for entity in entities}
+    listeners: dict[int, list[object]] = {}
+    for coordinator in coordinators:
+        for entry in coordinator._listeners.values():
+            owner = getattr(entry[0], "__self__", None)
+            if owner is not None:
+                listeners.setdefault(id(owner), []).extend([entry, entry[0]])
+    walks = []
+    reached: Counter[int] = Counter()
+    for entity in entities:
+        state = hass.states.get(entity.entity_id) if entity.entity_id else None
+        found: dict[int, tuple[int, object]] = {
+            id(entity): (0, entity),
+            id(vars(entity)): (0, vars(entity)),
+        }
+        for owner, root in _owned_roots(entity, listeners, state):
+            todo = [root]
+            while todo:
+                item = todo.pop()
+                key = id(item)
+                if key in found or key in stop or isinstance(item, STOP_TYPES):
+                    continue
+                found[key] = (owner, item)
+                todo.extend(gc.get_referents(item))
+        reached.update(found.keys())
+        walks.append(found)
+    limit = max(2, SHARED_SHARE * len(entities))
+    objects = [0] * len(OWNERS)
+    sizes = [0] * len(OWNERS)
+    seen: set[int] = set()
+    for found in walks:
+        for key, (owner, item) in found.items():
+            if reached[key] < limit and key not in seen:
+                seen.add(key)
+                objects[owner] += 1
+                sizes[owner] += sys.getsizeof(item)
+    count = max(1, len(entities))
+    return [
+        {
+            "owner": name,
+            "kept_by": kept_by,
+            "objects_per_entity": round(objects[index] / count, 2),
+            "bytes_per_entity": round(sizes[index] / count),
+        }
+        for index, (name, kept_by) in enumerate(OWNERS)
+    ]
+
+
 def count_objects(
     hass: HomeAssistant, entities: Iterable[object], shared: Iterable[object] = ()
 ) -> dict[str, Any]:
@@ -244,9 +373,7 @@ def count_objects(
     Home Assistant keeps per entity (its registry entry, listeners and caches).
     """
     entities = list(entities)
-    stop = shared_functions() | near(hass.data.values(), depth=3)
-    for root in shared:
-        stop |= reachable(root, stop).keys()
+    stop = stop_set(hass, shared)
     reached: Counter[int] = Counter()
     objects: dict[int, object] = {}
     own: set[int] = set()
@@ -275,6 +402,36 @@ def count_objects(
             name: round(number / count, 2) for name, number in types.most_common(12)
         },
     }
+
+
+def _module_of(traceback: tracemalloc.Traceback) -> str:
+    """The module of the innermost frame in Home Assistant or ours; else the innermost's file."""
+    for frame in reversed(traceback):
+        for top in ("homeassistant/", "custom_components/"):
+            if top in frame.filename:
+                return top + frame.filename.rpartition(top)[2]
+    return Path(traceback[-1].filename).name if len(traceback) else "?"
+
+
+def allocated_by(
+    before: tracemalloc.Snapshot, after: tracemalloc.Snapshot, points: int
+) -> list[dict[str, Any]]:
+    """KiB and blocks per point still allocated, by the module of Home Assistant or ours that
+    allocated them (the innermost such frame), the largest first."""
+    kib: Counter[str] = Counter()
+    blocks: Counter[str] = Counter()
+    for stat in after.compare_to(before, "traceback"):
+        module = _module_of(stat.traceback)
+        kib[module] += stat.size_diff
+        blocks[module] += stat.count_diff
+    return [
+        {
+            "module": module,
+            "kib_per_point": round(size / 1024 / points, 2),
+            "blocks_per_point": round(blocks[module] / points, 1),
+        }
+        for module, size in kib.most_common(14)
+    ]
 
 
 def point_entities(hass: HomeAssistant) -> list[Entity]:
@@ -308,9 +465,9 @@ def longest_full_collection(times: int = 5) -> float:
     return longest * 1000
 
 
-def run(points: int) -> dict[str, Any] | str:
+def run(points: int, trace: bool = False) -> dict[str, Any] | str:
     """Run the Home Assistant part for one size; its figures, or the tail of its output."""
-    env = os.environ | {"BENCH_POINTS": str(points)}
+    env = os.environ | {"BENCH_POINTS": str(points), "BENCH_TRACE": "1" if trace else ""}
     command = [sys.executable, "-m", "pytest", "bench/test_objects.py", "-q", "-s"]
     command += ["-p", "no:cacheprovider"]
     done = subprocess.run(command, cwd=ROOT, env=env, capture_output=True, text=True, check=False)
@@ -323,7 +480,7 @@ def run(points: int) -> dict[str, Any] | str:
 def text(result: dict[str, Any]) -> list[str]:
     """Return one size's figures as lines."""
     types = ", ".join(f"{name} {n:g}" for name, n in result["types_per_entity"].items())
-    return [
+    lines = [
         f"{result['entities']} point entities ({', '.join(KINDS)} in turn):",
         f"  objects per point entity: {result['objects_per_entity']:g}"
         f" ({result['bytes_per_entity']} bytes), {result['ours_per_entity']:g} of them"
@@ -334,6 +491,27 @@ def text(result: dict[str, Any]) -> list[str]:
         f"  longest full gc.collect(): {result['gc_full_max_ms']:.1f} ms"
         f" ({result['gc_objects']} objects tracked)",
     ]
+    owners = result.get("owners", [])
+    if owners:
+        lines.append("  objects per point entity by who keeps them (the State included):")
+    for kept_by in (OURS, HOME_ASSISTANT):
+        rows = [row for row in owners if row["kept_by"] == kept_by]
+        total = sum(row["objects_per_entity"] for row in rows)
+        size = sum(row["bytes_per_entity"] for row in rows)
+        if rows:
+            lines.append(f"    {kept_by}: {total:.1f} objects ({size} bytes)")
+        lines += [
+            f"      {row['objects_per_entity']:5.2f} ({row['bytes_per_entity']:4d} bytes)"
+            f" {row['owner']}"
+            for row in rows
+        ]
+    if result.get("allocated_by"):
+        lines.append("  tracemalloc, still allocated per point after the restart, by module:")
+    lines += [
+        f"    {row['kib_per_point']:6.2f} KiB {row['blocks_per_point']:6.1f} blocks {row['module']}"
+        for row in result.get("allocated_by", [])
+    ]
+    return lines
 
 
 def main() -> int:
@@ -341,10 +519,13 @@ def main() -> int:
     parser = argparse.ArgumentParser(prog="python -m bench.objects", description=__doc__)
     parser.add_argument("--points", type=int, nargs="+", default=[1000, 10])
     parser.add_argument("--json", action="store_true")
+    parser.add_argument(
+        "--trace", action="store_true", help="tracemalloc by module (RSS and GC then include it)"
+    )
     args = parser.parse_args()
     results = []
     for points in args.points:
-        result = run(points)
+        result = run(points, args.trace)
         if isinstance(result, str):
             print(f"the objects benchmark failed:\n{result}")
             return 1
