@@ -12,7 +12,7 @@ from homeassistant.core import HomeAssistant, callback
 from homeassistant.helpers import device_registry as dr, entity_registry as er
 from homeassistant.helpers.device_registry import CONNECTION_NETWORK_MAC, DeviceInfo, format_mac
 from homeassistant.helpers.entity import EntityDescription
-from homeassistant.helpers.update_coordinator import CoordinatorEntity
+from homeassistant.helpers.update_coordinator import BaseCoordinatorEntity, CoordinatorEntity
 from yarl import URL
 
 from .const import CONF_MAC, CONF_TLS, DOMAIN
@@ -204,9 +204,22 @@ class PlcEntity(CoordinatorEntity[PlcCoordinator]):
         await super().async_update()
 
     async def async_added_to_hass(self) -> None:
-        """Remember what the first state shows, then follow the coordinator."""
-        await super().async_added_to_hass()
+        """Follow the coordinator's polls of the entity's point; note what the first state shows.
+
+        The coordinator's one dispatch updates the entity: the base's listener would keep a
+        callback, a remover and their arguments per entity.
+        """
+        await super(BaseCoordinatorEntity, self).async_added_to_hass()
+        self.coordinator.async_follow(self, self.coordinator_context)
+        stored = self.registry_entry
+        if stored is not None and stored.unique_id == self._attr_unique_id:
+            self._attr_unique_id = stored.unique_id  # the registry's string: one for both
         self._shown_available, self._shown = self.available, self.observed()
+
+    async def async_will_remove_from_hass(self) -> None:
+        """Stop following the coordinator."""
+        self.coordinator.async_unfollow(self)
+        await super().async_will_remove_from_hass()
 
     @callback
     def _handle_coordinator_update(self) -> None:
