@@ -1,7 +1,8 @@
 """Objects per point entity: what each entity of a machine keeps, RSS per point, full collections.
 
-`python -m bench.objects [--points 1000 10] [--json]` runs bench/test_objects.py in Home
-Assistant's test harness once per size (a fresh process each, so RSS is that size's): one
+`python -m bench.objects [--points 1000 10] [--trace] [--against DIR] [--json]` runs
+bench/test_objects.py in Home Assistant's test harness once per size (a fresh process each, so
+RSS is that size's): one
 S7-200 SMART simulator on loopback, an entry whose machines hold a mix of kinds (plain and
 scaled sensors, an enum sensor, a binary sensor, a switch, a number, a select, a switch of a
 state and a command), set up, unloaded and set up again as after a restart, then polled.
@@ -13,7 +14,11 @@ all point entities together: an object reached from half the entities or more co
 and is left out; one shared by a few (a device, a conversion equal for many points) counts once.
 It prints the objects and bytes per point entity, the types that hold most, the RSS per point
 (after the restart, against before the first setup) and the longest of a few full `gc.collect()`
-runs.
+runs. Then the objects by who keeps them, ours or Home Assistant's, with the entity's State and
+the coordinator's listener entries, which the entity does not reach. `--trace`: what stays
+allocated per point, by the module that allocated it (RSS and collections then cost more).
+`--against DIR`: the same first for other code (bench/against.py), so before and after come
+from one command.
 """
 
 from __future__ import annotations
@@ -43,6 +48,7 @@ from homeassistant.helpers.entity_platform import EntityPlatform, async_get_plat
 from homeassistant.helpers.entity_registry import EntityRegistry
 from homeassistant.helpers.update_coordinator import DataUpdateCoordinator
 
+from bench.against import tree_with
 from custom_components.plc_bridge.const import DOMAIN
 from tests.ha_fixtures import PointData, device, point
 
@@ -452,25 +458,28 @@ def rss_kib() -> float:
     return float("nan")
 
 
-def longest_full_collection(times: int = 5) -> float:
-    """The longest of a few full collections, in ms.
+def longest_full_collection(times: int = 7) -> tuple[float, float]:
+    """The longest of a few full collections, in ms: by the clock, and in this thread's CPU time.
 
-    Timed by the system's monotonic clock: the test harness freezes Python's clocks.
+    The CPU time leaves out what other processes on a shared machine take meanwhile. Timed by
+    the system's clocks: the test harness freezes Python's.
     """
-    longest = 0.0
+    wall = cpu = 0.0
     for _ in range(times):
         started = time.clock_gettime(time.CLOCK_MONOTONIC)
+        used = time.clock_gettime(time.CLOCK_THREAD_CPUTIME_ID)
         gc.collect()
-        longest = max(longest, time.clock_gettime(time.CLOCK_MONOTONIC) - started)
-    return longest * 1000
+        cpu = max(cpu, time.clock_gettime(time.CLOCK_THREAD_CPUTIME_ID) - used)
+        wall = max(wall, time.clock_gettime(time.CLOCK_MONOTONIC) - started)
+    return wall * 1000, cpu * 1000
 
 
-def run(points: int, trace: bool = False) -> dict[str, Any] | str:
-    """Run the Home Assistant part for one size; its figures, or the tail of its output."""
+def run(points: int, trace: bool = False, tree: Path = ROOT) -> dict[str, Any] | str:
+    """Run the Home Assistant part for one size in `tree`; its figures, or its output's tail."""
     env = os.environ | {"BENCH_POINTS": str(points), "BENCH_TRACE": "1" if trace else ""}
     command = [sys.executable, "-m", "pytest", "bench/test_objects.py", "-q", "-s"]
     command += ["-p", "no:cacheprovider"]
-    done = subprocess.run(command, cwd=ROOT, env=env, capture_output=True, text=True, check=False)
+    done = subprocess.run(command, cwd=tree, env=env, capture_output=True, text=True, check=False)
     for line in done.stdout.splitlines():
         if line.startswith("BENCH "):
             return dict(json.loads(line.removeprefix("BENCH ")))
@@ -489,7 +498,8 @@ def text(result: dict[str, Any]) -> list[str]:
         f"  most per entity: {types}",
         f"  RSS per point entity after a restart: {result['rss_kib_per_point']:.1f} KiB",
         f"  longest full gc.collect(): {result['gc_full_max_ms']:.1f} ms"
-        f" ({result['gc_objects']} objects tracked)",
+        f" ({result.get('gc_full_max_cpu_ms', float('nan')):.1f} ms of CPU;"
+        f" {result['gc_objects']} objects tracked)",
     ]
     owners = result.get("owners", [])
     if owners:
@@ -522,19 +532,27 @@ def main() -> int:
     parser.add_argument(
         "--trace", action="store_true", help="tracemalloc by module (RSS and GC then include it)"
     )
+    parser.add_argument(
+        "--against", type=Path, help="a folder of other code to measure first (bench/against.py)"
+    )
     args = parser.parse_args()
+    trees = [("this tree", ROOT)]
+    if args.against is not None:
+        trees.insert(0, (f"against {args.against}", tree_with(args.against)))
     results = []
-    for points in args.points:
-        result = run(points, args.trace)
-        if isinstance(result, str):
-            print(f"the objects benchmark failed:\n{result}")
-            return 1
-        results.append(result)
+    for label, tree in trees:
+        for points in args.points:
+            result = run(points, args.trace, tree)
+            if isinstance(result, str):
+                print(f"the objects benchmark failed ({label}):\n{result}")
+                return 1
+            results.append((label, result))
     if args.json:
-        print(json.dumps(results))
+        print(json.dumps([result | {"code": label} for label, result in results]))
         return 0
     print(f"$ {shlex.join(['python', '-m', 'bench.objects', *sys.argv[1:]])}")
-    for result in results:
+    for label, result in results:
+        print(f"# {label}:")
         print("\n".join(text(result)))
     return 0
 
