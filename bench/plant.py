@@ -97,6 +97,13 @@ def text(result: dict[str, Any], command: str, load: tuple[float, ...]) -> str:
         f" third of the run on, target +/- {TARGETS['rss']:g} % in steady polling);"
         f" samples every 10 s: {' '.join(f'{m:g}' for _t, m in rss)}",
     ]
+    if "gc_forced_cpu_ms" in result:
+        forced = result["gc_forced_cpu_ms"]
+        lines.append(
+            f"full collections forced at the end: median {forced[len(forced) // 2]} ms of CPU"
+            f" (min {forced[0]}, max {forced[-1]}); {result['gc_tracked']} objects tracked by"
+            f" the GC, {tracked_per_point(result):.1f} per point"
+        )
     if "rss_before_setup_mib" in result:
         per_point = (first - result["rss_before_setup_mib"]) * 1024 / (plcs * result["points"])
         lines.append(
@@ -158,6 +165,18 @@ def per_point_kib(result: dict[str, Any]) -> float:
     return (result["rss_mib"][0][1] - result["rss_before_setup_mib"]) * 1024 / points
 
 
+def tracked_per_point(result: dict[str, Any]) -> float:
+    """Objects the GC tracks per point at the end, against before the first setup."""
+    points = result["plcs"] * result["points"]
+    return (result["gc_tracked"] - result["gc_tracked_before_setup"]) / points
+
+
+def forced_median(result: dict[str, Any]) -> float:
+    """The median CPU time of the full collections forced at the end, in ms."""
+    forced = result["gc_forced_cpu_ms"]
+    return float(forced[len(forced) // 2])
+
+
 def compared(before: dict[str, Any], after: dict[str, Any]) -> list[str]:
     """Return the figures item 7 of issue 24 compares, before and after, one line each."""
     rows = [
@@ -169,6 +188,8 @@ def compared(before: dict[str, Any], after: dict[str, Any]) -> list[str]:
             after["gc_gen2_max_cpu_ms"],
         ),
         ("full collections", before["gc_gen2"], after["gc_gen2"]),
+        ("forced full collection, median CPU (ms)", forced_median(before), forced_median(after)),
+        ("GC-tracked objects per point", tracked_per_point(before), tracked_per_point(after)),
         ("longest loop stall (ms)", before["lag_max_ms"], after["lag_max_ms"]),
         ("a poll's longest hold (ms)", before["hold_max_ms"], after["hold_max_ms"]),
     ]

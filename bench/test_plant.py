@@ -164,6 +164,20 @@ def plant(hass: HomeAssistant, infos: list[dict[str, Any]]) -> list[Any]:
     return entries
 
 
+def forced_collections(times: int = 7) -> list[float]:
+    """Run full collections at the end, each timed in this thread's CPU time (s), sorted.
+
+    The plant's own full collections are few in a run and the loop's clock counts what other
+    processes take: these compare two runs' collections of the same plant.
+    """
+    times_s = []
+    for _ in range(times):
+        used = time.thread_time()
+        gc.collect()
+        times_s.append(time.thread_time() - used)
+    return sorted(times_s)
+
+
 def percentile(values: list[float], share: float) -> float:
     """The value below which `share` of the values lie (0 for none)."""
     if not values:
@@ -246,6 +260,7 @@ async def test_plant(hass: HomeAssistant, monkeypatch: pytest.MonkeyPatch) -> No
     total = PLCS * POINTS
     gc.collect()
     rss_before = rss_mib()
+    tracked_before = len(gc.get_objects())
     # The first start registers every entity; the second is what every restart looks like.
     started = time.perf_counter()
     await asyncio.gather(*(hass.config_entries.async_setup(e.entry_id) for e in entries))
@@ -284,6 +299,8 @@ async def test_plant(hass: HomeAssistant, monkeypatch: pytest.MonkeyPatch) -> No
     await watcher
     unsubscribe()
     gc.callbacks.remove(probe.on_gc)
+    forced = forced_collections()
+    tracked = len(gc.get_objects())
     steady_lags = [lag for woke, lag in probe.lags if woke >= steady]
     holds = [s for b, s in probe.dispatches if b >= steady]
     # The part of each hold that is no garbage collection (one may start inside our writes).
@@ -318,6 +335,9 @@ async def test_plant(hass: HomeAssistant, monkeypatch: pytest.MonkeyPatch) -> No
         ),
         "rss_mib": [(t, round(m, 1)) for t, m in rss],
         "rss_before_setup_mib": round(rss_before, 1),
+        "gc_forced_cpu_ms": [round(cpu * 1000, 1) for cpu in forced],
+        "gc_tracked": tracked,
+        "gc_tracked_before_setup": tracked_before,
         "growth": growth,
     }
     print("\nBENCH " + json.dumps(result))
