@@ -450,6 +450,13 @@ def point_entities(hass: HomeAssistant) -> list[Entity]:
     ]
 
 
+def tracked_types() -> Counter[str]:
+    """The objects the garbage collector tracks, by type (module and name)."""
+    return Counter(
+        f"{type(item).__module__}.{type(item).__qualname__}" for item in gc.get_objects()
+    )
+
+
 def rss_kib() -> float:
     """The resident set size of this process, in KiB."""
     for line in Path("/proc/self/status").read_text().splitlines():
@@ -514,6 +521,14 @@ def text(result: dict[str, Any]) -> list[str]:
             f"      {row['objects_per_entity']:5.2f} ({row['bytes_per_entity']:4d} bytes)"
             f" {row['owner']}"
             for row in rows
+        ]
+    if "tracked_per_point" in result:
+        lines.append(
+            f"  objects the GC tracks per point, the coordinator's and the entry's included:"
+            f" {result['tracked_per_point']:g}; most:"
+        )
+        lines += [
+            f"    {count:6.2f} {name}" for name, count in result["tracked_types_per_point"].items()
         ]
     if result.get("allocated_by"):
         lines.append("  tracemalloc, still allocated per point after the restart, by module:")

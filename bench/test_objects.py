@@ -21,6 +21,7 @@ from bench.objects import (
     machines,
     point_entities,
     rss_kib,
+    tracked_types,
 )
 from simulators.s7_smart import S7SmartSimulator
 from tests.ha_fixtures import ENTRY_ID, UNIQUE_ID, add_entry, poll, sim_data
@@ -50,6 +51,7 @@ async def test_objects(
     assert await hass.config_entries.async_remove(empty.entry_id)
     gc.collect()
     before = rss_kib()
+    tracked_before = tracked_types()
     if TRACE:
         tracemalloc.start(30)
         traced = tracemalloc.take_snapshot()
@@ -68,6 +70,7 @@ async def test_objects(
     await poll(hass, freezer, 2)
     gc.collect()
     after = rss_kib()
+    tracked = tracked_types() - tracked_before
     allocated = []
     if TRACE:
         allocated = allocated_by(traced, tracemalloc.take_snapshot(), POINTS)
@@ -82,6 +85,10 @@ async def test_objects(
         **counted,
         "owners": count_owners(hass, point_entities(hass), [coordinator], shared),
         "allocated_by": allocated,
+        "tracked_per_point": round(tracked.total() / POINTS, 1),
+        "tracked_types_per_point": {
+            name: round(count / POINTS, 2) for name, count in tracked.most_common(16)
+        },
         "rss_kib_per_point": (after - before) / POINTS,
         "gc_full_max_ms": wall,
         "gc_full_max_cpu_ms": cpu,
