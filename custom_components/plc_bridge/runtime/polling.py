@@ -84,7 +84,7 @@ class PollingCoordinator(DataUpdateCoordinator[ReadResult]):
     `_schedule_refresh`, and with it the base's members of that contract (BASE_MEMBERS,
     checked on both supported Home Assistant releases by tests/test_polling_contract.py):
     the handle `_unsub_refresh` the base cancels at shutdown, the `_retry_after` an
-    UpdateFailed asks for, and `_listeners`, the entities' callbacks with their points.
+    UpdateFailed asks for, and `_listeners`, the base's listeners with their contexts.
     """
 
     config_entry: ConfigEntry[Any]
