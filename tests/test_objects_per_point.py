@@ -71,3 +71,28 @@ async def test_entities_keep_no_listener_of_their_own(
     )
     assert await hass.config_entries.async_unload(entry.entry_id)
     assert not coordinator._listeners
+
+
+async def test_an_entity_whose_add_was_aborted_is_no_longer_updated(
+    hass: HomeAssistant,
+    s7_smart_sim: S7SmartSimulator,
+    caplog: pytest.LogCaptureFixture,
+) -> None:
+    """Home Assistant aborting an add after the entity followed: the next update drops it."""
+    entry = add_entry(
+        hass,
+        title="S7-200 SMART",
+        entry_id=ENTRY_ID,
+        unique_id=UNIQUE_ID,
+        data=sim_data(s7_smart_sim),
+        subentries=machines(8),
+    )
+    await set_up(hass, entry)
+    coordinator = entry.runtime_data.coordinator
+    aborted, *others = point_entities(hass)
+    aborted.add_to_platform_abort()
+    coordinator._changed = None  # update every entity
+    coordinator.async_set_updated_data(coordinator.data)
+    assert "Unexpected error" not in caplog.text
+    assert aborted not in coordinator._followers
+    assert all(entity in coordinator._followers for entity in others)
