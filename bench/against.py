@@ -4,6 +4,7 @@
 the toolchain (it has no git), for instance
 `git archive main custom_components | tar -x -C bench/results/main`. The benchmark then runs
 once in that folder, every other top-level entry of this tree linked in, and once here.
+Delete the folder afterwards: tests that look for every manifest in the tree would find its.
 """
 
 from __future__ import annotations
