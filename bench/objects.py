@@ -1,7 +1,8 @@
 """Objects per point entity: what each entity of a machine keeps, RSS per point, full collections.
 
-`python -m bench.objects [--points 1000 10] [--json]` runs bench/test_objects.py in Home
-Assistant's test harness once per size (a fresh process each, so RSS is that size's): one
+`python -m bench.objects [--points 1000 10] [--trace] [--against DIR] [--json]` runs
+bench/test_objects.py in Home Assistant's test harness once per size (a fresh process each, so
+RSS is that size's): one
 S7-200 SMART simulator on loopback, an entry whose machines hold a mix of kinds (plain and
 scaled sensors, an enum sensor, a binary sensor, a switch, a number, a select, a switch of a
 state and a command), set up, unloaded and set up again as after a restart, then polled.
@@ -13,7 +14,11 @@ all point entities together: an object reached from half the entities or more co
 and is left out; one shared by a few (a device, a conversion equal for many points) counts once.
 It prints the objects and bytes per point entity, the types that hold most, the RSS per point
 (after the restart, against before the first setup) and the longest of a few full `gc.collect()`
-runs.
+runs. Then the objects by who keeps them, ours or Home Assistant's, with the entity's State and
+the coordinator's listener entries, which the entity does not reach. `--trace`: what stays
+allocated per point, by the module that allocated it (RSS and collections then cost more).
+`--against DIR`: the same first for other code (bench/against.py), so before and after come
+from one command.
 """
 
 from __future__ import annotations
@@ -31,6 +36,7 @@ import shlex
 import subprocess
 import sys
 import time
+import tracemalloc
 from types import BuiltinFunctionType, CodeType, FunctionType, ModuleType
 from typing import Any
 
@@ -42,6 +48,7 @@ from homeassistant.helpers.entity_platform import EntityPlatform, async_get_plat
 from homeassistant.helpers.entity_registry import EntityRegistry
 from homeassistant.helpers.update_coordinator import DataUpdateCoordinator
 
+from bench.against import tree_with
 from custom_components.plc_bridge.const import DOMAIN
 from tests.ha_fixtures import PointData, device, point
 
@@ -232,6 +239,134 @@ def ours(entity: object) -> list[object]:
     ]
 
 
+def stop_set(hass: HomeAssistant, shared: Iterable[object] = ()) -> set[int]:
+    """The ids the walks stop at: functions, what `hass.data` holds near its top, `shared`."""
+    stop = shared_functions() | near(hass.data.values(), depth=3)
+    for root in shared:
+        stop |= reachable(root, stop).keys()
+    return stop
+
+
+OURS = "ours"
+HOME_ASSISTANT = "Home Assistant"
+OWNERS: tuple[tuple[str, str], ...] = (
+    ("the entity instance and its __dict__", OURS),
+    ("what our code sets on the entity (description, parts, ...)", OURS),
+    ("coordinator listener: remover partial in _on_remove", OURS),
+    ("coordinator listener: (callback, context) in the coordinator", OURS),
+    ("other removal callbacks of ours (outputs, supervision)", OURS),
+    ("entity registry entry", HOME_ASSISTANT),
+    ("platform's removal closure (remove_entity_cb)", HOME_ASSISTANT),
+    ("entity registry updates listener", HOME_ASSISTANT),
+    ("device registry updates listener", HOME_ASSISTANT),
+    ("device entry", HOME_ASSISTANT),
+    ("Home Assistant's attributes and cached properties on the entity", HOME_ASSISTANT),
+    ("State in the state machine (attributes, Context)", HOME_ASSISTANT),
+)
+"""Who keeps what per entity, in the order objects reached from several are attributed."""
+
+
+def _removal_owner(callback: object) -> int:
+    """The index in OWNERS of one of an entity's `_on_remove` callbacks."""
+    func = getattr(callback, "func", callback)
+    name = getattr(func, "__qualname__", "")
+    module = getattr(func, "__module__", "") or ""
+    if "remove_listener_internal" in name:
+        return 2
+    if "remove_entity_cb" in name:
+        return 6
+    if name == "_remove_listener":
+        return 7
+    if "unsubscribe_device_updates" in name:
+        return 8
+    return 4 if module.startswith("custom_components.") else 10
+
+
+def _owned_roots(
+    entity: Entity, listeners: dict[int, list[object]], state: object
+) -> list[tuple[int, object]]:
+    """Each root an entity's objects are reached from, with the index of its owner in OWNERS."""
+    own = {id(value) for value in ours(entity)}
+    roots: list[tuple[int, object]] = []
+    for name, value in vars(entity).items():
+        if name == "_on_remove":  # the list is Home Assistant's, each callback its owner's
+            roots += [(_removal_owner(item), item) for item in value or ()]
+            roots.append((10, value))
+        elif name == "registry_entry":
+            roots.append((5, value))
+        elif name == "_unsub_device_updates":
+            roots.append((8, value))
+        elif name == "device_entry":
+            roots.append((9, value))
+        else:
+            roots.append((1 if id(value) in own else 10, value))
+    roots += [(3, item) for item in listeners.get(id(entity), [])]
+    if state is not None:
+        roots.append((11, state))
+    return roots
+
+
+def count_owners(
+    hass: HomeAssistant,
+    entities: Iterable[Entity],
+    coordinators: Iterable[DataUpdateCoordinator[Any]],
+    shared: Iterable[object] = (),
+) -> list[dict[str, Any]]:
+    """Objects and bytes per entity by who keeps them (OWNERS), also what the entity cannot reach.
+
+    The walk of count_objects plus the entity's State in the state machine and the entries
+    of the coordinator's listener dict (a tuple of the callback and its context each, reached
+    only from the coordinator); objects reached from half the entities or more are left out.
+    """
+    entities = list(entities)
+    stop = stop_set(hass, shared) | {id(entity) for entity in entities}
+    listeners: dict[int, list[object]] = {}
+    for coordinator in coordinators:
+        for entry in coordinator._listeners.values():
+            owner = getattr(entry[0], "__self__", None)
+            if owner is not None:
+                listeners.setdefault(id(owner), []).extend([entry, entry[0]])
+    walks = []
+    reached: Counter[int] = Counter()
+    for entity in entities:
+        state = hass.states.get(entity.entity_id) if entity.entity_id else None
+        found: dict[int, tuple[int, object]] = {
+            id(entity): (0, entity),
+            id(vars(entity)): (0, vars(entity)),
+        }
+        for owner, root in _owned_roots(entity, listeners, state):
+            todo = [root]
+            while todo:
+                item = todo.pop()
+                key = id(item)
+                if key in found or key in stop or isinstance(item, STOP_TYPES):
+                    continue
+                found[key] = (owner, item)
+                todo.extend(gc.get_referents(item))
+        reached.update(found.keys())
+        walks.append(found)
+    limit = max(2, SHARED_SHARE * len(entities))
+    objects = [0] * len(OWNERS)
+    sizes = [0] * len(OWNERS)
+    seen: set[int] = set()
+    for found in walks:
+        for key, (owner, item) in found.items():
+            if reached[key] < limit and key not in seen:
+                seen.add(key)
+                objects[owner] += 1
+                sizes[owner] += sys.getsizeof(item)
+    count = max(1, len(entities))
+    return [
+        {
+            "owner": name,
+            "kept_by": kept_by,
+            "objects_per_entity": round(objects[index] / count, 2),
+            "bytes_per_entity": round(sizes[index] / count),
+        }
+        for index, (name, kept_by) in enumerate(OWNERS)
+    ]
+
+
 def count_objects(
     hass: HomeAssistant, entities: Iterable[object], shared: Iterable[object] = ()
 ) -> dict[str, Any]:
@@ -244,9 +379,7 @@ def count_objects(
     Home Assistant keeps per entity (its registry entry, listeners and caches).
     """
     entities = list(entities)
-    stop = shared_functions() | near(hass.data.values(), depth=3)
-    for root in shared:
-        stop |= reachable(root, stop).keys()
+    stop = stop_set(hass, shared)
     reached: Counter[int] = Counter()
     objects: dict[int, object] = {}
     own: set[int] = set()
@@ -277,6 +410,36 @@ def count_objects(
     }
 
 
+def _module_of(traceback: tracemalloc.Traceback) -> str:
+    """The module of the innermost frame in Home Assistant or ours; else the innermost's file."""
+    for frame in reversed(traceback):
+        for top in ("homeassistant/", "custom_components/"):
+            if top in frame.filename:
+                return top + frame.filename.rpartition(top)[2]
+    return Path(traceback[-1].filename).name if len(traceback) else "?"
+
+
+def allocated_by(
+    before: tracemalloc.Snapshot, after: tracemalloc.Snapshot, points: int
+) -> list[dict[str, Any]]:
+    """KiB and blocks per point still allocated, by the module of Home Assistant or ours that
+    allocated them (the innermost such frame), the largest first."""
+    kib: Counter[str] = Counter()
+    blocks: Counter[str] = Counter()
+    for stat in after.compare_to(before, "traceback"):
+        module = _module_of(stat.traceback)
+        kib[module] += stat.size_diff
+        blocks[module] += stat.count_diff
+    return [
+        {
+            "module": module,
+            "kib_per_point": round(size / 1024 / points, 2),
+            "blocks_per_point": round(blocks[module] / points, 1),
+        }
+        for module, size in kib.most_common(14)
+    ]
+
+
 def point_entities(hass: HomeAssistant) -> list[Entity]:
     """The entities of the machines' points (those of a machine's device, not the PLC's)."""
     return [
@@ -287,6 +450,13 @@ def point_entities(hass: HomeAssistant) -> list[Entity]:
     ]
 
 
+def tracked_types() -> Counter[str]:
+    """The objects the garbage collector tracks, by type (module and name)."""
+    return Counter(
+        f"{type(item).__module__}.{type(item).__qualname__}" for item in gc.get_objects()
+    )
+
+
 def rss_kib() -> float:
     """The resident set size of this process, in KiB."""
     for line in Path("/proc/self/status").read_text().splitlines():
@@ -295,25 +465,28 @@ def rss_kib() -> float:
     return float("nan")
 
 
-def longest_full_collection(times: int = 5) -> float:
-    """The longest of a few full collections, in ms.
+def longest_full_collection(times: int = 7) -> tuple[float, float]:
+    """The longest of a few full collections, in ms: by the clock, and in this thread's CPU time.
 
-    Timed by the system's monotonic clock: the test harness freezes Python's clocks.
+    The CPU time leaves out what other processes on a shared machine take meanwhile. Timed by
+    the system's clocks: the test harness freezes Python's.
     """
-    longest = 0.0
+    wall = cpu = 0.0
     for _ in range(times):
         started = time.clock_gettime(time.CLOCK_MONOTONIC)
+        used = time.clock_gettime(time.CLOCK_THREAD_CPUTIME_ID)
         gc.collect()
-        longest = max(longest, time.clock_gettime(time.CLOCK_MONOTONIC) - started)
-    return longest * 1000
+        cpu = max(cpu, time.clock_gettime(time.CLOCK_THREAD_CPUTIME_ID) - used)
+        wall = max(wall, time.clock_gettime(time.CLOCK_MONOTONIC) - started)
+    return wall * 1000, cpu * 1000
 
 
-def run(points: int) -> dict[str, Any] | str:
-    """Run the Home Assistant part for one size; its figures, or the tail of its output."""
-    env = os.environ | {"BENCH_POINTS": str(points)}
+def run(points: int, trace: bool = False, tree: Path = ROOT) -> dict[str, Any] | str:
+    """Run the Home Assistant part for one size in `tree`; its figures, or its output's tail."""
+    env = os.environ | {"BENCH_POINTS": str(points), "BENCH_TRACE": "1" if trace else ""}
     command = [sys.executable, "-m", "pytest", "bench/test_objects.py", "-q", "-s"]
     command += ["-p", "no:cacheprovider"]
-    done = subprocess.run(command, cwd=ROOT, env=env, capture_output=True, text=True, check=False)
+    done = subprocess.run(command, cwd=tree, env=env, capture_output=True, text=True, check=False)
     for line in done.stdout.splitlines():
         if line.startswith("BENCH "):
             return dict(json.loads(line.removeprefix("BENCH ")))
@@ -323,7 +496,7 @@ def run(points: int) -> dict[str, Any] | str:
 def text(result: dict[str, Any]) -> list[str]:
     """Return one size's figures as lines."""
     types = ", ".join(f"{name} {n:g}" for name, n in result["types_per_entity"].items())
-    return [
+    lines = [
         f"{result['entities']} point entities ({', '.join(KINDS)} in turn):",
         f"  objects per point entity: {result['objects_per_entity']:g}"
         f" ({result['bytes_per_entity']} bytes), {result['ours_per_entity']:g} of them"
@@ -332,8 +505,38 @@ def text(result: dict[str, Any]) -> list[str]:
         f"  most per entity: {types}",
         f"  RSS per point entity after a restart: {result['rss_kib_per_point']:.1f} KiB",
         f"  longest full gc.collect(): {result['gc_full_max_ms']:.1f} ms"
-        f" ({result['gc_objects']} objects tracked)",
+        f" ({result.get('gc_full_max_cpu_ms', float('nan')):.1f} ms of CPU;"
+        f" {result['gc_objects']} objects tracked)",
     ]
+    owners = result.get("owners", [])
+    if owners:
+        lines.append("  objects per point entity by who keeps them (the State included):")
+    for kept_by in (OURS, HOME_ASSISTANT):
+        rows = [row for row in owners if row["kept_by"] == kept_by]
+        total = sum(row["objects_per_entity"] for row in rows)
+        size = sum(row["bytes_per_entity"] for row in rows)
+        if rows:
+            lines.append(f"    {kept_by}: {total:.1f} objects ({size} bytes)")
+        lines += [
+            f"      {row['objects_per_entity']:5.2f} ({row['bytes_per_entity']:4d} bytes)"
+            f" {row['owner']}"
+            for row in rows
+        ]
+    if "tracked_per_point" in result:
+        lines.append(
+            f"  objects the GC tracks per point, the coordinator's and the entry's included:"
+            f" {result['tracked_per_point']:g}; most:"
+        )
+        lines += [
+            f"    {count:6.2f} {name}" for name, count in result["tracked_types_per_point"].items()
+        ]
+    if result.get("allocated_by"):
+        lines.append("  tracemalloc, still allocated per point after the restart, by module:")
+    lines += [
+        f"    {row['kib_per_point']:6.2f} KiB {row['blocks_per_point']:6.1f} blocks {row['module']}"
+        for row in result.get("allocated_by", [])
+    ]
+    return lines
 
 
 def main() -> int:
@@ -341,19 +544,30 @@ def main() -> int:
     parser = argparse.ArgumentParser(prog="python -m bench.objects", description=__doc__)
     parser.add_argument("--points", type=int, nargs="+", default=[1000, 10])
     parser.add_argument("--json", action="store_true")
+    parser.add_argument(
+        "--trace", action="store_true", help="tracemalloc by module (RSS and GC then include it)"
+    )
+    parser.add_argument(
+        "--against", type=Path, help="a folder of other code to measure first (bench/against.py)"
+    )
     args = parser.parse_args()
+    trees = [("this tree", ROOT)]
+    if args.against is not None:
+        trees.insert(0, (f"against {args.against}", tree_with(args.against)))
     results = []
-    for points in args.points:
-        result = run(points)
-        if isinstance(result, str):
-            print(f"the objects benchmark failed:\n{result}")
-            return 1
-        results.append(result)
+    for label, tree in trees:
+        for points in args.points:
+            result = run(points, args.trace, tree)
+            if isinstance(result, str):
+                print(f"the objects benchmark failed ({label}):\n{result}")
+                return 1
+            results.append((label, result))
     if args.json:
-        print(json.dumps(results))
+        print(json.dumps([result | {"code": label} for label, result in results]))
         return 0
     print(f"$ {shlex.join(['python', '-m', 'bench.objects', *sys.argv[1:]])}")
-    for result in results:
+    for label, result in results:
+        print(f"# {label}:")
         print("\n".join(text(result)))
     return 0
 

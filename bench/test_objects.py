@@ -8,21 +8,27 @@ from __future__ import annotations
 import gc
 import json
 import os
+import tracemalloc
 
 from freezegun.api import FrozenDateTimeFactory
 from homeassistant.core import HomeAssistant
 
 from bench.objects import (
+    allocated_by,
     count_objects,
+    count_owners,
     longest_full_collection,
     machines,
     point_entities,
     rss_kib,
+    tracked_types,
 )
 from simulators.s7_smart import S7SmartSimulator
 from tests.ha_fixtures import ENTRY_ID, UNIQUE_ID, add_entry, poll, sim_data
 
 POINTS = int(os.environ.get("BENCH_POINTS", "10"))
+TRACE = os.environ.get("BENCH_TRACE", "") == "1"
+"""Trace allocations (by module); RSS and collection times then include tracemalloc's cost."""
 
 
 async def test_objects(
@@ -45,6 +51,10 @@ async def test_objects(
     assert await hass.config_entries.async_remove(empty.entry_id)
     gc.collect()
     before = rss_kib()
+    tracked_before = tracked_types()
+    if TRACE:
+        tracemalloc.start(30)
+        traced = tracemalloc.take_snapshot()
     entry = add_entry(
         hass,
         title="S7-200 SMART",
@@ -60,14 +70,28 @@ async def test_objects(
     await poll(hass, freezer, 2)
     gc.collect()
     after = rss_kib()
-    shared = [entry.subentries, entry.runtime_data.coordinator.data]
+    tracked = tracked_types() - tracked_before
+    allocated = []
+    if TRACE:
+        allocated = allocated_by(traced, tracemalloc.take_snapshot(), POINTS)
+        tracemalloc.stop()
+    coordinator = entry.runtime_data.coordinator
+    shared = [entry.subentries, coordinator.data]
     counted = count_objects(hass, point_entities(hass), shared)
+    wall, cpu = longest_full_collection()
     result = {
         "check": "objects",
         "points": POINTS,
         **counted,
+        "owners": count_owners(hass, point_entities(hass), [coordinator], shared),
+        "allocated_by": allocated,
+        "tracked_per_point": round(tracked.total() / POINTS, 1),
+        "tracked_types_per_point": {
+            name: round(count / POINTS, 2) for name, count in tracked.most_common(16)
+        },
         "rss_kib_per_point": (after - before) / POINTS,
-        "gc_full_max_ms": longest_full_collection(),
+        "gc_full_max_ms": wall,
+        "gc_full_max_cpu_ms": cpu,
         "gc_objects": len(gc.get_objects()),
     }
     print("\nBENCH " + json.dumps(result))

@@ -66,15 +66,19 @@ class Probe:
     lags: list[tuple[float, float]] = field(default_factory=list)  # (woke at, lag s)
     gcs: list[tuple[float, float, int]] = field(default_factory=list)  # (start, s, generation)
     dispatches: list[tuple[float, float]] = field(default_factory=list)  # (start, s)
+    full_cpu: list[tuple[float, float]] = field(default_factory=list)  # (start, CPU s), gen 2
     _gc_start: float = 0.0
+    _gc_cpu: float = 0.0
 
     def on_gc(self, phase: str, info: dict[str, Any]) -> None:
-        """gc.callbacks hook: time every collection."""
-        now = time.perf_counter()
+        """gc.callbacks hook: time every collection (full ones in CPU time too)."""
+        now, cpu = time.perf_counter(), time.thread_time()
         if phase == "start":
-            self._gc_start = now
+            self._gc_start, self._gc_cpu = now, cpu
         else:
             self.gcs.append((self._gc_start, now - self._gc_start, int(info["generation"])))
+            if info["generation"] == 2:
+                self.full_cpu.append((self._gc_start, cpu - self._gc_cpu))
 
     async def watch_loop(self, stop: asyncio.Event) -> None:
         """Sleep TICK at a time; how late each wake-up is, is the loop's lag."""
@@ -160,6 +164,20 @@ def plant(hass: HomeAssistant, infos: list[dict[str, Any]]) -> list[Any]:
     return entries
 
 
+def forced_collections(times: int = 7) -> list[float]:
+    """Run full collections at the end, each timed in this thread's CPU time (s), sorted.
+
+    The plant's own full collections are few in a run and the loop's clock counts what other
+    processes take: these compare two runs' collections of the same plant.
+    """
+    times_s = []
+    for _ in range(times):
+        used = time.thread_time()
+        gc.collect()
+        times_s.append(time.thread_time() - used)
+    return sorted(times_s)
+
+
 def percentile(values: list[float], share: float) -> float:
     """The value below which `share` of the values lie (0 for none)."""
     if not values:
@@ -242,6 +260,7 @@ async def test_plant(hass: HomeAssistant, monkeypatch: pytest.MonkeyPatch) -> No
     total = PLCS * POINTS
     gc.collect()
     rss_before = rss_mib()
+    tracked_before = len(gc.get_objects())
     # The first start registers every entity; the second is what every restart looks like.
     started = time.perf_counter()
     await asyncio.gather(*(hass.config_entries.async_setup(e.entry_id) for e in entries))
@@ -280,6 +299,8 @@ async def test_plant(hass: HomeAssistant, monkeypatch: pytest.MonkeyPatch) -> No
     await watcher
     unsubscribe()
     gc.callbacks.remove(probe.on_gc)
+    forced = forced_collections()
+    tracked = len(gc.get_objects())
     steady_lags = [lag for woke, lag in probe.lags if woke >= steady]
     holds = [s for b, s in probe.dispatches if b >= steady]
     # The part of each hold that is no garbage collection (one may start inside our writes).
@@ -309,8 +330,14 @@ async def test_plant(hass: HomeAssistant, monkeypatch: pytest.MonkeyPatch) -> No
         "hold_median_ms": round(statistics.median(holds) * 1000, 1) if holds else 0,
         "gc_gen2": len(gen2),
         "gc_gen2_max_ms": round(max(gen2, default=0) * 1000, 1),
+        "gc_gen2_max_cpu_ms": round(
+            max((s for b, s in probe.full_cpu if b >= steady), default=0) * 1000, 1
+        ),
         "rss_mib": [(t, round(m, 1)) for t, m in rss],
         "rss_before_setup_mib": round(rss_before, 1),
+        "gc_forced_cpu_ms": [round(cpu * 1000, 1) for cpu in forced],
+        "gc_tracked": tracked,
+        "gc_tracked_before_setup": tracked_before,
         "growth": growth,
     }
     print("\nBENCH " + json.dumps(result))

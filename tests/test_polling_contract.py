@@ -8,12 +8,19 @@ one fails here rather than in a poll.
 
 from __future__ import annotations
 
+import ast
 from datetime import timedelta
+import inspect
 import logging
+import textwrap
 from typing import Any, cast
 
 from homeassistant.core import HomeAssistant
-from homeassistant.helpers.update_coordinator import DataUpdateCoordinator, UpdateFailed
+from homeassistant.helpers.update_coordinator import (
+    BaseCoordinatorEntity,
+    DataUpdateCoordinator,
+    UpdateFailed,
+)
 import pytest
 from pytest_homeassistant_custom_component.common import MockConfigEntry
 
@@ -60,3 +67,22 @@ async def test_a_retry_after_puts_the_next_poll_off(hass: HomeAssistant) -> None
     assert coordinator._due - hass.loop.time() > 25
     remove()
     await coordinator.async_shutdown()
+
+
+def test_the_base_entity_only_listens_when_added() -> None:
+    """PlcEntity skips BaseCoordinatorEntity.async_added_to_hass: it only adds the listener.
+
+    The coordinator's one dispatch replaces that listener (entity.py); a release that does more
+    there fails here.
+    """
+    source = textwrap.dedent(inspect.getsource(BaseCoordinatorEntity.async_added_to_hass))
+    function = ast.parse(source).body[0]
+    assert isinstance(function, ast.AsyncFunctionDef)
+    body = [
+        node
+        for node in function.body
+        if not isinstance(node, ast.Expr) or not isinstance(node.value, ast.Constant)
+    ]
+    assert len(body) == 2
+    assert "super().async_added_to_hass()" in ast.unparse(body[0])
+    assert "self.async_on_remove(self.coordinator.async_add_listener(" in ast.unparse(body[1])

@@ -14,7 +14,7 @@ from homeassistant.helpers import device_registry as dr, entity_registry as er
 from homeassistant.helpers.device_registry import CONNECTION_NETWORK_MAC, DeviceInfo, format_mac
 from homeassistant.helpers.entity import EntityDescription
 from homeassistant.helpers.restore_state import ExtraStoredData, RestoreEntity
-from homeassistant.helpers.update_coordinator import CoordinatorEntity
+from homeassistant.helpers.update_coordinator import BaseCoordinatorEntity, CoordinatorEntity
 from yarl import URL
 
 from .const import CONF_MAC, CONF_TLS, DOMAIN
@@ -279,8 +279,17 @@ class PlcEntity(CoordinatorEntity[PlcCoordinator], RestoreEntity):
         await super().async_update()
 
     async def async_added_to_hass(self) -> None:
-        """Take the values stored at the last stop where a point is not read yet; follow polls."""
-        await super().async_added_to_hass()
+        """Follow the coordinator's polls; restore what is not read yet; note the first state.
+
+        Values stored at the last stop are taken for the points not read yet. The coordinator's
+        one dispatch updates the entity: the base's listener would keep a callback, a remover
+        and their arguments per entity.
+        """
+        await super(BaseCoordinatorEntity, self).async_added_to_hass()
+        self.coordinator.async_follow(self, self.coordinator_context)
+        stored = self.registry_entry
+        if stored is not None and stored.unique_id == self._attr_unique_id:
+            self._attr_unique_id = stored.unique_id  # the registry's string: one for both
         read = self.coordinator.data.values
         if unread := [point for point in self.restored_points() if point not in read]:
             self._restored = stored_values(await self.async_get_last_extra_data(), unread)
@@ -293,6 +302,11 @@ class PlcEntity(CoordinatorEntity[PlcCoordinator], RestoreEntity):
             return self.available, self.observed(), self._note()
         finally:
             self._showing = False
+
+    async def async_will_remove_from_hass(self) -> None:
+        """Stop following the coordinator."""
+        self.coordinator.async_unfollow(self)
+        await super().async_will_remove_from_hass()
 
     @callback
     def _handle_coordinator_update(self) -> None:

@@ -18,7 +18,7 @@ from collections.abc import Callable, Collection, Container, Iterable, Mapping
 from dataclasses import replace
 import math
 from random import randint
-from typing import Any
+from typing import Any, Protocol
 
 from homeassistant.config_entries import ConfigEntry
 from homeassistant.core import CALLBACK_TYPE, HassJob, HassJobType, HomeAssistant, callback
@@ -62,16 +62,29 @@ def compared(
     return values, changes
 
 
+class Follower(Protocol):
+    """An entity the coordinator updates itself, without a listener of its own."""
+
+    @property
+    def hass(self) -> HomeAssistant | None:
+        """None once Home Assistant aborted adding the entity."""
+
+    def _handle_coordinator_update(self) -> None:
+        """Show the coordinator's new data."""
+
+
 class PollingCoordinator(DataUpdateCoordinator[ReadResult]):
     """Polls `_poll` through `client` from start to start; tells the entities what changed.
 
-    Point entities listen with their point as context; the PLC's own entities with none.
+    Entities follow with their point (`async_follow`); the PLC's own entities with none. All
+    followers share one listener of the base, which starts polling with the first and stops it
+    with the last: an entity keeps no callback, closure or remover of its own.
 
     The cadence needs one override of DataUpdateCoordinator's private scheduler,
     `_schedule_refresh`, and with it the base's members of that contract (BASE_MEMBERS,
     checked on both supported Home Assistant releases by tests/test_polling_contract.py):
     the handle `_unsub_refresh` the base cancels at shutdown, the `_retry_after` an
-    UpdateFailed asks for, and `_listeners`, the entities' callbacks with their points.
+    UpdateFailed asks for, and `_listeners`, the base's listeners with their contexts.
     """
 
     config_entry: ConfigEntry[Any]
@@ -96,6 +109,8 @@ class PollingCoordinator(DataUpdateCoordinator[ReadResult]):
         self._changed: set[Point] | None = None  # what the last poll changed (None: all)
         self._edited: set[Point] = set()  # points edits added, not read yet
         self._unsub_edit: CALLBACK_TYPE | None = None
+        self._followers: dict[Follower, Point | None] = {}
+        self._unsub_followers: CALLBACK_TYPE | None = None
         self._stagger = randint(RANDOM_MICROSECOND_MIN, RANDOM_MICROSECOND_MAX) / 10**6
         """Where in its second each poll starts, as Home Assistant staggers coordinators."""
 
@@ -340,6 +355,26 @@ class PollingCoordinator(DataUpdateCoordinator[ReadResult]):
         self.async_update_listeners()
 
     @callback
+    def async_follow(self, entity: Follower, point: Point | None) -> None:
+        """Update `entity` after polls that change `point` (None: after every poll)."""
+        if not self._followers:
+            self._unsub_followers = self.async_add_listener(self._followed)
+        self._followers[entity] = point
+
+    @callback
+    def async_unfollow(self, entity: Follower) -> None:
+        """Stop updating `entity`; polling stops with the last listener."""
+        self._followers.pop(entity, None)
+        if not self._followers and self._unsub_followers is not None:
+            unsub = self._unsub_followers
+            self._unsub_followers = None
+            unsub()
+
+    @callback
+    def _followed(self) -> None:
+        """The followers' one listener of the base: updates go through async_update_listeners."""
+
+    @callback
     def async_update_listeners(self) -> None:
         """Update the entities of points whose result changed, and the PLC's own entities.
 
@@ -349,8 +384,17 @@ class PollingCoordinator(DataUpdateCoordinator[ReadResult]):
         updates = [
             update
             for update, point in self._listeners.values()
-            if changes is None or point is None or point in changes
+            if update != self._followed and (changes is None or point is None or point in changes)
         ]
+        for entity in [
+            entity
+            for entity, point in self._followers.items()
+            if changes is None or point is None or point in changes
+        ]:
+            if entity.hass is None:  # Home Assistant aborted its add after it followed
+                self.async_unfollow(entity)
+            else:
+                updates.append(entity._handle_coordinator_update)
         if len(updates) <= UPDATE_SLICE:
             self._update(updates)
             return
