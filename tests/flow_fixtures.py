@@ -1,8 +1,11 @@
-"""Fixtures of the flow tests: a simulator, its entry, a fake browsing vendor, translations."""
+"""Fixtures of the flow tests: a fake browsing vendor, and the texts a form must have.
+
+Their simulator and its entry (`flow_sim`, `flow_entry`) are the harness's (tests/harness.py).
+"""
 
 from __future__ import annotations
 
-from collections.abc import AsyncGenerator, Generator, Mapping, Sequence
+from collections.abc import Generator, Mapping, Sequence
 from datetime import datetime
 import json
 from pathlib import Path
@@ -11,7 +14,6 @@ from typing import Any, ClassVar
 from unittest.mock import AsyncMock, patch
 
 from homeassistant.config_entries import SOURCE_USER
-from homeassistant.const import CONF_HOST, CONF_PASSWORD, CONF_PORT, CONF_USERNAME
 from homeassistant.core import HomeAssistant
 from homeassistant.data_entry_flow import FlowResultType
 import pytest
@@ -19,11 +21,6 @@ from pytest_homeassistant_custom_component.common import MockConfigEntry
 
 from custom_components.plc_bridge.config_flow import PlcBridgeConfigFlow
 from custom_components.plc_bridge.const import (
-    CONF_FINGERPRINT,
-    CONF_OPTIONS,
-    CONF_TLS,
-    CONF_VENDOR,
-    DOMAIN,
     SUBENTRY_DEVICE,
 )
 from custom_components.plc_bridge.plc import (
@@ -34,11 +31,9 @@ from custom_components.plc_bridge.plc import (
     Point,
     PointResult,
     ReadResult,
-    TlsMode,
     Value,
     vendors,
 )
-from simulators.s7_smart import DEFAULT_PASSWORD, DEFAULT_USER, S7SmartSimulator
 
 STRINGS = json.loads(
     (Path(__file__).parents[1] / "custom_components/plc_bridge/strings.json").read_text()
@@ -46,43 +41,6 @@ STRINGS = json.loads(
 FAKE_VENDOR = "plcnext"
 """The vendor key FakeClient stands in for, in the tests that ask for it: a real key, so that its
 connection forms have their strings; the real PLCnext client is tested on its own simulator."""
-
-
-def smart_data(sim: S7SmartSimulator, **changes: Any) -> dict[str, Any]:
-    """Return the entry data of the S7-200 SMART simulator, pinned, with changes."""
-    data = {
-        CONF_VENDOR: "s7_smart",
-        CONF_HOST: sim.host,
-        CONF_PORT: sim.port,
-        CONF_USERNAME: DEFAULT_USER,
-        CONF_PASSWORD: DEFAULT_PASSWORD,
-        CONF_TLS: TlsMode.PIN.value,
-        CONF_FINGERPRINT: sim.fingerprint,
-        CONF_OPTIONS: {},
-    }
-    return data | changes
-
-
-@pytest.fixture
-async def flow_sim() -> AsyncGenerator[S7SmartSimulator]:
-    """An S7-200 SMART simulator on 127.0.0.1 (HTTPS, certificate from its own CA)."""
-    sim = S7SmartSimulator()
-    await sim.start()
-    yield sim
-    await sim.stop()
-
-
-@pytest.fixture
-def flow_entry(hass: HomeAssistant, flow_sim: S7SmartSimulator) -> MockConfigEntry:
-    """A configured (not loaded) entry of the simulator."""
-    entry = MockConfigEntry(
-        domain=DOMAIN,
-        title="Boiler house PLC",
-        data=smart_data(flow_sim),
-        unique_id=f"{flow_sim.host}:{flow_sim.port}",
-    )
-    entry.add_to_hass(hass)
-    return entry
 
 
 @pytest.fixture

@@ -21,9 +21,7 @@ from custom_components.plc_bridge.plc import Point, ReadResult
 from custom_components.plc_bridge.plc.vendors.s7_smart import S7SmartClient
 from custom_components.plc_bridge.runtime import polling
 from simulators.s7_smart import S7SmartSimulator
-
-from .flow_fixtures import smart_data
-from .ha_fixtures import (
+from tests.entries import (
     DEVICE_ID,
     PointData,
     device,
@@ -33,6 +31,7 @@ from .ha_fixtures import (
     poll,
     read_edits,
     set_points,
+    sim_data,
     unload_all,
 )
 
@@ -58,13 +57,13 @@ async def tick(hass: HomeAssistant, freezer: FrozenDateTimeFactory, seconds: flo
 
 async def test_polls_start_an_interval_apart(
     hass: HomeAssistant,
-    s7_smart_sim: S7SmartSimulator,
+    s7_smart_ha_sim: S7SmartSimulator,
     freezer: FrozenDateTimeFactory,
     monkeypatch: pytest.MonkeyPatch,
 ) -> None:
     """Every 10 s from start to start, though a poll takes 3 s; after one of 25 s, at once."""
     freezer.move_to(dt_util.utcnow().replace(microsecond=0))  # whole seconds, as the ticks
-    entry = make_entry(hass, s7_smart_sim, words(4))
+    entry = make_entry(hass, s7_smart_ha_sim, words(4))
     assert await hass.config_entries.async_setup(entry.entry_id)
     client = entry.runtime_data.client
     real_read = client.read
@@ -86,23 +85,23 @@ async def test_polls_start_an_interval_apart(
 
 async def test_ten_saves_read_once(
     hass: HomeAssistant,
-    s7_smart_sim: S7SmartSimulator,
+    s7_smart_ha_sim: S7SmartSimulator,
     freezer: FrozenDateTimeFactory,
 ) -> None:
     """Ten devices saved in a row: their new points are read in one request once saving stops."""
-    entry = make_entry(hass, s7_smart_sim, words(4))
+    entry = make_entry(hass, s7_smart_ha_sim, words(4))
     assert await hass.config_entries.async_setup(entry.entry_id)
-    polls, reads = entry.runtime_data.client.metrics.polls, s7_smart_sim.calls["read"]
+    polls, reads = entry.runtime_data.client.metrics.polls, s7_smart_ha_sim.calls["read"]
     for index in range(10):
-        s7_smart_sim.set(f"VW{100 + 2 * index}", 100 + index)
+        s7_smart_ha_sim.set(f"VW{100 + 2 * index}", 100 + index)
         points = dict(entry.subentries[DEVICE_ID].data[CONF_POINTS])
         points |= dict(words(1, 50 + index))
         set_points(hass, entry, points)
         await hass.async_block_till_done()
-    assert s7_smart_sim.calls["read"] == reads
+    assert s7_smart_ha_sim.calls["read"] == reads
     assert hass.states.get("sensor.s7_200_smart_word_59").state == STATE_UNAVAILABLE
     await read_edits(hass, freezer)
-    assert s7_smart_sim.calls["read"] == reads + 1
+    assert s7_smart_ha_sim.calls["read"] == reads + 1
     assert entry.runtime_data.client.metrics.polls == polls  # no poll of every point
     for index in range(10):
         assert hass.states.get(f"sensor.s7_200_smart_word_{50 + index}").state == str(100 + index)
@@ -118,34 +117,34 @@ async def test_ten_saves_read_once(
 )
 async def test_edits_of_known_points_read_nothing(
     hass: HomeAssistant,
-    s7_smart_sim: S7SmartSimulator,
+    s7_smart_ha_sim: S7SmartSimulator,
     freezer: FrozenDateTimeFactory,
     edit: dict[str, Any],
 ) -> None:
     """An edit that leaves every address and type as it was reads nothing, now or later."""
-    s7_smart_sim.set("VW0", 42)
-    entry = make_entry(hass, s7_smart_sim, words(4))
+    s7_smart_ha_sim.set("VW0", 42)
+    entry = make_entry(hass, s7_smart_ha_sim, words(4))
     assert await hass.config_entries.async_setup(entry.entry_id)
-    reads = s7_smart_sim.calls["read"]
+    reads = s7_smart_ha_sim.calls["read"]
     edit_point(hass, entry, "word0", **edit)
     hass.config_entries.async_update_entry(entry, title="Boiler PLC")
     await hass.async_block_till_done()
     await read_edits(hass, freezer)
-    assert s7_smart_sim.calls["read"] == reads
+    assert s7_smart_ha_sim.calls["read"] == reads
     shown = [s.state for s in hass.states.async_all("sensor") if s.entity_id.endswith("word_0")]
     assert shown in (["42"], ["21"])
 
 
 async def test_pending_edit_read_cancelled_on_stop(
     hass: HomeAssistant,
-    s7_smart_sim: S7SmartSimulator,
+    s7_smart_ha_sim: S7SmartSimulator,
     freezer: FrozenDateTimeFactory,
     caplog: pytest.LogCaptureFixture,
 ) -> None:
     """Home Assistant stops before the edits pause: nothing is read, nothing is left running."""
-    entry = make_entry(hass, s7_smart_sim, words(4))
+    entry = make_entry(hass, s7_smart_ha_sim, words(4))
     assert await hass.config_entries.async_setup(entry.entry_id)
-    reads = s7_smart_sim.calls["read"]
+    reads = s7_smart_ha_sim.calls["read"]
     points = dict(entry.subentries[DEVICE_ID].data[CONF_POINTS]) | dict(words(1, 60))
     set_points(hass, entry, points)
     await hass.async_block_till_done()
@@ -153,7 +152,7 @@ async def test_pending_edit_read_cancelled_on_stop(
     freezer.tick(timedelta(seconds=polling.EDIT_DELAY * 2))
     async_fire_time_changed(hass)
     await hass.async_block_till_done(wait_background_tasks=True)
-    assert s7_smart_sim.calls["read"] == reads
+    assert s7_smart_ha_sim.calls["read"] == reads
     assert "still running" not in caplog.text
 
 
@@ -187,7 +186,7 @@ async def test_setup_returns_before_a_paced_first_read_ends(
 
 async def test_poll_updates_only_changed_points(
     hass: HomeAssistant,
-    s7_smart_sim: S7SmartSimulator,
+    s7_smart_ha_sim: S7SmartSimulator,
     freezer: FrozenDateTimeFactory,
     monkeypatch: pytest.MonkeyPatch,
 ) -> None:
@@ -200,11 +199,11 @@ async def test_poll_updates_only_changed_points(
         original(entity)
 
     monkeypatch.setattr(PlcEntity, "_handle_coordinator_update", counting)
-    entry = make_entry(hass, s7_smart_sim, words(5))
+    entry = make_entry(hass, s7_smart_ha_sim, words(5))
     assert await hass.config_entries.async_setup(entry.entry_id)
     await poll(hass, freezer)
     updated.clear()
-    s7_smart_sim.set("VW4", 7)
+    s7_smart_ha_sim.set("VW4", 7)
     await poll(hass, freezer)
     points = sorted(key.rsplit("_", 1)[-1] for key in updated if "word" in key)
     assert points == ["word2"]
@@ -214,18 +213,18 @@ async def test_poll_updates_only_changed_points(
 
 async def test_failed_poll_updates_every_entity(
     hass: HomeAssistant,
-    s7_smart_sim: S7SmartSimulator,
+    s7_smart_ha_sim: S7SmartSimulator,
     freezer: FrozenDateTimeFactory,
     caplog: pytest.LogCaptureFixture,
 ) -> None:
     """The PLC stops answering: every entity goes unavailable, and comes back with it."""
     caplog.set_level(logging.ERROR)
-    entry: MockConfigEntry = make_entry(hass, s7_smart_sim, words(3))
+    entry: MockConfigEntry = make_entry(hass, s7_smart_ha_sim, words(3))
     assert await hass.config_entries.async_setup(entry.entry_id)
-    s7_smart_sim.malformed = True
+    s7_smart_ha_sim.malformed = True
     await poll(hass, freezer)
     assert hass.states.get("sensor.s7_200_smart_word_1").state == STATE_UNAVAILABLE
-    s7_smart_sim.malformed = False
+    s7_smart_ha_sim.malformed = False
     await poll(hass, freezer)
     assert hass.states.get("sensor.s7_200_smart_word_1").state == "0"
 
@@ -237,7 +236,7 @@ async def test_options_form_shows_the_real_cycle(
     monkeypatch.setattr(S7SmartClient, "request_interval", 1.0)
     entry = MockConfigEntry(
         domain=DOMAIN,
-        data=smart_data(flow_sim),
+        data=sim_data(flow_sim),
         options={CONF_SCAN_INTERVAL: 10.0},
         subentries_data=[device(words(1000))],
         version=2,
@@ -250,13 +249,13 @@ async def test_options_form_shows_the_real_cycle(
 
 async def test_many_changes_update_in_slices(
     hass: HomeAssistant,
-    s7_smart_sim: S7SmartSimulator,
+    s7_smart_ha_sim: S7SmartSimulator,
     freezer: FrozenDateTimeFactory,
     monkeypatch: pytest.MonkeyPatch,
 ) -> None:
     """A poll that changed more points than a slice updates them over several loop turns."""
     monkeypatch.setattr(polling, "UPDATE_SLICE", 2)
-    entry = make_entry(hass, s7_smart_sim, words(5))
+    entry = make_entry(hass, s7_smart_ha_sim, words(5))
     assert await hass.config_entries.async_setup(entry.entry_id)
     coordinator = entry.runtime_data.coordinator
     slices: list[int] = []
@@ -268,7 +267,7 @@ async def test_many_changes_update_in_slices(
 
     monkeypatch.setattr(coordinator, "_update", counting)
     for index in range(5):
-        s7_smart_sim.set(f"VW{2 * index}", 10 + index)
+        s7_smart_ha_sim.set(f"VW{2 * index}", 10 + index)
     await poll(hass, freezer)
     assert max(slices) == 2
     assert sum(slices) >= 5
@@ -277,14 +276,14 @@ async def test_many_changes_update_in_slices(
 
 
 async def test_quiet_poll_keeps_its_results(
-    hass: HomeAssistant, s7_smart_sim: S7SmartSimulator, freezer: FrozenDateTimeFactory
+    hass: HomeAssistant, s7_smart_ha_sim: S7SmartSimulator, freezer: FrozenDateTimeFactory
 ) -> None:
     """Unchanged values keep the result objects of the poll before; a changed one is new."""
-    entry = make_entry(hass, s7_smart_sim, words(3))
+    entry = make_entry(hass, s7_smart_ha_sim, words(3))
     assert await hass.config_entries.async_setup(entry.entry_id)
     coordinator = entry.runtime_data.coordinator
     before = dict(coordinator.data.values)
-    s7_smart_sim.set("VW2", 5)
+    s7_smart_ha_sim.set("VW2", 5)
     await poll(hass, freezer)
     after = coordinator.data.values
     assert after[Point("VW0", "signed")] is before[Point("VW0", "signed")]

@@ -25,10 +25,10 @@ from custom_components.plc_bridge.plc import Point
 from custom_components.plc_bridge.plc.vendors import client_class
 from simulators.s7_smart import S7SmartSimulator
 from simulators.softplc import SoftplcSimulator
+from tests.entries import PointData, call, point, sim_data
+from tests.harness import make_softplc_entry, softplc_data
 
-from .flow_fixtures import MACHINE, error_message, smart_data, step, strings_at
-from .ha_fixtures import PointData, call, point
-from .softplc_ha_fixtures import make_softplc_entry, softplc_data
+from .flow_fixtures import MACHINE, error_message, step, strings_at
 from .test_config_file import CONFIG, paste
 
 pytestmark = pytest.mark.no_pacing
@@ -43,15 +43,15 @@ STATE = point("state", "Lamp on", "binary_sensor", "B3:3/1", "BOOL", read_only=T
 @pytest.fixture
 def smart_entry(hass: HomeAssistant, flow_sim: S7SmartSimulator) -> MockConfigEntry:
     """An S7-200 SMART entry without machines (not set up)."""
-    entry = MockConfigEntry(domain=DOMAIN, data=smart_data(flow_sim), version=2)
+    entry = MockConfigEntry(domain=DOMAIN, data=sim_data(flow_sim), version=2)
     entry.add_to_hass(hass)
     return entry
 
 
 @pytest.fixture
-def softplc_entry(hass: HomeAssistant, softplc_sim: SoftplcSimulator) -> MockConfigEntry:
+def softplc_entry(hass: HomeAssistant, softplc_ha_sim: SoftplcSimulator) -> MockConfigEntry:
     """A SoftPLC entry whose machine holds the read-only state bit B3:3/1 (not set up)."""
-    return make_softplc_entry(hass, softplc_sim, [STATE])
+    return make_softplc_entry(hass, softplc_ha_sim, [STATE])
 
 
 def key_only(key: str, placeholders: Mapping[str, str]) -> str:
@@ -212,13 +212,13 @@ def test_softplc_bits_of_one_word_are_apart_but_written_together() -> None:
 
 
 async def test_write_guard_names_the_command_and_the_reason(
-    hass: HomeAssistant, softplc_sim: SoftplcSimulator
+    hass: HomeAssistant, softplc_ha_sim: SoftplcSimulator
 ) -> None:
     """A write of the command bit is refused naming it, the read-only bit and why; none sent."""
-    entry = make_softplc_entry(hass, softplc_sim, [COMMAND, STATE])
+    entry = make_softplc_entry(hass, softplc_ha_sim, [COMMAND, STATE])
     assert await hass.config_entries.async_setup(entry.entry_id)
     await hass.async_block_till_done()
-    before = softplc_sim.requests
+    before = softplc_ha_sim.requests
     with pytest.raises(ServiceValidationError) as err:
         await call(
             hass, "write", entry, points=[{"address": "B3:3/0", "data_type": "BOOL", "value": True}]
@@ -227,7 +227,7 @@ async def test_write_guard_names_the_command_and_the_reason(
         "The PLC writes whole words: B3:3/0 shares its word with the read-only point B3:3/1; "
         "nothing was sent"
     )
-    assert softplc_sim.requests == before
+    assert softplc_ha_sim.requests == before
 
 
 async def test_softplc_switch_form_refuses_the_shared_word(
@@ -304,17 +304,17 @@ def test_softplc_table_refuses_the_shared_word() -> None:
     ],
 )
 async def test_pasted_file_runs_the_same_checks(
-    hass: HomeAssistant, softplc_sim: SoftplcSimulator, points: list[PointData], error: str
+    hass: HomeAssistant, softplc_ha_sim: SoftplcSimulator, points: list[PointData], error: str
 ) -> None:
     """A pasted PLC file with such a layout is refused with the reason; no PLC is added."""
-    entry = make_softplc_entry(hass, softplc_sim, points)
+    entry = make_softplc_entry(hass, softplc_ha_sim, points)
     text = dump_config(entry)
     assert await hass.config_entries.async_remove(entry.entry_id)
     result = await paste(hass, text)
     assert result["errors"] == {"configuration": error}
     assert strings_at(*CONFIG, "error", error).format(**result["description_placeholders"])
     assert hass.config_entries.async_entries(DOMAIN) == []
-    assert softplc_data(softplc_sim)
+    assert softplc_data(softplc_ha_sim)
 
 
 async def test_edited_part_sets_the_whole_entitys_travel_time(

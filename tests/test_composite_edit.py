@@ -23,10 +23,10 @@ from pytest_homeassistant_custom_component.common import MockConfigEntry
 from custom_components.plc_bridge.const import CONF_POINTS, SUBENTRY_DEVICE
 from simulators.s7_smart import S7SmartSimulator
 from simulators.tecomat import TecomatSimulator
+from tests.entries import DEVICE_ID, make_entry, point, poll, read_edits
+from tests.harness import make_tecomat_entry
 
 from .flow_fixtures import MACHINE, error_message, step, suggested
-from .ha_fixtures import DEVICE_ID, make_entry, point, poll, read_edits
-from .tecomat_ha_fixtures import make_tecomat_entry
 
 pytestmark = pytest.mark.no_pacing
 
@@ -76,12 +76,12 @@ def registered(hass: HomeAssistant, entity_id: str) -> tuple[str, str]:
 
 
 async def test_move_a_part(
-    hass: HomeAssistant, freezer: FrozenDateTimeFactory, s7_smart_sim: S7SmartSimulator
+    hass: HomeAssistant, freezer: FrozenDateTimeFactory, s7_smart_ha_sim: S7SmartSimulator
 ) -> None:
     """The shutter's position moves to another word: same entity, the new word's value."""
-    s7_smart_sim.set("VW40", 13824)
-    s7_smart_sim.set("VW48", 27648)
-    entry = await set_up(hass, s7_smart_sim)
+    s7_smart_ha_sim.set("VW40", 13824)
+    s7_smart_ha_sim.set("VW48", 27648)
+    entry = await set_up(hass, s7_smart_ha_sim)
     before = registered(hass, SHUTTER_ID)
     assert hass.states.get(SHUTTER_ID).attributes[ATTR_CURRENT_POSITION] == 50
     result = await edit(hass, entry, "s1")
@@ -104,18 +104,18 @@ async def test_move_a_part(
     )
     assert registered(hass, SHUTTER_ID) == before
     assert hass.states.get(SHUTTER_ID).attributes[ATTR_CURRENT_POSITION] == 100
-    s7_smart_sim.set("VW40", 0)  # the old word is no longer read
-    s7_smart_sim.set("VW48", 6912)
+    s7_smart_ha_sim.set("VW40", 0)  # the old word is no longer read
+    s7_smart_ha_sim.set("VW48", 6912)
     await poll(hass, freezer)
     assert hass.states.get(SHUTTER_ID).attributes[ATTR_CURRENT_POSITION] == 25
 
 
 async def test_a_lone_part_keeps_its_entity(
-    hass: HomeAssistant, freezer: FrozenDateTimeFactory, s7_smart_sim: S7SmartSimulator
+    hass: HomeAssistant, freezer: FrozenDateTimeFactory, s7_smart_ha_sim: S7SmartSimulator
 ) -> None:
     """An entity of one part whose key is not the part's own id keeps it when the part moves."""
-    s7_smart_sim.set("VW62", 27648)
-    entry = await set_up(hass, s7_smart_sim)
+    s7_smart_ha_sim.set("VW62", 27648)
+    entry = await set_up(hass, s7_smart_ha_sim)
     before = registered(hass, BLIND_ID)
     assert before[1].endswith("_b0")
     result = await edit(hass, entry, "b1")
@@ -128,9 +128,11 @@ async def test_a_lone_part_keeps_its_entity(
     assert hass.states.get(BLIND_ID).attributes[ATTR_CURRENT_POSITION] == 100
 
 
-async def test_a_part_edited_in_place(hass: HomeAssistant, s7_smart_sim: S7SmartSimulator) -> None:
+async def test_a_part_edited_in_place(
+    hass: HomeAssistant, s7_smart_ha_sim: S7SmartSimulator
+) -> None:
     """A part keeps its own address (its own, not one in use) while its settings change."""
-    entry = await set_up(hass, s7_smart_sim)
+    entry = await set_up(hass, s7_smart_ha_sim)
     before = registered(hass, SHUTTER_ID)
     result = await edit(hass, entry, "s4")
     result = await step(hass, result, {"address": "Q0.6", "data_type": "signed"})
@@ -143,11 +145,11 @@ async def test_a_part_edited_in_place(hass: HomeAssistant, s7_smart_sim: S7Smart
 
 
 async def test_bad_addresses_are_refused(
-    hass: HomeAssistant, freezer: FrozenDateTimeFactory, s7_smart_sim: S7SmartSimulator
+    hass: HomeAssistant, freezer: FrozenDateTimeFactory, s7_smart_ha_sim: S7SmartSimulator
 ) -> None:
     """The parser's refusal, an address in use and an input for a command: on the field."""
-    s7_smart_sim.set("VW40", 13824)
-    entry = await set_up(hass, s7_smart_sim)
+    s7_smart_ha_sim.set("VW40", 13824)
+    entry = await set_up(hass, s7_smart_ha_sim)
     points = stored(entry)
     result = await edit(hass, entry, "s1")
     result = await step(hass, result, {"address": "VW4x", "data_type": "signed"})
@@ -168,9 +170,9 @@ async def test_bad_addresses_are_refused(
     assert hass.states.get(SHUTTER_ID).attributes[ATTR_CURRENT_POSITION] == 50
 
 
-async def test_removing_parts(hass: HomeAssistant, s7_smart_sim: S7SmartSimulator) -> None:
+async def test_removing_parts(hass: HomeAssistant, s7_smart_ha_sim: S7SmartSimulator) -> None:
     """Parts that leave the shutter only its stop button are refused; all of them may go."""
-    entry = await set_up(hass, s7_smart_sim)
+    entry = await set_up(hass, s7_smart_ha_sim)
     menu = await hass.config_entries.subentries.async_init(
         (entry.entry_id, SUBENTRY_DEVICE),
         context={"source": SOURCE_RECONFIGURE, "subentry_id": DEVICE_ID},
@@ -186,7 +188,7 @@ async def test_removing_parts(hass: HomeAssistant, s7_smart_sim: S7SmartSimulato
 
 
 async def test_move_a_command_on_a_tecomat(
-    hass: HomeAssistant, freezer: FrozenDateTimeFactory, tecomat_sim: TecomatSimulator
+    hass: HomeAssistant, freezer: FrozenDateTimeFactory, tecomat_ha_sim: TecomatSimulator
 ) -> None:
     """On a Tecomat the pump's command moves to another public variable, checked by TecoApi's
     parser; the switch keeps its id and writes the new variable."""
@@ -194,7 +196,7 @@ async def test_move_a_command_on_a_tecomat(
         point("p1", "Pump", "switch", "plcData.varBool1", "BOOL", role="state", read_only=True),
         point("p2", "Pump", "switch", "Main.pump.value", "BOOL", role="command"),
     ]
-    entry = make_tecomat_entry(hass, tecomat_sim, pump)
+    entry = make_tecomat_entry(hass, tecomat_ha_sim, pump)
     assert await hass.config_entries.async_setup(entry.entry_id)
     await hass.async_block_till_done()
     (switch,) = [
@@ -211,10 +213,10 @@ async def test_move_a_command_on_a_tecomat(
     await step(hass, menu, {"next_step_id": "save"})
     await read_edits(hass, freezer)
     assert registered(hass, switch) == before
-    tecomat_sim.set("Main.pump.value", True)
-    tecomat_sim.set("plcData.varBool0", True)
+    tecomat_ha_sim.set("Main.pump.value", True)
+    tecomat_ha_sim.set("plcData.varBool0", True)
     await hass.services.async_call(
         SWITCH_DOMAIN, SERVICE_TURN_OFF, {ATTR_ENTITY_ID: switch}, blocking=True
     )
-    assert tecomat_sim.get("plcData.varBool0") is False
-    assert tecomat_sim.get("Main.pump.value") is True  # the old variable is left alone
+    assert tecomat_ha_sim.get("plcData.varBool0") is False
+    assert tecomat_ha_sim.get("Main.pump.value") is True  # the old variable is left alone

@@ -27,20 +27,20 @@ from custom_components.plc_bridge.const import (
 )
 from custom_components.plc_bridge.model.config_file import dump_config
 from simulators.s7_smart import DEFAULT_PASSWORD as SMART_PASSWORD, DEFAULT_USER, S7SmartSimulator
+from tests.entries import DEVICE_ID, POINTS, device, legacy_point, point, sim_data
 
 from .flow_fixtures import suggested
-from .ha_fixtures import DEVICE_ID, POINTS, device, legacy_point, point, sim_data
 from .test_config_file import VENDORS, confirm, export, original, paste
 
 pytestmark = pytest.mark.no_pacing
 
 
 async def test_same_plc_already_configured(
-    hass: HomeAssistant, s7_smart_sim: S7SmartSimulator
+    hass: HomeAssistant, s7_smart_ha_sim: S7SmartSimulator
 ) -> None:
     """Pasting the file of a PLC that is configured ends in already_configured; nothing added."""
     vendor = VENDORS["s7_smart"]
-    entry = await original(hass, vendor, s7_smart_sim, {})
+    entry = await original(hass, vendor, s7_smart_ha_sim, {})
     result = await paste(hass, await export(hass, entry))
     result = await confirm(hass, result, {CONF_PASSWORD: SMART_PASSWORD})
     assert (result["type"], result["reason"]) == (FlowResultType.ABORT, "already_configured")
@@ -48,7 +48,7 @@ async def test_same_plc_already_configured(
 
 
 async def test_moved_plc_asks_its_address(
-    hass: HomeAssistant, s7_smart_sim: S7SmartSimulator
+    hass: HomeAssistant, s7_smart_ha_sim: S7SmartSimulator
 ) -> None:
     """Where nothing answers at the file's address, the connection page asks for it, filled in;
     the PLC is then added with the file's machines and options (areas where this has them)."""
@@ -62,7 +62,7 @@ async def test_moved_plc_asks_its_address(
     entry = MockConfigEntry(
         domain=DOMAIN,
         title="Boiler house",
-        data=sim_data(s7_smart_sim, port=gone),
+        data=sim_data(s7_smart_ha_sim, port=gone),
         options={"scan_interval": 30.0},
         subentries_data=[boiler, annex],
         version=2,
@@ -79,8 +79,8 @@ async def test_moved_plc_asks_its_address(
     result = await hass.config_entries.flow.async_configure(
         result["flow_id"],
         {
-            CONF_HOST: s7_smart_sim.host,
-            CONF_PORT: s7_smart_sim.port,
+            CONF_HOST: s7_smart_ha_sim.host,
+            CONF_PORT: s7_smart_ha_sim.port,
             CONF_TLS: "pin",
             CONF_USERNAME: DEFAULT_USER,
             CONF_PASSWORD: SMART_PASSWORD,
@@ -92,7 +92,7 @@ async def test_moved_plc_asks_its_address(
     await hass.async_block_till_done()
     new = result["result"]
     assert (new.title, dict(new.options)) == ("Boiler house", {"scan_interval": 30.0})
-    assert new.data[CONF_PORT] == s7_smart_sim.port
+    assert new.data[CONF_PORT] == s7_smart_ha_sim.port
     machines = {machine.title: dict(machine.data) for machine in new.subentries.values()}
     assert machines["Boiler"] == dict(entry.subentries[DEVICE_ID].data)
     assert machines["Annex"] == {CONF_POINTS: dict([level])}
@@ -104,13 +104,13 @@ async def test_moved_plc_asks_its_address(
     assert hass.states.get("sensor.annex_level").state == "235"
 
 
-async def test_older_file_migrated(hass: HomeAssistant, s7_smart_sim: S7SmartSimulator) -> None:
+async def test_older_file_migrated(hass: HomeAssistant, s7_smart_ha_sim: S7SmartSimulator) -> None:
     """A file of an older entry version is created at that version, then migrated as entries
     are: version 1's one point per subentry becomes one machine of points."""
     legacy = MockConfigEntry(
         domain=DOMAIN,
         title="Boiler house",
-        data=sim_data(s7_smart_sim),
+        data=sim_data(s7_smart_ha_sim),
         subentries_data=[legacy_point(p) for p in POINTS[:2]],
         version=1,
     )

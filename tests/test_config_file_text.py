@@ -29,9 +29,9 @@ from custom_components.plc_bridge.model.config_file import (
 )
 from custom_components.plc_bridge.model.vendor_fields import VENDOR_FIELDS
 from custom_components.plc_bridge.plc.vendors import client_class
+from tests.entries import POINTS, PointData, device
 
 from .flow_fixtures import error_message, suggested, translated
-from .ha_fixtures import POINTS, PointData, device
 
 pytestmark = pytest.mark.no_pacing
 

@@ -26,15 +26,14 @@ from custom_components.plc_bridge.plc import DeviceInfo
 from custom_components.plc_bridge.plc.http import format_fingerprint
 from custom_components.plc_bridge.plc.vendors import VENDORS, implemented
 from simulators.s7_smart import DEFAULT_PASSWORD, DEFAULT_USER, S7SmartSimulator
+from tests.entries import read_edits, sim_data
 from tests.flow_fixtures import (
     FAKE_VENDOR,
     FakeClient,
     error_message,
-    smart_data,
     strings_at,
     translated,
 )
-from tests.ha_fixtures import read_edits
 
 pytestmark = pytest.mark.no_pacing
 
@@ -117,7 +116,7 @@ async def test_pin_mode_shows_and_stores_fingerprint(
     result = await submit(hass, result, {})
     assert result["type"] is FlowResultType.CREATE_ENTRY
     assert result["title"] == "S7-200 SMART"
-    assert result["data"] == smart_data(flow_sim)
+    assert result["data"] == sim_data(flow_sim)
     assert result["result"].unique_id == f"127.0.0.1:{flow_sim.port}"
     assert flow_sim.calls["login"] == 1
     assert mock_setup_entry.call_count == 1
@@ -139,7 +138,7 @@ async def test_off_mode(hass: HomeAssistant, flow_sim: S7SmartSimulator) -> None
     """Off mode connects without a certificate check and stores no fingerprint."""
     result = await submit(hass, await start(hass), connection(flow_sim, tls="off"))
     assert result["type"] is FlowResultType.CREATE_ENTRY
-    assert result["data"] == smart_data(flow_sim, tls="off", fingerprint="")
+    assert result["data"] == sim_data(flow_sim, tls="off", fingerprint="")
 
 
 @pytest.mark.usefixtures("mock_setup_entry")

@@ -17,10 +17,10 @@ from custom_components.plc_bridge.const import CONF_POINTS, SUBENTRY_DEVICE
 from custom_components.plc_bridge.plc import BrowseItem, PlcConnectionError
 from simulators.tecomat import TecomatSimulator
 from simulators.tecomat.values import Var
+from tests.entries import read_edits
+from tests.harness import make_tecomat_entry
 
 from .flow_fixtures import MACHINE, browse, error_message, listed, step
-from .ha_fixtures import read_edits
-from .tecomat_ha_fixtures import make_tecomat_entry
 
 
 async def test_pick_published_variables(
@@ -108,12 +108,12 @@ async def test_a_bad_pick_adds_nothing(
     assert menu["description_placeholders"]["count"] == "1"
 
 
-@pytest.mark.usefixtures("tecomat_sim")
+@pytest.mark.usefixtures("tecomat_ha_sim")
 async def test_no_pick_list_while_not_loaded(
-    hass: HomeAssistant, tecomat_sim: TecomatSimulator
+    hass: HomeAssistant, tecomat_ha_sim: TecomatSimulator
 ) -> None:
     """Variables are listed only by a connected PLC: an entry not loaded offers no pick list."""
-    entry = make_tecomat_entry(hass, tecomat_sim)
+    entry = make_tecomat_entry(hass, tecomat_ha_sim)
     result = await hass.config_entries.subentries.async_init(
         (entry.entry_id, SUBENTRY_DEVICE), context={"source": SOURCE_USER}
     )
@@ -123,12 +123,12 @@ async def test_no_pick_list_while_not_loaded(
 
 
 async def test_variables_too_big_to_list_are_named(
-    hass: HomeAssistant, tecomat_sim: TecomatSimulator, tecomat_entry: MockConfigEntry
+    hass: HomeAssistant, tecomat_ha_sim: TecomatSimulator, tecomat_entry: MockConfigEntry
 ) -> None:
     """A structure the PLC cannot answer whole is said on a pick form it matches; arrays are
     listed. A list the filter keeps apart from it says nothing about it."""
-    tecomat_sim.variables["recipe"] = {f"step{i}": Var("INT", i) for i in range(200)}
-    tecomat_sim.variables["big"] = [Var("INT", i) for i in range(200)]
+    tecomat_ha_sim.variables["recipe"] = {f"step{i}": Var("INT", i) for i in range(200)}
+    tecomat_ha_sim.variables["big"] = [Var("INT", i) for i in range(200)]
     result = await browse(hass, tecomat_entry, "big[19")
     assert not result["errors"]
     assert set(listed(result)) == {"big[19] (DINT?)", *(f"big[19{i}] (DINT?)" for i in range(10))}

@@ -20,8 +20,7 @@ from pytest_homeassistant_custom_component.common import MockConfigEntry, async_
 from custom_components.plc_bridge.const import CONF_AREA, CONF_POINTS, DOMAIN, SUBENTRY_DEVICE
 from custom_components.plc_bridge.plc import Point
 from simulators.s7_smart import S7SmartSimulator
-
-from .ha_fixtures import (
+from tests.entries import (
     DEVICE_ID,
     ENTRY_ID,
     POINTS,
@@ -175,20 +174,20 @@ async def test_points_added_one_second_apart(
 
 
 async def test_read_only_points_of_the_coordinator(
-    hass: HomeAssistant, s7_smart_sim: S7SmartSimulator
+    hass: HomeAssistant, s7_smart_ha_sim: S7SmartSimulator
 ) -> None:
     """The coordinator knows which addresses read-only points name (writes to them are refused)."""
     points = [*POINTS, point("locked", "Locked", "sensor", "VW50", "signed", read_only=True)]
-    entry = make_entry(hass, s7_smart_sim, points)
+    entry = make_entry(hass, s7_smart_ha_sim, points)
     assert await hass.config_entries.async_setup(entry.entry_id)
     assert entry.runtime_data.coordinator.read_only_points == {Point("VW50", "signed")}
 
 
 async def test_thousand_points_in_ten_devices(
-    hass: HomeAssistant, s7_smart_sim: S7SmartSimulator, device_registry: dr.DeviceRegistry
+    hass: HomeAssistant, s7_smart_ha_sim: S7SmartSimulator, device_registry: dr.DeviceRegistry
 ) -> None:
     """1,000 points in 10 devices: every entity available, 10 + 1 devices, 32 requests a poll."""
-    entry = plant_entry(hass, s7_smart_sim, 10, 100)
+    entry = plant_entry(hass, s7_smart_ha_sim, 10, 100)
     assert await hass.config_entries.async_setup(entry.entry_id)
     await hass.async_block_till_done()
     states = [s for s in hass.states.async_all("sensor") if s.entity_id.startswith("sensor.mach")]
@@ -213,12 +212,12 @@ def legacy_entry(hass: HomeAssistant, sim: S7SmartSimulator) -> MockConfigEntry:
 
 async def test_migration_keeps_entities(
     hass: HomeAssistant,
-    s7_smart_sim: S7SmartSimulator,
+    s7_smart_ha_sim: S7SmartSimulator,
     entity_registry: er.EntityRegistry,
     device_registry: dr.DeviceRegistry,
 ) -> None:
     """Version 1 points move into one device: unique ids, entity ids and names unchanged."""
-    entry = legacy_entry(hass, s7_smart_sim)
+    entry = legacy_entry(hass, s7_smart_ha_sim)
     plc = device_registry.async_get_or_create(
         config_entry_id=entry.entry_id, identifiers={(DOMAIN, ENTRY_ID)}, name="S7-200 SMART"
     )
@@ -257,7 +256,7 @@ async def test_migration_keeps_entities(
 
 
 async def test_newer_version_is_refused(
-    hass: HomeAssistant, s7_smart_sim: S7SmartSimulator
+    hass: HomeAssistant, s7_smart_ha_sim: S7SmartSimulator
 ) -> None:
     """An entry from a newer release is not set up (and not changed)."""
     entry = add_entry(
@@ -265,7 +264,7 @@ async def test_newer_version_is_refused(
         title="x",
         entry_id=ENTRY_ID,
         unique_id=UNIQUE_ID,
-        data=sim_data(s7_smart_sim),
+        data=sim_data(s7_smart_ha_sim),
         points=[],
     )
     hass.config_entries.async_update_entry(entry, version=3)

@@ -15,9 +15,9 @@ from pytest_homeassistant_custom_component.common import MockConfigEntry
 from custom_components.plc_bridge.const import CONF_POINTS, CONF_VENDOR, DOMAIN, SUBENTRY_DEVICE
 from custom_components.plc_bridge.model.point_table import export_points
 from simulators.s7_smart import S7SmartSimulator
+from tests.entries import device, point, sim_data
 
-from .flow_fixtures import error_message, smart_data, translated
-from .ha_fixtures import device, point
+from .flow_fixtures import error_message, translated
 
 pytestmark = pytest.mark.no_pacing
 
@@ -31,7 +31,7 @@ def smart_entry(hass: HomeAssistant, flow_sim: S7SmartSimulator) -> MockConfigEn
     """An S7-200 SMART entry (not set up) with one device holding VW10."""
     entry = MockConfigEntry(
         domain=DOMAIN,
-        data=smart_data(flow_sim),
+        data=sim_data(flow_sim),
         version=2,
         subentries_data=[device([point("level", "Level", "sensor", "VW10", "signed")])],
     )

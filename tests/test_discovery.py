@@ -30,11 +30,9 @@ from simulators.tecomat import (
     DEFAULT_USER as TECO_USER,
     TecomatSimulator,
 )
+from tests.entries import add_entry
 from tests.flow_fixtures import suggested, translated
-
-from .ha_fixtures import add_entry
-from .s7_ha_fixtures import SimFactory, s7_data
-from .tecomat_ha_fixtures import TECOMAT_SERIAL
+from tests.harness import TECOMAT_SERIAL, SimFactory, s7_data
 
 pytestmark = pytest.mark.no_pacing
 
@@ -91,13 +89,13 @@ def filled_in(result: Any, port: int) -> None:
 
 
 @pytest.mark.usefixtures("mock_setup_entry")
-async def test_tecomat(hass: HomeAssistant, ports: Ports, tecomat_sim: TecomatSimulator) -> None:
+async def test_tecomat(hass: HomeAssistant, ports: Ports, tecomat_ha_sim: TecomatSimulator) -> None:
     """A TECO MAC where TecoApi answers: offered, its page filled in, an entry with the MAC."""
-    ports(tecomat=tecomat_sim.port)
+    ports(tecomat=tecomat_ha_sim.port)
     result = await confirmed(hass, TECO_MAC, "Teco")
     assert result["step_id"] == "connection_tecomat"
-    filled_in(result, tecomat_sim.port)
-    values = {CONF_HOST: "127.0.0.1", CONF_PORT: tecomat_sim.port, CONF_TLS: "none"}
+    filled_in(result, tecomat_ha_sim.port)
+    values = {CONF_HOST: "127.0.0.1", CONF_PORT: tecomat_ha_sim.port, CONF_TLS: "none"}
     values |= {CONF_USERNAME: TECO_USER, CONF_PASSWORD: TECO_PASSWORD, "auth": "digest"}
     result = await submit(hass, result, values)
     assert result["type"] is FlowResultType.CREATE_ENTRY
@@ -107,13 +105,13 @@ async def test_tecomat(hass: HomeAssistant, ports: Ports, tecomat_sim: TecomatSi
 
 
 @pytest.mark.usefixtures("mock_setup_entry")
-async def test_plcnext(hass: HomeAssistant, ports: Ports, plcnext_sim: PlcnextSimulator) -> None:
+async def test_plcnext(hass: HomeAssistant, ports: Ports, plcnext_ha_sim: PlcnextSimulator) -> None:
     """A Phoenix Contact MAC where the REST interface answers: offered, pinned, added."""
-    ports(plcnext=plcnext_sim.port)
+    ports(plcnext=plcnext_ha_sim.port)
     result = await confirmed(hass, PHOENIX_MAC, "Phoenix Contact")
     assert result["step_id"] == "connection_plcnext"
-    filled_in(result, plcnext_sim.port)
-    values = {CONF_HOST: "127.0.0.1", CONF_PORT: plcnext_sim.port, CONF_TLS: "pin"}
+    filled_in(result, plcnext_ha_sim.port)
+    values = {CONF_HOST: "127.0.0.1", CONF_PORT: plcnext_ha_sim.port, CONF_TLS: "pin"}
     values |= {CONF_USERNAME: PLCNEXT_USER, CONF_PASSWORD: PLCNEXT_PASSWORD}
     result = await submit(hass, result, values)
     assert result["step_id"] == "certificate"
@@ -214,10 +212,10 @@ def known(hass: HomeAssistant, **data: Any) -> MockConfigEntry:
 
 @pytest.mark.parametrize("how", ["noted", "unique_id", "device", "address"])
 async def test_known_plc_moves(
-    hass: HomeAssistant, ports: Ports, tecomat_sim: TecomatSimulator, how: str
+    hass: HomeAssistant, ports: Ports, tecomat_ha_sim: TecomatSimulator, how: str
 ) -> None:
     """A known PLC at a new address: its host follows, nothing is probed, no flow stays."""
-    ports(tecomat=tecomat_sim.port)
+    ports(tecomat=tecomat_ha_sim.port)
     entry = known(hass, **({CONF_MAC: TECO_MAC} if how in ("noted", "address") else {}))
     if how == "address":  # a PLC that reports no serial: known by host and port
         hass.config_entries.async_update_entry(entry, unique_id="192.0.2.7:80")
@@ -235,7 +233,7 @@ async def test_known_plc_moves(
     assert entry.data[CONF_HOST] == "127.0.0.1"
     if how == "address":
         assert entry.unique_id == "127.0.0.1:80"
-    assert tecomat_sim.calls["GetInfo"] == 0
+    assert tecomat_ha_sim.calls["GetInfo"] == 0
     assert not hass.config_entries.flow.async_progress()
 
 
@@ -280,30 +278,30 @@ async def test_set_up_plc_moves(
 
 
 async def test_configured_address_not_probed(
-    hass: HomeAssistant, ports: Ports, tecomat_sim: TecomatSimulator
+    hass: HomeAssistant, ports: Ports, tecomat_ha_sim: TecomatSimulator
 ) -> None:
     """An entry already at the discovered address (without a MAC noted): no probe, no flow."""
-    ports(tecomat=tecomat_sim.port)
+    ports(tecomat=tecomat_ha_sim.port)
     known(hass, **{CONF_HOST: "127.0.0.1"})
     result = await dhcp(hass, TECO_MAC)
     assert result["reason"] == "already_configured"
-    assert tecomat_sim.calls["GetInfo"] == 0
+    assert tecomat_ha_sim.calls["GetInfo"] == 0
 
 
-async def test_ignored(hass: HomeAssistant, ports: Ports, tecomat_sim: TecomatSimulator) -> None:
+async def test_ignored(hass: HomeAssistant, ports: Ports, tecomat_ha_sim: TecomatSimulator) -> None:
     """A discovery the user ignored stays ignored: no probe, no flow."""
-    ports(tecomat=tecomat_sim.port)
+    ports(tecomat=tecomat_ha_sim.port)
     MockConfigEntry(domain=DOMAIN, unique_id=TECO_MAC, source=SOURCE_IGNORE).add_to_hass(hass)
     result = await dhcp(hass, TECO_MAC)
     assert result["reason"] == "already_configured"
-    assert tecomat_sim.calls["GetInfo"] == 0
+    assert tecomat_ha_sim.calls["GetInfo"] == 0
 
 
 async def test_seen_twice(
-    hass: HomeAssistant, ports: Ports, tecomat_sim: TecomatSimulator, mock_setup_entry: AsyncMock
+    hass: HomeAssistant, ports: Ports, tecomat_ha_sim: TecomatSimulator, mock_setup_entry: AsyncMock
 ) -> None:
     """A PLC seen again while its discovery waits: one flow only."""
-    ports(tecomat=tecomat_sim.port)
+    ports(tecomat=tecomat_ha_sim.port)
     assert (await dhcp(hass, TECO_MAC))["step_id"] == "discovery_confirm"
     result = await dhcp(hass, TECO_MAC)
     assert result["reason"] == "already_in_progress"
@@ -311,18 +309,18 @@ async def test_seen_twice(
 
 
 async def test_known_plc_by_name_keeps_its_name(
-    hass: HomeAssistant, ports: Ports, tecomat_sim: TecomatSimulator
+    hass: HomeAssistant, ports: Ports, tecomat_ha_sim: TecomatSimulator
 ) -> None:
     """A PLC set up by host name is not moved to the address seen: the name follows it.
 
     An address in place of the name would break a certificate checked against the name.
     """
-    ports(tecomat=tecomat_sim.port)
+    ports(tecomat=tecomat_ha_sim.port)
     entry = known(hass, **{CONF_MAC: TECO_MAC, CONF_HOST: "plc1.factory.lan"})
     result = await dhcp(hass, TECO_MAC)
     assert result["reason"] == "already_configured"
     assert entry.data[CONF_HOST] == "plc1.factory.lan"
-    assert tecomat_sim.calls["GetInfo"] == 0
+    assert tecomat_ha_sim.calls["GetInfo"] == 0
 
 
 async def test_retrying_plc_by_name_set_up_when_seen(

@@ -15,10 +15,14 @@ from custom_components.plc_bridge.model.migration import kept_duration
 from simulators.plcnext import PlcnextSimulator
 from simulators.s7_smart import S7SmartSimulator
 from simulators.tecomat import TecomatSimulator
-
-from .ha_fixtures import DEVICE_ID, POINTS, PointData, device, point, set_up, sim_data
-from .plcnext_ha_fixtures import PLCNEXT_ENTRY_ID, plcnext_data
-from .tecomat_ha_fixtures import TECOMAT_ENTRY_ID, TECOMAT_SERIAL, tecomat_data
+from tests.entries import DEVICE_ID, POINTS, PointData, device, point, set_up, sim_data
+from tests.harness import (
+    PLCNEXT_ENTRY_ID,
+    TECOMAT_ENTRY_ID,
+    TECOMAT_SERIAL,
+    plcnext_data,
+    tecomat_data,
+)
 
 pytestmark = pytest.mark.no_pacing
 
@@ -58,14 +62,14 @@ def old_entry(
 
 
 async def test_tecomat_times_keep_their_text(
-    hass: HomeAssistant, tecomat_sim: TecomatSimulator
+    hass: HomeAssistant, tecomat_ha_sim: TecomatSimulator
 ) -> None:
     """A TIME sensor and a TOD text entity show hh:mm:ss.zzz as before, under the same ids."""
     points = [
         point("time", "Time", "sensor", "plcData.varTime", "TIME"),
         point("tod", "Tod", "text", "plcData.varTod", "TOD"),
     ]
-    entry = old_entry(hass, TECOMAT_ENTRY_ID, TECOMAT_SERIAL, tecomat_data(tecomat_sim), points)
+    entry = old_entry(hass, TECOMAT_ENTRY_ID, TECOMAT_SERIAL, tecomat_data(tecomat_ha_sim), points)
     await set_up(hass, entry)
     assert (entry.version, entry.minor_version) == (2, 2)
     stored = entry.subentries[DEVICE_ID].data["points"]
@@ -87,13 +91,13 @@ def told_of_seconds(hass: HomeAssistant, entry: MockConfigEntry) -> bool:
 
 
 async def test_other_families_are_not_told(
-    hass: HomeAssistant, s7_smart_sim: S7SmartSimulator
+    hass: HomeAssistant, s7_smart_ha_sim: S7SmartSimulator
 ) -> None:
     """An S7-200 SMART entry of 2.1 is migrated too, with nothing to tell about times."""
     entry = MockConfigEntry(
         domain=DOMAIN,
         title="Old PLC",
-        data=sim_data(s7_smart_sim),
+        data=sim_data(s7_smart_ha_sim),
         subentries_data=[device(POINTS, title="Old PLC")],
         version=2,
         minor_version=1,
@@ -105,7 +109,7 @@ async def test_other_families_are_not_told(
 
 
 async def test_plcnext_times_keep_their_counts(
-    hass: HomeAssistant, plcnext_sim: PlcnextSimulator
+    hass: HomeAssistant, plcnext_ha_sim: PlcnextSimulator
 ) -> None:
     """Counts in a time unit become durations in it; other counts stay integers."""
     points = [
@@ -122,7 +126,7 @@ async def test_plcnext_times_keep_their_counts(
         point("uptime", "Uptime", "sensor", MAIN + "Uptime", "LTIME", read_only=True),
         point("shifted", "Shifted", "sensor", MAIN + "Runtime", "TIME", offset=5.0),
     ]
-    entry = old_entry(hass, PLCNEXT_ENTRY_ID, "plcnext:1", plcnext_data(plcnext_sim), points)
+    entry = old_entry(hass, PLCNEXT_ENTRY_ID, "plcnext:1", plcnext_data(plcnext_ha_sim), points)
     await set_up(hass, entry)
     assert entry.minor_version == 2
     stored = entry.subentries[DEVICE_ID].data["points"]

@@ -15,10 +15,10 @@ from pytest_homeassistant_custom_component.common import MockConfigEntry
 from custom_components.plc_bridge.const import CONF_VENDOR, DOMAIN
 from custom_components.plc_bridge.model.expose import check_expose
 from custom_components.plc_bridge.plc.vendors import client_class
+from tests.entries import device, point
+from tests.harness import expose_data
 
-from .expose_fixtures import expose_data
 from .flow_fixtures import error_message
-from .ha_fixtures import device, point
 from .test_expose_flow import EXPOSE, OUTDOOR, exposes, plc_entry, start, submit
 
 

@@ -15,10 +15,10 @@ from pytest_homeassistant_custom_component.common import MockConfigEntry
 from custom_components.plc_bridge.config_flow import PlcBridgeConfigFlow
 from custom_components.plc_bridge.const import CONF_VENDOR, DOMAIN, SUBENTRY_EXPOSE
 from custom_components.plc_bridge.flows.expose_flow import ExposeSubentryFlowHandler
+from tests.entries import device, point
+from tests.harness import add_expose
 
-from .expose_fixtures import add_expose
 from .flow_fixtures import error_message, suggested, translated
-from .ha_fixtures import device, point
 
 pytestmark = pytest.mark.no_pacing
 

@@ -12,8 +12,7 @@ from pytest_homeassistant_custom_component.common import async_fire_time_changed
 
 from custom_components.plc_bridge.plc.http import KEEPALIVE_MARGIN, KEEPALIVE_MAX
 from simulators.s7_smart import S7SmartSimulator
-
-from .ha_fixtures import make_entry
+from tests.entries import make_entry
 
 pytestmark = pytest.mark.no_pacing
 
@@ -29,7 +28,7 @@ async def polls(hass: HomeAssistant, freezer: FrozenDateTimeFactory, interval: f
 @pytest.mark.parametrize("interval", [5.0, 60.0, 300.0])
 async def test_one_connection_for_ten_polls(
     hass: HomeAssistant,
-    s7_smart_sim: S7SmartSimulator,
+    s7_smart_ha_sim: S7SmartSimulator,
     freezer: FrozenDateTimeFactory,
     interval: float,
 ) -> None:
@@ -37,26 +36,26 @@ async def test_one_connection_for_ten_polls(
 
     Home Assistant's shared session would drop it after 15 s idle: one TLS handshake a poll.
     """
-    entry = make_entry(hass, s7_smart_sim)
+    entry = make_entry(hass, s7_smart_ha_sim)
     hass.config_entries.async_update_entry(entry, options={CONF_SCAN_INTERVAL: interval})
     assert await hass.config_entries.async_setup(entry.entry_id)
-    assert len(s7_smart_sim.peers) == 1
-    before = s7_smart_sim.calls["read"]
+    assert len(s7_smart_ha_sim.peers) == 1
+    before = s7_smart_ha_sim.calls["read"]
     await polls(hass, freezer, interval)
-    assert s7_smart_sim.calls["read"] - before == 10
-    assert len(s7_smart_sim.peers) == 1
+    assert s7_smart_ha_sim.calls["read"] - before == 10
+    assert len(s7_smart_ha_sim.peers) == 1
     connector = entry.runtime_data.client.session.connector
     assert connector is not None
     assert connector._keepalive_timeout == min(interval + KEEPALIVE_MARGIN, KEEPALIVE_MAX)
 
 
 async def test_session_closed_with_the_entry(
-    hass: HomeAssistant, s7_smart_sim: S7SmartSimulator
+    hass: HomeAssistant, s7_smart_ha_sim: S7SmartSimulator
 ) -> None:
     """Unloading the PLC logs out, then closes its own session (nothing left open)."""
-    entry = make_entry(hass, s7_smart_sim)
+    entry = make_entry(hass, s7_smart_ha_sim)
     assert await hass.config_entries.async_setup(entry.entry_id)
     session = entry.runtime_data.client.session
     assert await hass.config_entries.async_unload(entry.entry_id)
     assert session.closed
-    assert s7_smart_sim.calls["logout"] == 1
+    assert s7_smart_ha_sim.calls["logout"] == 1

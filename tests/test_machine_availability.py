@@ -26,9 +26,9 @@ from custom_components.plc_bridge.model.availability import (
     parse_values,
 )
 from simulators.s7_smart import S7SmartSimulator
+from tests.entries import add_entry, device, point, poll, sim_data
 
-from .flow_fixtures import error_message, smart_data, translated
-from .ha_fixtures import add_entry, device, point, poll, sim_data
+from .flow_fixtures import error_message, translated
 
 pytestmark = pytest.mark.no_pacing
 
@@ -66,18 +66,18 @@ def changes(caplog: pytest.LogCaptureFixture) -> list[str]:
 
 async def test_bit_gates_the_machine(
     hass: HomeAssistant,
-    s7_smart_sim: S7SmartSimulator,
+    s7_smart_ha_sim: S7SmartSimulator,
     freezer: FrozenDateTimeFactory,
     caplog: pytest.LogCaptureFixture,
 ) -> None:
     """Bit 1: values shown; 0: the machine's entities unavailable, the others not; 1: back."""
     caplog.set_level(logging.INFO, logger="custom_components.plc_bridge")
-    s7_smart_sim.set("VW4", 42)
-    s7_smart_sim.set("VW6", 7)
-    s7_smart_sim.set("M0.0", 1)
+    s7_smart_ha_sim.set("VW4", 42)
+    s7_smart_ha_sim.set("VW6", 7)
+    s7_smart_ha_sim.set("M0.0", 1)
     entry = plant(
         hass,
-        s7_smart_sim,
+        s7_smart_ha_sim,
         **{CONF_AVAILABILITY_ADDRESS: "M0.0", CONF_AVAILABILITY_DATA_TYPE: "signed"},
     )
     assert await hass.config_entries.async_setup(entry.entry_id)
@@ -86,11 +86,11 @@ async def test_bit_gates_the_machine(
     assert hass.states.get("sensor.pump_speed").state == "7"
     assert hass.states.get("switch.boiler_burner").state == STATE_OFF
 
-    reads = s7_smart_sim.calls["read"]
+    reads = s7_smart_ha_sim.calls["read"]
     await poll(hass, freezer)
-    assert s7_smart_sim.calls["read"] == reads + 1  # the availability bit costs no request
+    assert s7_smart_ha_sim.calls["read"] == reads + 1  # the availability bit costs no request
 
-    s7_smart_sim.set("M0.0", 0)
+    s7_smart_ha_sim.set("M0.0", 0)
     await poll(hass, freezer, 3)
     assert hass.states.get("sensor.boiler_temperature").state == STATE_UNAVAILABLE
     assert hass.states.get("switch.boiler_burner").state == STATE_UNAVAILABLE
@@ -99,25 +99,25 @@ async def test_bit_gates_the_machine(
         "S7-200 SMART: Boiler is unavailable: M0.0 says its data is not valid"
     ]
 
-    s7_smart_sim.set("M0.0", 1)
-    s7_smart_sim.set("VW4", 43)
+    s7_smart_ha_sim.set("M0.0", 1)
+    s7_smart_ha_sim.set("VW4", 43)
     await poll(hass, freezer, 3)
     assert hass.states.get("sensor.boiler_temperature").state == "43"
     assert hass.states.get("switch.boiler_burner").state == STATE_OFF
     assert len(changes(caplog)) == 2
     assert changes(caplog)[1] == "S7-200 SMART: Boiler is available again"
-    assert s7_smart_sim.calls["read"] == reads + 7
+    assert s7_smart_ha_sim.calls["read"] == reads + 7
 
 
 async def test_value_list(
-    hass: HomeAssistant, s7_smart_sim: S7SmartSimulator, freezer: FrozenDateTimeFactory
+    hass: HomeAssistant, s7_smart_ha_sim: S7SmartSimulator, freezer: FrozenDateTimeFactory
 ) -> None:
     """With a list of values, only those mean valid (a non-zero value outside it does not)."""
-    s7_smart_sim.set("VW4", 42)
-    s7_smart_sim.set("VW10", 3)
+    s7_smart_ha_sim.set("VW4", 42)
+    s7_smart_ha_sim.set("VW10", 3)
     entry = plant(
         hass,
-        s7_smart_sim,
+        s7_smart_ha_sim,
         **{
             CONF_AVAILABILITY_ADDRESS: "VW10",
             CONF_AVAILABILITY_DATA_TYPE: "signed",
@@ -127,7 +127,7 @@ async def test_value_list(
     assert await hass.config_entries.async_setup(entry.entry_id)
     await hass.async_block_till_done()
     assert hass.states.get("sensor.boiler_temperature").state == "42"
-    s7_smart_sim.set("VW10", 1)
+    s7_smart_ha_sim.set("VW10", 1)
     await poll(hass, freezer)
     assert hass.states.get("sensor.boiler_temperature").state == STATE_UNAVAILABLE
 
@@ -144,7 +144,7 @@ def test_values() -> None:
 
 async def test_flow_stores_availability(hass: HomeAssistant, flow_sim: S7SmartSimulator) -> None:
     """The machine page checks the address with the vendor's parser and stores the fields."""
-    entry = MockConfigEntry(domain=DOMAIN, data=smart_data(flow_sim), version=2)
+    entry = MockConfigEntry(domain=DOMAIN, data=sim_data(flow_sim), version=2)
     entry.add_to_hass(hass)
     result = await hass.config_entries.subentries.async_init(
         (entry.entry_id, SUBENTRY_DEVICE), context={"source": SOURCE_USER}
@@ -178,12 +178,12 @@ async def step(hass: HomeAssistant, result: Any, values: dict[str, Any]) -> Any:
     )
 
 
-async def test_address_removed(hass: HomeAssistant, s7_smart_sim: S7SmartSimulator) -> None:
+async def test_address_removed(hass: HomeAssistant, s7_smart_ha_sim: S7SmartSimulator) -> None:
     """A machine whose availability address is removed shows its values at once."""
-    s7_smart_sim.set("VW4", 42)
+    s7_smart_ha_sim.set("VW4", 42)
     entry = plant(
         hass,
-        s7_smart_sim,
+        s7_smart_ha_sim,
         **{CONF_AVAILABILITY_ADDRESS: "M0.0", CONF_AVAILABILITY_DATA_TYPE: "signed"},
     )
     assert await hass.config_entries.async_setup(entry.entry_id)
@@ -198,14 +198,14 @@ async def test_address_removed(hass: HomeAssistant, s7_smart_sim: S7SmartSimulat
 async def test_diagnostics_show_each_machine_and_its_availability(
     hass: HomeAssistant,
     hass_client: ClientSessionGenerator,
-    s7_smart_sim: S7SmartSimulator,
+    s7_smart_ha_sim: S7SmartSimulator,
     freezer: FrozenDateTimeFactory,
 ) -> None:
     """Diagnostics name every machine's availability address and whether its data is valid."""
-    s7_smart_sim.set("M0.0", 0)
+    s7_smart_ha_sim.set("M0.0", 0)
     entry = plant(
         hass,
-        s7_smart_sim,
+        s7_smart_ha_sim,
         **{CONF_AVAILABILITY_ADDRESS: "M0.0", CONF_AVAILABILITY_DATA_TYPE: "signed"},
     )
     assert await hass.config_entries.async_setup(entry.entry_id)
@@ -218,7 +218,7 @@ async def test_diagnostics_show_each_machine_and_its_availability(
         "data_valid": False,
     }
     assert machines["Pump"] == {"area": None, "data_valid": True}
-    s7_smart_sim.set("M0.0", 1)
+    s7_smart_ha_sim.set("M0.0", 1)
     await poll(hass, freezer)
     machines = (await get_diagnostics_for_config_entry(hass, hass_client, entry))["machines"]
     assert machines["Boiler"]["data_valid"] is True

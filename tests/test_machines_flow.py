@@ -12,8 +12,9 @@ from pytest_homeassistant_custom_component.common import MockConfigEntry
 
 from custom_components.plc_bridge.const import CONF_POINTS, DOMAIN, SUBENTRY_DEVICE
 from simulators.s7_smart import S7SmartSimulator
+from tests.entries import sim_data
 
-from .flow_fixtures import smart_data, translated
+from .flow_fixtures import translated
 
 pytestmark = pytest.mark.no_pacing
 
@@ -23,7 +24,7 @@ DEVICE = ("config_subentries", SUBENTRY_DEVICE)
 @pytest.fixture
 def entry(hass: HomeAssistant, flow_sim: S7SmartSimulator) -> MockConfigEntry:
     """An S7-200 SMART entry without devices (not set up)."""
-    entry = MockConfigEntry(domain=DOMAIN, data=smart_data(flow_sim), version=2)
+    entry = MockConfigEntry(domain=DOMAIN, data=sim_data(flow_sim), version=2)
     entry.add_to_hass(hass)
     return entry
 

@@ -8,7 +8,7 @@ import pytest
 
 from bench.objects import count_objects, machines, point_entities
 from simulators.s7_smart import S7SmartSimulator
-from tests.ha_fixtures import ENTRY_ID, UNIQUE_ID, add_entry, poll, set_up, sim_data
+from tests.entries import ENTRY_ID, UNIQUE_ID, add_entry, poll, set_up, sim_data
 
 pytestmark = pytest.mark.no_pacing
 
@@ -21,7 +21,7 @@ BOUND = OURS * 1.25
 
 
 async def test_objects_per_point_entity(
-    hass: HomeAssistant, freezer: FrozenDateTimeFactory, s7_smart_sim: S7SmartSimulator
+    hass: HomeAssistant, freezer: FrozenDateTimeFactory, s7_smart_ha_sim: S7SmartSimulator
 ) -> None:
     """The entity and what our code sets on it stay within a quarter above today's count."""
     entry = add_entry(
@@ -29,7 +29,7 @@ async def test_objects_per_point_entity(
         title="S7-200 SMART",
         entry_id=ENTRY_ID,
         unique_id=UNIQUE_ID,
-        data=sim_data(s7_smart_sim),
+        data=sim_data(s7_smart_ha_sim),
         subentries=machines(ENTITIES),
     )
     await set_up(hass, entry)

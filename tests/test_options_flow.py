@@ -11,8 +11,8 @@ from pytest_homeassistant_custom_component.common import MockConfigEntry
 from custom_components.plc_bridge.const import DOMAIN
 from custom_components.plc_bridge.plc.vendors.s7_smart import S7SmartClient
 from simulators.s7_smart import S7SmartSimulator
-from tests.flow_fixtures import error_message, smart_data, suggested, translated
-from tests.ha_fixtures import PointData, device, point
+from tests.entries import PointData, device, point, sim_data
+from tests.flow_fixtures import error_message, suggested, translated
 
 pytestmark = pytest.mark.no_pacing
 
@@ -35,7 +35,7 @@ async def test_minimum_follows_the_points(hass: HomeAssistant, flow_sim: S7Smart
     """100 points take 4 requests at most one a second: at least 4 s between polls."""
     entry = MockConfigEntry(
         domain=DOMAIN,
-        data=smart_data(flow_sim),
+        data=sim_data(flow_sim),
         subentries_data=[device(words(100))],
         version=2,
     )
@@ -70,7 +70,7 @@ async def test_minimum_follows_the_points(hass: HomeAssistant, flow_sim: S7Smart
 async def test_current_interval_suggested(hass: HomeAssistant, flow_sim: S7SmartSimulator) -> None:
     """Without points one request a poll: 1 s; the stored interval is suggested."""
     entry = MockConfigEntry(
-        domain=DOMAIN, data=smart_data(flow_sim), options={CONF_SCAN_INTERVAL: 2.5}
+        domain=DOMAIN, data=sim_data(flow_sim), options={CONF_SCAN_INTERVAL: 2.5}
     )
     entry.add_to_hass(hass)
     result = await hass.config_entries.options.async_init(entry.entry_id)

@@ -32,28 +32,33 @@ import pytest
 
 from custom_components.plc_bridge.const import DOMAIN
 from custom_components.plc_bridge.cover import DEFAULT_TRAVEL_TIME, STOP_HOLD
+from tests.entries import SCAN_INTERVAL
+from tests.harness import OUTPUT_FAMILIES, Faults, PlcUnderTest, wait
 
-from .ha_fixtures import SCAN_INTERVAL
-from .outputs_plcs import Faults, Plc, faults_fixture, plc_fixture, wait  # noqa: F401
-
-pytestmark = pytest.mark.no_pacing
+pytestmark = [
+    pytest.mark.no_pacing,
+    pytest.mark.parametrize("plc", OUTPUT_FAMILIES, indirect=True),
+    pytest.mark.usefixtures("outputs_at_rest"),
+]
 
 COMMANDS = ("open", "close", "stop")
 
 
-async def act(hass: HomeAssistant, plc: Plc, service: str, domain: str = COVER_DOMAIN) -> None:
+async def act(
+    hass: HomeAssistant, plc: PlcUnderTest, service: str, domain: str = COVER_DOMAIN
+) -> None:
     """Call a cover (or valve) action on the test entity."""
     await hass.services.async_call(
         domain, service, {ATTR_ENTITY_ID: plc.entity(domain)}, blocking=True
     )
 
 
-def held(plc: Plc) -> tuple[bool, ...]:
+def held(plc: PlcUnderTest) -> tuple[bool, ...]:
     """What the PLC holds at the open, close and stop commands."""
     return tuple(plc.get(role) for role in COMMANDS)
 
 
-def cover(plc: Plc, *roles: str, **extra: Any) -> list[Any]:
+def cover(plc: PlcUnderTest, *roles: str, **extra: Any) -> list[Any]:
     """The parts of the test cover: level commands and the given end-position parts."""
     return [plc.part(role, **extra) for role in (*COMMANDS, *roles)]
 
@@ -61,7 +66,7 @@ def cover(plc: Plc, *roles: str, **extra: Any) -> list[Any]:
 async def test_open_close_stop_never_both(
     hass: HomeAssistant,
     freezer: FrozenDateTimeFactory,
-    plc: Plc,
+    plc: PlcUnderTest,
     faults: Faults,
     monkeypatch: pytest.MonkeyPatch,
 ) -> None:
@@ -85,7 +90,7 @@ async def test_open_close_stop_never_both(
 
 @pytest.mark.parametrize("end", ["limit", "position", "status"])
 async def test_released_at_the_end_position(
-    hass: HomeAssistant, freezer: FrozenDateTimeFactory, plc: Plc, end: str
+    hass: HomeAssistant, freezer: FrozenDateTimeFactory, plc: PlcUnderTest, end: str
 ) -> None:
     """Open is released once a poll reads the open end, close at the closed end."""
     parts = {
@@ -118,7 +123,7 @@ async def test_released_at_the_end_position(
 
 
 async def test_end_read_before_the_command_is_no_end(
-    hass: HomeAssistant, freezer: FrozenDateTimeFactory, plc: Plc
+    hass: HomeAssistant, freezer: FrozenDateTimeFactory, plc: PlcUnderTest
 ) -> None:
     """A closed limit still read from before the command releases close only when read again.
 
@@ -140,7 +145,7 @@ async def test_end_read_before_the_command_is_no_end(
 
 
 async def test_closed_already_is_released_by_the_next_poll(
-    hass: HomeAssistant, freezer: FrozenDateTimeFactory, plc: Plc
+    hass: HomeAssistant, freezer: FrozenDateTimeFactory, plc: PlcUnderTest
 ) -> None:
     """Closing a cover that is closed: a poll an interval later still reads closed: released."""
     plc.set("closed_limit", True)
@@ -156,7 +161,7 @@ async def test_closed_already_is_released_by_the_next_poll(
 async def test_released_after_the_travel_time(
     hass: HomeAssistant,
     freezer: FrozenDateTimeFactory,
-    plc: Plc,
+    plc: PlcUnderTest,
     travel_time: int | None,
     after: float,
 ) -> None:
@@ -172,7 +177,11 @@ async def test_released_after_the_travel_time(
 
 @pytest.mark.parametrize("how", ["unload", "stop"])
 async def test_released_at_unload_and_stop(
-    hass: HomeAssistant, plc: Plc, faults: Faults, monkeypatch: pytest.MonkeyPatch, how: str
+    hass: HomeAssistant,
+    plc: PlcUnderTest,
+    faults: Faults,
+    monkeypatch: pytest.MonkeyPatch,
+    how: str,
 ) -> None:
     """A level command still held is released when the entry unloads or Home Assistant stops."""
     entry = await plc.set_up(hass, cover(plc))
@@ -193,7 +202,7 @@ async def test_open_that_failed_is_still_released(
     hass: HomeAssistant,
     *,
     freezer: FrozenDateTimeFactory,
-    plc: Plc,
+    plc: PlcUnderTest,
     faults: Faults,
     monkeypatch: pytest.MonkeyPatch,
     fault: str,
@@ -214,7 +223,7 @@ async def test_release_retried_until_confirmed(
     hass: HomeAssistant,
     *,
     freezer: FrozenDateTimeFactory,
-    plc: Plc,
+    plc: PlcUnderTest,
     faults: Faults,
     monkeypatch: pytest.MonkeyPatch,
     issue_registry: ir.IssueRegistry,
@@ -244,7 +253,7 @@ async def test_release_retried_until_confirmed(
 
 
 async def test_position_write_releases_held_commands(
-    hass: HomeAssistant, plc: Plc, faults: Faults, monkeypatch: pytest.MonkeyPatch
+    hass: HomeAssistant, plc: PlcUnderTest, faults: Faults, monkeypatch: pytest.MonkeyPatch
 ) -> None:
     """Moving to a position releases the level command still held, in the same write."""
     setter = plc.part("position")
@@ -262,7 +271,7 @@ async def test_position_write_releases_held_commands(
 
 
 async def test_valve_with_a_position_sends_its_commands(
-    hass: HomeAssistant, plc: Plc, faults: Faults, monkeypatch: pytest.MonkeyPatch
+    hass: HomeAssistant, plc: PlcUnderTest, faults: Faults, monkeypatch: pytest.MonkeyPatch
 ) -> None:
     """open_valve and close_valve send the commands, not 100 % and 0 % to the position."""
     parts = [

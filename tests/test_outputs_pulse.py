@@ -16,17 +16,20 @@ import pytest
 from pytest_homeassistant_custom_component.common import MockConfigEntry
 
 from custom_components.plc_bridge.const import DOMAIN
+from tests.entries import point
+from tests.harness import OUTPUT_FAMILIES, Faults, PlcUnderTest, wait
 
-from .ha_fixtures import point
-from .outputs_plcs import Faults, Plc, faults_fixture, plc_fixture, wait  # noqa: F401
-
-pytestmark = pytest.mark.no_pacing
+pytestmark = [
+    pytest.mark.no_pacing,
+    pytest.mark.parametrize("plc", OUTPUT_FAMILIES, indirect=True),
+    pytest.mark.usefixtures("outputs_at_rest"),
+]
 
 PULSE = 2.0
 
 
 async def set_up_button(
-    hass: HomeAssistant, plc: Plc, faults: Faults, monkeypatch: pytest.MonkeyPatch
+    hass: HomeAssistant, plc: PlcUnderTest, faults: Faults, monkeypatch: pytest.MonkeyPatch
 ) -> MockConfigEntry:
     """Set up the PLC with a pulse button; its writes go through the fault queue."""
     step = point("step", "Step", "button", plc.addresses["button"], plc.bit, pulse=PULSE)
@@ -35,7 +38,7 @@ async def set_up_button(
     return entry
 
 
-async def press(hass: HomeAssistant, plc: Plc) -> None:
+async def press(hass: HomeAssistant, plc: PlcUnderTest) -> None:
     """Press the pulse button."""
     await hass.services.async_call(
         BUTTON_DOMAIN, SERVICE_PRESS, {ATTR_ENTITY_ID: plc.entity("button", "step")}, True
@@ -53,7 +56,7 @@ async def test_off_after_an_on_that_failed(
     hass: HomeAssistant,
     *,
     freezer: FrozenDateTimeFactory,
-    plc: Plc,
+    plc: PlcUnderTest,
     faults: Faults,
     monkeypatch: pytest.MonkeyPatch,
     fault: str,
@@ -73,7 +76,7 @@ async def test_off_retried_until_confirmed(
     hass: HomeAssistant,
     *,
     freezer: FrozenDateTimeFactory,
-    plc: Plc,
+    plc: PlcUnderTest,
     faults: Faults,
     monkeypatch: pytest.MonkeyPatch,
     issue_registry: ir.IssueRegistry,
@@ -102,7 +105,7 @@ async def test_off_retried_until_confirmed(
 async def test_second_press_keeps_the_end(
     hass: HomeAssistant,
     freezer: FrozenDateTimeFactory,
-    plc: Plc,
+    plc: PlcUnderTest,
     faults: Faults,
     monkeypatch: pytest.MonkeyPatch,
 ) -> None:
@@ -120,7 +123,7 @@ async def test_second_press_keeps_the_end(
 async def test_reload_releases_what_unload_could_not(
     hass: HomeAssistant,
     *,
-    plc: Plc,
+    plc: PlcUnderTest,
     faults: Faults,
     monkeypatch: pytest.MonkeyPatch,
     issue_registry: ir.IssueRegistry,
@@ -142,7 +145,7 @@ async def test_reload_releases_what_unload_could_not(
 async def test_command_pulse_ends_after_a_lost_answer(
     hass: HomeAssistant,
     freezer: FrozenDateTimeFactory,
-    plc: Plc,
+    plc: PlcUnderTest,
     faults: Faults,
     monkeypatch: pytest.MonkeyPatch,
 ) -> None:

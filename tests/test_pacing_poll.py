@@ -23,8 +23,7 @@ from custom_components.plc_bridge.const import CONF_POINTS
 from custom_components.plc_bridge.plc import Point, ReadResult
 from custom_components.plc_bridge.plc.vendors.s7_smart import S7SmartClient
 from simulators.s7_smart import S7SmartSimulator
-
-from .ha_fixtures import DEVICE_ID, PointData, make_entry, point, poll, set_points
+from tests.entries import DEVICE_ID, PointData, make_entry, point, poll, set_points
 
 pytestmark = pytest.mark.no_pacing
 
@@ -96,14 +95,14 @@ def add_words(hass: HomeAssistant, entry: MockConfigEntry, count: int, first: in
 
 
 async def test_each_request_shown_as_it_returns(
-    hass: HomeAssistant, s7_smart_sim: S7SmartSimulator, freezer: FrozenDateTimeFactory
+    hass: HomeAssistant, s7_smart_ha_sim: S7SmartSimulator, freezer: FrozenDateTimeFactory
 ) -> None:
     """A poll of 3 requests: the first's values are shown before the second is answered."""
-    entry = await set_up(hass, freezer, s7_smart_sim, 96)
+    entry = await set_up(hass, freezer, s7_smart_ha_sim, 96)
     coordinator = entry.runtime_data.coordinator
     for index in range(96):
-        s7_smart_sim.set(f"VW{2 * index}", 5)
-    seen = ReadNodes(s7_smart_sim)
+        s7_smart_ha_sim.set(f"VW{2 * index}", 5)
+    seen = ReadNodes(s7_smart_ha_sim)
     seen.look = lambda: (
         shown(hass, 0),
         shown(hass, 32),
@@ -124,7 +123,7 @@ async def test_each_request_shown_as_it_returns(
 
 async def test_edit_joins_a_poll_due_before_its_read_would_end(
     hass: HomeAssistant,
-    s7_smart_sim: S7SmartSimulator,
+    s7_smart_ha_sim: S7SmartSimulator,
     freezer: FrozenDateTimeFactory,
     monkeypatch: pytest.MonkeyPatch,
 ) -> None:
@@ -133,7 +132,7 @@ async def test_edit_joins_a_poll_due_before_its_read_would_end(
     Their own read (2 requests a second apart) would end after the poll is due: the poll
     starts at once instead and reads them in its first requests; no point is read twice.
     """
-    entry = await set_up(hass, freezer, s7_smart_sim, 4)
+    entry = await set_up(hass, freezer, s7_smart_ha_sim, 4)
     monkeypatch.setattr(S7SmartClient, "request_interval", 1.0)
     reads: list[list[Point]] = []
     client = entry.runtime_data.client
@@ -145,8 +144,8 @@ async def test_edit_joins_a_poll_due_before_its_read_would_end(
 
     monkeypatch.setattr(client, "read", recorded)
     for index in range(4, 68):
-        s7_smart_sim.set(f"VW{2 * index}", 9)
-    seen = ReadNodes(s7_smart_sim)
+        s7_smart_ha_sim.set(f"VW{2 * index}", 9)
+    seen = ReadNodes(s7_smart_ha_sim)
     await tick(hass, freezer, 8)  # the next poll is due 2 s from now
     assert seen.requests == []
     add_words(hass, entry, 64, 4)
@@ -161,7 +160,7 @@ async def test_edit_joins_a_poll_due_before_its_read_would_end(
 
 async def test_edit_during_a_running_poll_waits_for_the_next(
     hass: HomeAssistant,
-    s7_smart_sim: S7SmartSimulator,
+    s7_smart_ha_sim: S7SmartSimulator,
     freezer: FrozenDateTimeFactory,
     monkeypatch: pytest.MonkeyPatch,
 ) -> None:
@@ -170,7 +169,7 @@ async def test_edit_during_a_running_poll_waits_for_the_next(
     Not in a read of their own beside the running poll: over one paced transport the two
     would take turns, each as slow as both.
     """
-    entry = await set_up(hass, freezer, s7_smart_sim, 4)
+    entry = await set_up(hass, freezer, s7_smart_ha_sim, 4)
     monkeypatch.setattr(S7SmartClient, "request_interval", 1.0)
     client = entry.runtime_data.client
     real_read = client.read
@@ -185,8 +184,8 @@ async def test_edit_during_a_running_poll_waits_for_the_next(
 
     monkeypatch.setattr(client, "read", held)
     for index in range(4, 68):
-        s7_smart_sim.set(f"VW{2 * index}", 9)
-    seen = ReadNodes(s7_smart_sim)
+        s7_smart_ha_sim.set(f"VW{2 * index}", 9)
+    seen = ReadNodes(s7_smart_ha_sim)
     freezer.tick(timedelta(seconds=10))
     async_fire_time_changed(hass)  # the scheduled poll starts, and is held
     await asyncio.sleep(0)

@@ -25,10 +25,10 @@ from custom_components.plc_bridge.model.config_file import dump_config
 from custom_components.plc_bridge.model.expose import CONF_SEND
 from custom_components.plc_bridge.model.yaml_text import MAX_BYTES
 from simulators.s7_smart import DEFAULT_PASSWORD as SMART_PASSWORD, S7SmartSimulator
+from tests.entries import POINTS, device, point, sim_data
+from tests.harness import expose_data, settle
 
-from .expose_fixtures import expose_data, settle
 from .flow_fixtures import error_message, suggested, translated
-from .ha_fixtures import POINTS, device, point, sim_data
 from .test_config_file import CONFIG, confirm, paste
 from .test_config_file_text import plc
 
@@ -206,26 +206,26 @@ def pasted_plc(sim: S7SmartSimulator, exposes: list[dict[str, Any]]) -> str:
 
 
 async def test_host_and_certificate_before_any_secret(
-    hass: HomeAssistant, s7_smart_sim: S7SmartSimulator
+    hass: HomeAssistant, s7_smart_ha_sim: S7SmartSimulator
 ) -> None:
     """A pasted fingerprint is never trusted: the connection page (host, port) and the
     certificate page are shown before the password goes to the PLC."""
-    result = await paste(hass, pasted_plc(s7_smart_sim, []))
+    result = await paste(hass, pasted_plc(s7_smart_ha_sim, []))
     assert result["step_id"] == "connection_s7_smart"
-    assert suggested(result, "host") == s7_smart_sim.host
+    assert suggested(result, "host") == s7_smart_ha_sim.host
     values = {str(m): suggested(result, str(m)) for m in result["data_schema"].schema}
     result = await hass.config_entries.flow.async_configure(
         result["flow_id"], values | {CONF_PASSWORD: SMART_PASSWORD}
     )
     assert result["step_id"] == "certificate"
-    assert sum(s7_smart_sim.calls.values()) == 0  # no login yet
+    assert sum(s7_smart_ha_sim.calls.values()) == 0  # no login yet
     result = await confirm(hass, result, {})
     assert result["type"] is FlowResultType.CREATE_ENTRY
-    assert s7_smart_sim.calls["login"] >= 1
+    assert s7_smart_ha_sim.calls["login"] >= 1
 
 
 async def test_pasted_exposes_send_nothing(
-    hass: HomeAssistant, s7_smart_sim: S7SmartSimulator, freezer: FrozenDateTimeFactory
+    hass: HomeAssistant, s7_smart_ha_sim: S7SmartSimulator, freezer: FrozenDateTimeFactory
 ) -> None:
     """Pasted exposes start with sending off; a page lists what each would write; nothing is
     written while the file is applied (send-on-start wrote M10.0 at setup before)."""
@@ -233,27 +233,27 @@ async def test_pasted_exposes_send_nothing(
     hass.states.async_set("sensor.outdoor", "5")
     heat = expose_data("input_boolean.heat", ("M10.0", "signed"), send_on_start=True)
     outdoor = expose_data("sensor.outdoor", ("VW200", "signed"), send_on_start=True, scale=3.0)
-    result = await paste(hass, pasted_plc(s7_smart_sim, [heat, outdoor]))
+    result = await paste(hass, pasted_plc(s7_smart_ha_sim, [heat, outdoor]))
     result = await confirm(hass, result, {CONF_PASSWORD: SMART_PASSWORD})
     assert result["type"] is FlowResultType.CREATE_ENTRY
     await settle(hass, freezer, 5)
     entry = result["result"]
-    assert s7_smart_sim.calls["write"] == 0
-    assert s7_smart_sim.get("M10.0", "signed") == 0
+    assert s7_smart_ha_sim.calls["write"] == 0
+    assert s7_smart_ha_sim.get("M10.0", "signed") == 0
     sent = [s for s in entry.subentries.values() if s.subentry_type == SUBENTRY_EXPOSE]
     assert [s.data[CONF_SEND] for s in sent] == [False, False]
     hass.states.async_set("sensor.outdoor", "6")
     await settle(hass, freezer, 5)
-    assert s7_smart_sim.calls["write"] == 0
+    assert s7_smart_ha_sim.calls["write"] == 0
 
 
 async def test_exposes_listed_before_the_entry(
-    hass: HomeAssistant, s7_smart_sim: S7SmartSimulator
+    hass: HomeAssistant, s7_smart_ha_sim: S7SmartSimulator
 ) -> None:
     """The last page names each expose's entity, address and the value it would write now."""
     hass.states.async_set("sensor.outdoor", "5")
     outdoor = expose_data("sensor.outdoor", ("VW200", "signed"), scale=3.0)
-    result = await paste(hass, pasted_plc(s7_smart_sim, [outdoor]))
+    result = await paste(hass, pasted_plc(s7_smart_ha_sim, [outdoor]))
     values = {str(m): suggested(result, str(m)) for m in result["data_schema"].schema}
     result = await hass.config_entries.flow.async_configure(
         result["flow_id"], values | {CONF_PASSWORD: SMART_PASSWORD}
@@ -265,13 +265,13 @@ async def test_exposes_listed_before_the_entry(
 
 
 async def test_feedback_checked_when_sending_is_turned_on(
-    hass: HomeAssistant, s7_smart_sim: S7SmartSimulator, freezer: FrozenDateTimeFactory
+    hass: HomeAssistant, s7_smart_ha_sim: S7SmartSimulator, freezer: FrozenDateTimeFactory
 ) -> None:
     """An expose feeding back on its own address (it ran VW100 from 5 to 24,575) is pasted off;
     turning it on runs the checks against the entities that now exist: refused."""
-    s7_smart_sim.set("VW100", 5, "signed")
+    s7_smart_ha_sim.set("VW100", 5, "signed")
     loop = expose_data("number.boiler_level", ("VW100", "signed"), scale=3.0)
-    result = await paste(hass, pasted_plc(s7_smart_sim, [loop]))
+    result = await paste(hass, pasted_plc(s7_smart_ha_sim, [loop]))
     result = await confirm(hass, result, {CONF_PASSWORD: SMART_PASSWORD})
     entry = result["result"]
     await settle(hass, freezer, 5)
@@ -289,5 +289,5 @@ async def test_feedback_checked_when_sending_is_turned_on(
     assert result["errors"] == {"address": "expose_feeds_back"}
     assert entry.subentries[sent.subentry_id].data[CONF_SEND] is False
     await settle(hass, freezer, 5)
-    assert s7_smart_sim.get("VW100", "signed") == 5
-    assert s7_smart_sim.calls["write"] == 0
+    assert s7_smart_ha_sim.get("VW100", "signed") == 5
+    assert s7_smart_ha_sim.calls["write"] == 0

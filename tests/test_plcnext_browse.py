@@ -12,9 +12,9 @@ from pytest_homeassistant_custom_component.common import MockConfigEntry
 
 from custom_components.plc_bridge.const import CONF_POINTS
 from simulators.plcnext import PlcnextSimulator
+from tests.entries import point, poll, read_edits
 from tests.flow_fixtures import MACHINE, browse, error_message, listed, step
-from tests.ha_fixtures import point, poll, read_edits
-from tests.plcnext_ha_fixtures import PLCNEXT_POINTS, make_plcnext_entry
+from tests.harness import PLCNEXT_POINTS, make_plcnext_entry
 
 MAIN = "Arp.Plc.Eclr/MainInstance."
 
@@ -53,10 +53,10 @@ async def test_pick_list_from_the_dictionary(
 
 
 async def test_picks_keep_types_and_read_only_flags(
-    hass: HomeAssistant, plcnext_sim: PlcnextSimulator, freezer: FrozenDateTimeFactory
+    hass: HomeAssistant, plcnext_ha_sim: PlcnextSimulator, freezer: FrozenDateTimeFactory
 ) -> None:
     """Read-only variables become sensors; writable ones switches, numbers, texts; all read."""
-    plcnext_entry = make_plcnext_entry(hass, plcnext_sim, PLCNEXT_POINTS[:1])
+    plcnext_entry = make_plcnext_entry(hass, plcnext_ha_sim, PLCNEXT_POINTS[:1])
     assert await hass.config_entries.async_setup(plcnext_entry.entry_id)
     await hass.async_block_till_done()
     result = await browse(hass, plcnext_entry, "MainInstance", name="Oven")
@@ -110,11 +110,11 @@ async def test_configured_variables_are_not_listed(
 
 
 async def test_dictionary_refused(
-    hass: HomeAssistant, plcnext_sim: PlcnextSimulator, plcnext_entry: MockConfigEntry
+    hass: HomeAssistant, plcnext_ha_sim: PlcnextSimulator, plcnext_entry: MockConfigEntry
 ) -> None:
     """A dictionary the PLC refuses: its words on the form, and back to the menu."""
-    plcnext_sim.access.users.clear()  # the token is refused and no login works any more
-    plcnext_sim.access.expire_tokens()
+    plcnext_ha_sim.access.users.clear()  # the token is refused and no login works any more
+    plcnext_ha_sim.access.expire_tokens()
     result = await browse(hass, plcnext_entry, "x", name="Oven")
     assert result["errors"] == {"base": "browse_failed"}
     assert "refused the user or password" in error_message(result, "base", *MACHINE)
@@ -123,11 +123,13 @@ async def test_dictionary_refused(
 
 
 async def test_points_stored_with_a_short_path_are_not_offered_again(
-    hass: HomeAssistant, plcnext_sim: PlcnextSimulator
+    hass: HomeAssistant, plcnext_ha_sim: PlcnextSimulator
 ) -> None:
     """A point kept as `MainInstance.Counter` is the dictionary's full path: not listed twice."""
     entry = make_plcnext_entry(
-        hass, plcnext_sim, [point("counter", "Counter", "sensor", "MainInstance.Counter", "DINT")]
+        hass,
+        plcnext_ha_sim,
+        [point("counter", "Counter", "sensor", "MainInstance.Counter", "DINT")],
     )
     assert await hass.config_entries.async_setup(entry.entry_id)
     labels = listed(await browse(hass, entry, "Counter", name="Oven"))

@@ -22,10 +22,10 @@ from custom_components.plc_bridge.const import (
 )
 from custom_components.plc_bridge.plc.http import format_fingerprint
 from simulators.plcnext import DEFAULT_PASSWORD, DEFAULT_USER, VIEWER_USER, PlcnextSimulator
+from tests.entries import poll
 from tests.flow_fixtures import error_message, suggested, translated
-from tests.ha_fixtures import poll
+from tests.harness import make_plcnext_entry, plcnext_data
 from tests.loopback import running
-from tests.plcnext_ha_fixtures import make_plcnext_entry, plcnext_data
 
 CONFIG = ("config",)
 CLOCK = "Arp.Plc.Eclr/MainInstance.Clock"
@@ -86,20 +86,20 @@ async def test_connection_form_fields(hass: HomeAssistant) -> None:
 
 
 @flow_only
-async def test_pin_name_and_entry(hass: HomeAssistant, plcnext_sim: PlcnextSimulator) -> None:
+async def test_pin_name_and_entry(hass: HomeAssistant, plcnext_ha_sim: PlcnextSimulator) -> None:
     """The certificate is shown and pinned, the name suggested, the entry keyed by address."""
     result = await connection_form(hass)
-    result = await submit(hass, result, connection(plcnext_sim))
+    result = await submit(hass, result, connection(plcnext_ha_sim))
     assert result["step_id"] == "certificate"
     assert result["description_placeholders"][CONF_FINGERPRINT] == format_fingerprint(
-        plcnext_sim.fingerprint or ""
+        plcnext_ha_sim.fingerprint or ""
     )
     result = await submit(hass, result, {})
     assert result["type"] is FlowResultType.CREATE_ENTRY
     assert result["title"] == "PLCnext Control"
-    assert result["result"].unique_id == f"{plcnext_sim.host}:{plcnext_sim.port}"
-    assert result["data"] == plcnext_data(plcnext_sim)
-    assert plcnext_sim.access.logins == 1
+    assert result["result"].unique_id == f"{plcnext_ha_sim.host}:{plcnext_ha_sim.port}"
+    assert result["data"] == plcnext_data(plcnext_ha_sim)
+    assert plcnext_ha_sim.access.logins == 1
 
 
 @flow_only
@@ -128,16 +128,16 @@ async def test_without_user_authentication(hass: HomeAssistant, open_sim: Plcnex
     ids=["password", "user", "no user", "no password"],
 )
 async def test_refused_credentials(
-    hass: HomeAssistant, plcnext_sim: PlcnextSimulator, changes: dict[str, Any]
+    hass: HomeAssistant, plcnext_ha_sim: PlcnextSimulator, changes: dict[str, Any]
 ) -> None:
     """Credentials the PLC refuses show invalid_auth on the password; fixing them creates."""
     result = await connection_form(hass)
-    result = await submit(hass, result, connection(plcnext_sim, **changes))
+    result = await submit(hass, result, connection(plcnext_ha_sim, **changes))
     result = await submit(hass, result, {})  # the certificate, once
     assert result["step_id"] == "connection_plcnext"
     assert result["errors"] == {CONF_PASSWORD: "invalid_auth"}
     assert error_message(result, CONF_PASSWORD, *CONFIG).startswith("The PLC refused the login: ")
-    result = await submit(hass, result, connection(plcnext_sim))
+    result = await submit(hass, result, connection(plcnext_ha_sim))
     assert result["type"] is FlowResultType.CREATE_ENTRY
 
 
@@ -151,36 +151,36 @@ async def test_refused_credentials(
 )
 async def test_connection_errors(
     hass: HomeAssistant,
-    plcnext_sim: PlcnextSimulator,
+    plcnext_ha_sim: PlcnextSimulator,
     changes: dict[str, Any],
     errors: dict[str, str],
 ) -> None:
     """A clock variable that is no path, a port nobody listens on: errors on the page."""
     result = await connection_form(hass)
-    result = await submit(hass, result, connection(plcnext_sim, **changes))
+    result = await submit(hass, result, connection(plcnext_ha_sim, **changes))
     assert result["errors"] == errors
     if "base" in errors:
         assert "clock variable: 'Main Clock' is not a PLCnext variable path" in error_message(
             result, "base", *CONFIG
         )
-        assert plcnext_sim.requests == 0
+        assert plcnext_ha_sim.requests == 0
 
 
 @flow_only
-async def test_same_plc_aborts(hass: HomeAssistant, plcnext_sim: PlcnextSimulator) -> None:
+async def test_same_plc_aborts(hass: HomeAssistant, plcnext_ha_sim: PlcnextSimulator) -> None:
     """The same PLC address twice: already configured."""
-    make_plcnext_entry(hass, plcnext_sim, [])
+    make_plcnext_entry(hass, plcnext_ha_sim, [])
     result = await connection_form(hass)
-    result = await submit(hass, result, connection(plcnext_sim))
+    result = await submit(hass, result, connection(plcnext_ha_sim))
     result = await submit(hass, result, {})
     assert result["type"] is FlowResultType.ABORT
     assert result["reason"] == "already_configured"
 
 
 @flow_only
-async def test_reauth(hass: HomeAssistant, plcnext_sim: PlcnextSimulator) -> None:
+async def test_reauth(hass: HomeAssistant, plcnext_ha_sim: PlcnextSimulator) -> None:
     """A wrong password on its field; the right one stored with nothing else changed."""
-    entry = make_plcnext_entry(hass, plcnext_sim, [], password="old")
+    entry = make_plcnext_entry(hass, plcnext_ha_sim, [], password="old")
     result = translated(await entry.start_reauth_flow(hass), *CONFIG)
     assert result["step_id"] == "reauth_confirm"
     assert suggested(result, CONF_USERNAME) == DEFAULT_USER
@@ -191,16 +191,16 @@ async def test_reauth(hass: HomeAssistant, plcnext_sim: PlcnextSimulator) -> Non
         hass, result, {CONF_USERNAME: VIEWER_USER, CONF_PASSWORD: DEFAULT_PASSWORD}
     )
     assert result["reason"] == "reauth_successful"
-    assert dict(entry.data) == plcnext_data(plcnext_sim, username=VIEWER_USER)
+    assert dict(entry.data) == plcnext_data(plcnext_ha_sim, username=VIEWER_USER)
 
 
 async def test_authentication_turned_on_starts_reauth(
     hass: HomeAssistant,
-    plcnext_sim: PlcnextSimulator,
+    plcnext_ha_sim: PlcnextSimulator,
     freezer: FrozenDateTimeFactory,
 ) -> None:
     """An entry made without a user, on a PLC that now asks for one: reauth, then it runs."""
-    entry = make_plcnext_entry(hass, plcnext_sim, username="", password="")
+    entry = make_plcnext_entry(hass, plcnext_ha_sim, username="", password="")
     assert not await hass.config_entries.async_setup(entry.entry_id)
     await hass.async_block_till_done()
     assert entry.state is ConfigEntryState.SETUP_ERROR
@@ -223,39 +223,39 @@ def reconfigure_input(sim: PlcnextSimulator, **changes: Any) -> dict[str, Any]:
 
 
 @flow_only
-async def test_reconfigure(hass: HomeAssistant, plcnext_sim: PlcnextSimulator) -> None:
+async def test_reconfigure(hass: HomeAssistant, plcnext_ha_sim: PlcnextSimulator) -> None:
     """No credentials on the page; a new clock variable is checked, normalized and stored."""
-    entry = make_plcnext_entry(hass, plcnext_sim, [])
+    entry = make_plcnext_entry(hass, plcnext_ha_sim, [])
     result = translated(await entry.start_reconfigure_flow(hass), *CONFIG)
     assert result["step_id"] == "reconfigure_plcnext"
     fields = [str(key) for key in result["data_schema"].schema]
     assert fields == [CONF_HOST, CONF_PORT, CONF_TLS, "clock_variable"]
     assert suggested(result, "clock_variable") == CLOCK
-    result = await submit(hass, result, reconfigure_input(plcnext_sim, clock_variable="x y"))
+    result = await submit(hass, result, reconfigure_input(plcnext_ha_sim, clock_variable="x y"))
     assert result["errors"] == {"base": "invalid_options"}
-    result = await submit(hass, result, reconfigure_input(plcnext_sim, clock_variable="Main.T"))
+    result = await submit(hass, result, reconfigure_input(plcnext_ha_sim, clock_variable="Main.T"))
     assert result["reason"] == "reconfigure_successful"
     assert dict(entry.data) == plcnext_data(
-        plcnext_sim, vendor_options={"clock_variable": "Arp.Plc.Eclr/Main.T"}
+        plcnext_ha_sim, vendor_options={"clock_variable": "Arp.Plc.Eclr/Main.T"}
     )
     assert entry.title == "PLCnext"
 
 
 @flow_only
-async def test_reconfigure_moved_plc(hass: HomeAssistant, plcnext_sim: PlcnextSimulator) -> None:
+async def test_reconfigure_moved_plc(hass: HomeAssistant, plcnext_ha_sim: PlcnextSimulator) -> None:
     """A PLC found at a new address with a new certificate: shown, pinned, the entry moves."""
-    entry = make_plcnext_entry(hass, plcnext_sim, [])
-    old = plcnext_sim.fingerprint
-    await plcnext_sim.stop()
-    plcnext_sim.new_certificate()
-    await plcnext_sim.start()
+    entry = make_plcnext_entry(hass, plcnext_ha_sim, [])
+    old = plcnext_ha_sim.fingerprint
+    await plcnext_ha_sim.stop()
+    plcnext_ha_sim.new_certificate()
+    await plcnext_ha_sim.start()
     result = await entry.start_reconfigure_flow(hass)
-    result = await submit(hass, result, reconfigure_input(plcnext_sim))
+    result = await submit(hass, result, reconfigure_input(plcnext_ha_sim))
     assert result["step_id"] == "certificate"
     result = await submit(hass, result, {})
     assert result["reason"] == "reconfigure_successful"
-    assert entry.data[CONF_FINGERPRINT] == plcnext_sim.fingerprint != old
-    assert entry.unique_id == f"{plcnext_sim.host}:{plcnext_sim.port}"
+    assert entry.data[CONF_FINGERPRINT] == plcnext_ha_sim.fingerprint != old
+    assert entry.unique_id == f"{plcnext_ha_sim.host}:{plcnext_ha_sim.port}"
     assert entry.data[CONF_PASSWORD] == DEFAULT_PASSWORD
     assert entry.data[CONF_OPTIONS] == {"clock_variable": CLOCK}
 

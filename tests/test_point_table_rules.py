@@ -21,9 +21,8 @@ from custom_components.plc_bridge.model.points import check_point
 from custom_components.plc_bridge.plc.vendors import client_class
 from custom_components.plc_bridge.runtime.issues import async_check_tls
 from simulators.tecomat import TecomatSimulator
-
-from .ha_fixtures import unload_all
-from .tecomat_ha_fixtures import make_tecomat_entry
+from tests.entries import unload_all
+from tests.harness import make_tecomat_entry
 
 pytestmark = pytest.mark.no_pacing
 
@@ -154,10 +153,10 @@ def test_export_escapes_formulas_and_round_trips() -> None:
 
 
 async def test_basic_over_plain_http_raises_an_issue(
-    hass: HomeAssistant, basic_sim: TecomatSimulator, issue_registry: ir.IssueRegistry
+    hass: HomeAssistant, tecomat_basic_ha_sim: TecomatSimulator, issue_registry: ir.IssueRegistry
 ) -> None:
     """TecoApi Basic over HTTP sends the password readable: a warning until TLS or Digest."""
-    entry: MockConfigEntry = make_tecomat_entry(hass, basic_sim, [])
+    entry: MockConfigEntry = make_tecomat_entry(hass, tecomat_basic_ha_sim, [])
     assert await hass.config_entries.async_setup(entry.entry_id)
     issue = issue_registry.async_get_issue(DOMAIN, f"plain_password_{entry.entry_id}")
     assert issue is not None

@@ -19,9 +19,9 @@ from custom_components.plc_bridge.plc import Point
 from custom_components.plc_bridge.plc.vendors import client_class
 from custom_components.plc_bridge.plc.vendors.s7_smart import S7SmartClient
 from simulators.s7_smart import S7SmartSimulator
+from tests.entries import PointData, device, point, sim_data
 
-from .flow_fixtures import MACHINE, error_message, smart_data, translated
-from .ha_fixtures import PointData, device, point
+from .flow_fixtures import MACHINE, error_message, translated
 
 pytestmark = pytest.mark.no_pacing
 
@@ -61,7 +61,7 @@ async def test_options_refuse_bad_intervals(
     monkeypatch.setattr(S7SmartClient, "request_interval", 1.0)
     entry = MockConfigEntry(
         domain=DOMAIN,
-        data=smart_data(flow_sim),
+        data=sim_data(flow_sim),
         subentries_data=[device(words(100, "fast"))],
         version=2,
     )
@@ -89,7 +89,7 @@ async def test_fast_default_follows_the_pace(
     monkeypatch.setattr(S7SmartClient, "request_interval", 1.0)
     entry = MockConfigEntry(
         domain=DOMAIN,
-        data=smart_data(flow_sim),
+        data=sim_data(flow_sim),
         subentries_data=[device(words(40, "fast"))],
         version=2,
     )
@@ -160,7 +160,7 @@ async def test_composite_form_sets_every_part(
     hass: HomeAssistant, flow_sim: S7SmartSimulator
 ) -> None:
     """The class chosen for a cover is every part's; an edited part changes the whole cover."""
-    entry = MockConfigEntry(domain=DOMAIN, data=smart_data(flow_sim), version=2)
+    entry = MockConfigEntry(domain=DOMAIN, data=sim_data(flow_sim), version=2)
     entry.add_to_hass(hass)
     menu = await hass.config_entries.subentries.async_init(
         (entry.entry_id, SUBENTRY_DEVICE), context={"source": SOURCE_USER}

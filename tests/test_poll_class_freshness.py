@@ -19,8 +19,8 @@ from custom_components.plc_bridge.model.availability import (
 )
 from custom_components.plc_bridge.plc import Point
 from simulators.s7_smart import S7SmartSimulator
+from tests.entries import add_entry, device, make_entry, point, sim_data
 
-from .ha_fixtures import add_entry, device, make_entry, point, sim_data
 from .test_poll_classes import reads, set_up_classes, tick
 
 pytestmark = pytest.mark.no_pacing
@@ -32,7 +32,7 @@ SLOW = Point("VW2", "signed")
 
 async def test_a_recovered_link_reads_every_class(
     hass: HomeAssistant,
-    s7_smart_sim: S7SmartSimulator,
+    s7_smart_ha_sim: S7SmartSimulator,
     freezer: FrozenDateTimeFactory,
     reads: list[list[Point]],
 ) -> None:
@@ -41,16 +41,16 @@ async def test_a_recovered_link_reads_every_class(
         point("fast", "Fast", "sensor", "VW0", "signed", poll="fast"),
         point("outdoor", "Outdoor", "sensor", "VW2", "signed", poll="slow"),
     ]
-    s7_smart_sim.set("VW2", 5)
-    entry = make_entry(hass, s7_smart_sim, points)
+    s7_smart_ha_sim.set("VW2", 5)
+    entry = make_entry(hass, s7_smart_ha_sim, points)
     await set_up_classes(hass, freezer, entry)
     await tick(hass, freezer, 3)
     assert hass.states.get("sensor.s7_200_smart_outdoor").state == "5"
-    await s7_smart_sim.stop()
+    await s7_smart_ha_sim.stop()
     await tick(hass, freezer, 2)
     assert hass.states.get("sensor.s7_200_smart_outdoor").state == STATE_UNAVAILABLE
-    s7_smart_sim.set("VW2", 6)  # the PLC restarted meanwhile with another value
-    await s7_smart_sim.start(s7_smart_sim.host, s7_smart_sim.port)
+    s7_smart_ha_sim.set("VW2", 6)  # the PLC restarted meanwhile with another value
+    await s7_smart_ha_sim.start(s7_smart_ha_sim.host, s7_smart_ha_sim.port)
     count = len(reads)
     await tick(hass, freezer, 3)
     assert SLOW in reads[count]
@@ -60,7 +60,7 @@ async def test_a_recovered_link_reads_every_class(
 
 async def test_a_machine_valid_again_shows_values_read_with_its_bit(
     hass: HomeAssistant,
-    s7_smart_sim: S7SmartSimulator,
+    s7_smart_ha_sim: S7SmartSimulator,
     freezer: FrozenDateTimeFactory,
     reads: list[list[Point]],
 ) -> None:
@@ -78,25 +78,25 @@ async def test_a_machine_valid_again_shows_values_read_with_its_bit(
         CONF_AVAILABILITY_ADDRESS: "M0.0",
         CONF_AVAILABILITY_DATA_TYPE: "signed",
     }
-    s7_smart_sim.set("M0.0", 1)
-    s7_smart_sim.set("VW2", 5)
+    s7_smart_ha_sim.set("M0.0", 1)
+    s7_smart_ha_sim.set("VW2", 5)
     entry = add_entry(
         hass,
         title="S7-200 SMART",
         entry_id="01JPLCBR1DGE0000000000FRSH",
         unique_id="plc-bridge-fresh",
-        data=sim_data(s7_smart_sim),
+        data=sim_data(s7_smart_ha_sim),
         subentries=[boiler],
     )
     await set_up_classes(hass, freezer, entry)
     await tick(hass, freezer, 3)
     assert hass.states.get("sensor.boiler_outdoor").state == "5"
-    s7_smart_sim.set("M0.0", 0)  # the remote station drops out: its inputs read 0
-    s7_smart_sim.set("VW2", 0)
+    s7_smart_ha_sim.set("M0.0", 0)  # the remote station drops out: its inputs read 0
+    s7_smart_ha_sim.set("VW2", 0)
     await tick(hass, freezer, 2)
     assert hass.states.get("sensor.boiler_outdoor").state == STATE_UNAVAILABLE
-    s7_smart_sim.set("M0.0", 1)
-    s7_smart_sim.set("VW2", 7)
+    s7_smart_ha_sim.set("M0.0", 1)
+    s7_smart_ha_sim.set("VW2", 7)
     await tick(hass, freezer, 1)
     assert hass.states.get("sensor.boiler_outdoor").state == "7"
     count = len(reads)
@@ -105,7 +105,7 @@ async def test_a_machine_valid_again_shows_values_read_with_its_bit(
 
 
 async def test_a_data_valid_address_shown_slow_is_read_at_every_poll(
-    hass: HomeAssistant, s7_smart_sim: S7SmartSimulator, freezer: FrozenDateTimeFactory
+    hass: HomeAssistant, s7_smart_ha_sim: S7SmartSimulator, freezer: FrozenDateTimeFactory
 ) -> None:
     """A machine's data-valid bit is read at every poll, though a slow point of it shows it."""
     boiler = device(
@@ -121,26 +121,26 @@ async def test_a_data_valid_address_shown_slow_is_read_at_every_poll(
         CONF_AVAILABILITY_ADDRESS: "M0.0",
         CONF_AVAILABILITY_DATA_TYPE: "signed",
     }
-    s7_smart_sim.set("M0.0", 1)
+    s7_smart_ha_sim.set("M0.0", 1)
     entry = add_entry(
         hass,
         title="S7-200 SMART",
         entry_id="01JPLCBR1DGE0000000000FRSH",
         unique_id="plc-bridge-fresh",
-        data=sim_data(s7_smart_sim),
+        data=sim_data(s7_smart_ha_sim),
         subentries=[boiler],
     )
     await set_up_classes(hass, freezer, entry)
     await tick(hass, freezer, 3)
     assert hass.states.get("sensor.boiler_fast").state == "0"
-    s7_smart_sim.set("M0.0", 0)
+    s7_smart_ha_sim.set("M0.0", 0)
     await tick(hass, freezer, 1)
     assert hass.states.get("sensor.boiler_fast").state == STATE_UNAVAILABLE
 
 
 async def test_a_written_part_reads_back_its_whole_entity(
     hass: HomeAssistant,
-    s7_smart_sim: S7SmartSimulator,
+    s7_smart_ha_sim: S7SmartSimulator,
     freezer: FrozenDateTimeFactory,
     reads: list[list[Point]],
 ) -> None:
@@ -150,11 +150,11 @@ async def test_a_written_part_reads_back_its_whole_entity(
         point("p1", "Burner", "switch", "I0.3", "signed", role="state", poll="slow"),
         point("p2", "Burner", "switch", "M1.0", "signed", role="command", poll="slow"),
     ]
-    entry = make_entry(hass, s7_smart_sim, points)
+    entry = make_entry(hass, s7_smart_ha_sim, points)
     await set_up_classes(hass, freezer, entry)
     await tick(hass, freezer, 3)
     assert hass.states.get("switch.s7_200_smart_burner").state == STATE_OFF
-    s7_smart_sim.set("I0.3", 1)  # the PLC follows the command
+    s7_smart_ha_sim.set("I0.3", 1)  # the PLC follows the command
     await hass.services.async_call(
         "switch", SERVICE_TURN_ON, {ATTR_ENTITY_ID: "switch.s7_200_smart_burner"}, blocking=True
     )

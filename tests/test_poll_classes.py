@@ -19,10 +19,8 @@ from custom_components.plc_bridge.plc import PlcClient, Point, ReadResult
 from simulators.s7 import S7Simulator
 from simulators.s7_smart import S7SmartSimulator
 from simulators.tecomat import TecomatSimulator
-
-from .ha_fixtures import PointData, edit_point, make_entry, point
-from .s7_ha_fixtures import make_s7_entry
-from .tecomat_ha_fixtures import make_tecomat_entry
+from tests.entries import PointData, edit_point, make_entry, point
+from tests.harness import make_s7_entry, make_tecomat_entry
 
 pytestmark = pytest.mark.no_pacing
 
@@ -105,14 +103,14 @@ async def check_cadence(
 
 async def test_classes_on_the_s7_200_smart(
     hass: HomeAssistant,
-    s7_smart_sim: S7SmartSimulator,
+    s7_smart_ha_sim: S7SmartSimulator,
     freezer: FrozenDateTimeFactory,
     reads: list[list[Point]],
 ) -> None:
     """Each poll is one request holding the due points only (S7-200 SMART: 32 nodes a read)."""
     words = [point(f"w{i}", f"Word {i}", "sensor", f"VW{2 * i}", "signed") for i in range(3)]
-    entry = make_entry(hass, s7_smart_sim, classed(words, ("fast", "normal", "slow")))
-    before = s7_smart_sim.calls["read"]
+    entry = make_entry(hass, s7_smart_ha_sim, classed(words, ("fast", "normal", "slow")))
+    before = s7_smart_ha_sim.calls["read"]
     await check_cadence(
         hass,
         freezer,
@@ -120,7 +118,7 @@ async def test_classes_on_the_s7_200_smart(
         reads,
         (Point("VW0", "signed"), Point("VW2", "signed"), Point("VW4", "signed")),
     )
-    assert s7_smart_sim.calls["read"] - before == len(reads)
+    assert s7_smart_ha_sim.calls["read"] - before == len(reads)
 
 
 async def test_classes_on_the_s7(
@@ -147,7 +145,7 @@ async def test_classes_on_the_s7(
 
 async def test_classes_on_the_tecomat(
     hass: HomeAssistant,
-    tecomat_sim: TecomatSimulator,
+    tecomat_ha_sim: TecomatSimulator,
     freezer: FrozenDateTimeFactory,
     reads: list[list[Point]],
 ) -> None:
@@ -157,7 +155,7 @@ async def test_classes_on_the_tecomat(
         point("inside", "Inside", "sensor", "Main.myObject2.value", "REAL"),
         point("udint", "Salary", "sensor", "myObject.salary", "UDINT", poll="slow"),
     ]
-    entry = make_tecomat_entry(hass, tecomat_sim, points)
+    entry = make_tecomat_entry(hass, tecomat_ha_sim, points)
     await check_cadence(
         hass,
         freezer,
@@ -173,13 +171,13 @@ async def test_classes_on_the_tecomat(
 
 async def test_only_normal_points_poll_as_before(
     hass: HomeAssistant,
-    s7_smart_sim: S7SmartSimulator,
+    s7_smart_ha_sim: S7SmartSimulator,
     freezer: FrozenDateTimeFactory,
     reads: list[list[Point]],
 ) -> None:
     """Without fast or slow points: every 10 s, every point, the same list each time."""
     words = [point(f"w{i}", f"Word {i}", "sensor", f"VW{2 * i}", "signed") for i in range(3)]
-    entry = make_entry(hass, s7_smart_sim, words)
+    entry = make_entry(hass, s7_smart_ha_sim, words)
     await set_up_classes(hass, freezer, entry)
     assert entry.runtime_data.coordinator.update_interval == timedelta(seconds=10)
     await tick(hass, freezer, 31)
@@ -189,19 +187,19 @@ async def test_only_normal_points_poll_as_before(
 
 async def test_edited_class_applies_without_reload(
     hass: HomeAssistant,
-    s7_smart_sim: S7SmartSimulator,
+    s7_smart_ha_sim: S7SmartSimulator,
     freezer: FrozenDateTimeFactory,
     reads: list[list[Point]],
     setups: list[str],
 ) -> None:
     """A point made fast is read every second from the next second on; nothing reloads."""
     words = [point(f"w{i}", f"Word {i}", "sensor", f"VW{2 * i}", "signed") for i in range(3)]
-    entry = make_entry(hass, s7_smart_sim, words)
+    entry = make_entry(hass, s7_smart_ha_sim, words)
     await set_up_classes(hass, freezer, entry)
     runtime = entry.runtime_data
     await tick(hass, freezer, 3)
     assert len(reads) == 1
-    s7_smart_sim.set("VW0", 77)
+    s7_smart_ha_sim.set("VW0", 77)
     edit_point(hass, entry, "w0", poll="fast")
     await hass.async_block_till_done()
     await tick(hass, freezer, 5)
@@ -216,7 +214,7 @@ async def test_edited_class_applies_without_reload(
 
 async def test_write_reads_back_a_slow_point(
     hass: HomeAssistant,
-    s7_smart_sim: S7SmartSimulator,
+    s7_smart_ha_sim: S7SmartSimulator,
     freezer: FrozenDateTimeFactory,
     reads: list[list[Point]],
 ) -> None:
@@ -226,7 +224,7 @@ async def test_write_reads_back_a_slow_point(
         point("other", "Other", "sensor", "VW22", "signed", poll="slow"),
         point("setpoint", "Setpoint", "number", "VW20", "signed", poll="slow", min=0.0, max=99.0),
     ]
-    entry = make_entry(hass, s7_smart_sim, points)
+    entry = make_entry(hass, s7_smart_ha_sim, points)
     await set_up_classes(hass, freezer, entry)
     await tick(hass, freezer, 5)
     count = len(reads)
@@ -247,7 +245,7 @@ async def test_write_reads_back_a_slow_point(
 
 async def test_update_entity_reads_its_point(
     hass: HomeAssistant,
-    s7_smart_sim: S7SmartSimulator,
+    s7_smart_ha_sim: S7SmartSimulator,
     freezer: FrozenDateTimeFactory,
     reads: list[list[Point]],
 ) -> None:
@@ -258,10 +256,10 @@ async def test_update_entity_reads_its_point(
         point("outdoor", "Outdoor", "sensor", "VW2", "signed", poll="slow"),
         point("other", "Other", "sensor", "VW4", "signed", poll="slow"),
     ]
-    entry = make_entry(hass, s7_smart_sim, points)
+    entry = make_entry(hass, s7_smart_ha_sim, points)
     await set_up_classes(hass, freezer, entry)
     await tick(hass, freezer, 3)
-    s7_smart_sim.set("VW2", 12)
+    s7_smart_ha_sim.set("VW2", 12)
     count = len(reads)
     await hass.services.async_call(
         "homeassistant",

@@ -11,17 +11,17 @@ from homeassistant.helpers.entity import Entity
 import pytest
 
 from simulators.s7_smart import S7SmartSimulator
-from tests.ha_fixtures import make_entry, point, poll
+from tests.entries import make_entry, point, poll
 
 pytestmark = pytest.mark.no_pacing
 
 
 async def test_quiet_poll_writes_nothing(
-    hass: HomeAssistant, freezer: FrozenDateTimeFactory, s7_smart_sim: S7SmartSimulator
+    hass: HomeAssistant, freezer: FrozenDateTimeFactory, s7_smart_ha_sim: S7SmartSimulator
 ) -> None:
     points = [point(f"p{i}", f"Point {i}", "sensor", f"VW{2 * i}", "signed") for i in range(5)]
     points.append(point("flag", "Flag", "binary_sensor", "V100.0", "signed"))
-    entry = make_entry(hass, s7_smart_sim, points)
+    entry = make_entry(hass, s7_smart_ha_sim, points)
     assert await hass.config_entries.async_setup(entry.entry_id)
     await hass.async_block_till_done()
     await poll(hass, freezer)
@@ -40,7 +40,7 @@ async def test_quiet_poll_writes_nothing(
     with patch.object(Entity, "async_write_ha_state", counting):
         await poll(hass, freezer, 3)
         assert writes == []
-        s7_smart_sim.set("VW4", 1234)
+        s7_smart_ha_sim.set("VW4", 1234)
         await poll(hass, freezer)
     assert [ours[entity_id] for entity_id in writes] == ["p2"]
     assert hass.states.get(writes[0]).state == "1234"

@@ -18,15 +18,8 @@ from pytest_homeassistant_custom_component.common import MockConfigEntry
 from custom_components.plc_bridge.const import CONF_FINGERPRINT, CONF_TLS, CONF_VENDOR, DOMAIN
 from custom_components.plc_bridge.plc.http import format_fingerprint
 from simulators.s7_smart import DEFAULT_PASSWORD, DEFAULT_USER, S7SmartSimulator
-from tests.flow_fixtures import (
-    FAKE_VENDOR,
-    FakeClient,
-    error_message,
-    smart_data,
-    suggested,
-    translated,
-)
-from tests.ha_fixtures import make_entry, poll
+from tests.entries import make_entry, poll, sim_data
+from tests.flow_fixtures import FAKE_VENDOR, FakeClient, error_message, suggested, translated
 
 pytestmark = pytest.mark.no_pacing
 
@@ -61,7 +54,7 @@ async def test_reauth(
     )
     assert result["type"] is FlowResultType.ABORT
     assert result["reason"] == "reauth_successful"
-    assert dict(flow_entry.data) == smart_data(flow_sim)
+    assert dict(flow_entry.data) == sim_data(flow_sim)
 
 
 @flow_only
@@ -97,7 +90,7 @@ async def test_reconfigure_same_certificate(
     result = await submit(hass, result, reconfigure_input(flow_sim))
     assert result["type"] is FlowResultType.ABORT
     assert result["reason"] == "reconfigure_successful"
-    assert dict(flow_entry.data) == smart_data(flow_sim)
+    assert dict(flow_entry.data) == sim_data(flow_sim)
     assert flow_entry.title == "Boiler house PLC"  # the name the user gave stays
 
 
@@ -144,7 +137,7 @@ async def test_reconfigure_moves_an_address_only_device(
     """Without a serial or MAC the PLC is its address: it may move (off mode, no pin)."""
     entry = MockConfigEntry(
         domain=DOMAIN,
-        data=smart_data(flow_sim, port=1),
+        data=sim_data(flow_sim, port=1),
         unique_id="127.0.0.1:1",
     )
     entry.add_to_hass(hass)
@@ -152,7 +145,7 @@ async def test_reconfigure_moves_an_address_only_device(
     result = await submit(hass, result, reconfigure_input(flow_sim, tls="off"))
     assert result["reason"] == "reconfigure_successful"
     assert entry.unique_id == f"127.0.0.1:{flow_sim.port}"
-    assert dict(entry.data) == smart_data(flow_sim, tls="off", fingerprint="")
+    assert dict(entry.data) == sim_data(flow_sim, tls="off", fingerprint="")
 
 
 @flow_only
@@ -160,7 +153,7 @@ async def test_reconfigure_onto_another_entry(
     hass: HomeAssistant, flow_sim: S7SmartSimulator, flow_entry: MockConfigEntry
 ) -> None:
     """Moving onto the address of another configured PLC aborts."""
-    entry = MockConfigEntry(domain=DOMAIN, data=smart_data(flow_sim, port=1), unique_id="x:1")
+    entry = MockConfigEntry(domain=DOMAIN, data=sim_data(flow_sim, port=1), unique_id="x:1")
     entry.add_to_hass(hass)
     result = await entry.start_reconfigure_flow(hass)
     result = await submit(hass, result, reconfigure_input(flow_sim))
@@ -212,7 +205,7 @@ async def after_the_reload(
 @pytest.mark.parametrize("moved", [True, False])
 async def test_reconfigure_sets_up_once(
     hass: HomeAssistant,
-    s7_smart_sim: S7SmartSimulator,
+    s7_smart_ha_sim: S7SmartSimulator,
     freezer: FrozenDateTimeFactory,
     setups: list[str],
     moved: bool,
@@ -222,49 +215,49 @@ async def test_reconfigure_sets_up_once(
     The S7-200 SMART keeps one session per user: the flow's login ends Home Assistant's, so the
     entry logs in again even when nothing changed, and no poll runs on the ended session.
     """
-    entry = await loaded_entry(hass, s7_smart_sim)
+    entry = await loaded_entry(hass, s7_smart_ha_sim)
     setups.clear()
     if moved:
-        await s7_smart_sim.stop()
-        await s7_smart_sim.start()  # on another port: the PLC moved
-    logins = s7_smart_sim.calls["login"]
+        await s7_smart_ha_sim.stop()
+        await s7_smart_ha_sim.start()  # on another port: the PLC moved
+    logins = s7_smart_ha_sim.calls["login"]
     result = await entry.start_reconfigure_flow(hass)
-    result = await submit(hass, result, reconfigure_input(s7_smart_sim))
+    result = await submit(hass, result, reconfigure_input(s7_smart_ha_sim))
     assert result["reason"] == "reconfigure_successful"
-    await after_the_reload(hass, s7_smart_sim, freezer, logins)
+    await after_the_reload(hass, s7_smart_ha_sim, freezer, logins)
     assert setups == [entry.entry_id]
     assert entry.title == "S7-200 SMART"
 
 
 async def test_reauth_of_a_loaded_entry_sets_up_once(
     hass: HomeAssistant,
-    s7_smart_sim: S7SmartSimulator,
+    s7_smart_ha_sim: S7SmartSimulator,
     freezer: FrozenDateTimeFactory,
     setups: list[str],
 ) -> None:
     """Credentials confirmed while the entry runs (data unchanged): one setup, one new login."""
-    entry = await loaded_entry(hass, s7_smart_sim)
+    entry = await loaded_entry(hass, s7_smart_ha_sim)
     setups.clear()
-    logins = s7_smart_sim.calls["login"]
+    logins = s7_smart_ha_sim.calls["login"]
     result = await entry.start_reauth_flow(hass)
     result = await submit(
         hass, result, {CONF_USERNAME: DEFAULT_USER, CONF_PASSWORD: DEFAULT_PASSWORD}
     )
     assert result["reason"] == "reauth_successful"
-    await after_the_reload(hass, s7_smart_sim, freezer, logins)
+    await after_the_reload(hass, s7_smart_ha_sim, freezer, logins)
     assert setups == [entry.entry_id]
 
 
 async def test_reconfigure_of_a_failed_setup_sets_up_once(
-    hass: HomeAssistant, s7_smart_sim: S7SmartSimulator, setups: list[str]
+    hass: HomeAssistant, s7_smart_ha_sim: S7SmartSimulator, setups: list[str]
 ) -> None:
     """An entry waiting to retry (the PLC was elsewhere) is set up once with the new address."""
-    entry = make_entry(hass, s7_smart_sim, port=1)
+    entry = make_entry(hass, s7_smart_ha_sim, port=1)
     await hass.config_entries.async_setup(entry.entry_id)
     assert entry.state is ConfigEntryState.SETUP_RETRY
     setups.clear()
     result = await entry.start_reconfigure_flow(hass)
-    result = await submit(hass, result, reconfigure_input(s7_smart_sim))
+    result = await submit(hass, result, reconfigure_input(s7_smart_ha_sim))
     assert result["reason"] == "reconfigure_successful"
     await hass.async_block_till_done()
     assert setups == [entry.entry_id]

@@ -17,8 +17,7 @@ from pytest_homeassistant_custom_component.common import MockConfigEntry
 from custom_components.plc_bridge.const import CONF_VENDOR, DOMAIN
 from simulators.s7 import S7Simulator
 from tests.flow_fixtures import error_message, suggested, translated
-
-from .s7_ha_fixtures import SimFactory, s7_data
+from tests.harness import SimFactory, s7_data
 
 CONFIG = ("config",)
 SERIAL = S7Simulator.serial

@@ -21,11 +21,14 @@ from custom_components.plc_bridge.runtime.supervision import (
     EVENT_FEEDBACK_RESTORED,
     EVENT_FEEDBACK_TIMEOUT,
 )
+from tests.entries import SCAN_INTERVAL, PointData, point
+from tests.harness import OUTPUT_FAMILIES, PlcUnderTest, wait
 
-from .ha_fixtures import SCAN_INTERVAL, PointData, point
-from .outputs_plcs import Plc, plc_fixture, wait  # noqa: F401
-
-pytestmark = pytest.mark.no_pacing
+pytestmark = [
+    pytest.mark.no_pacing,
+    pytest.mark.parametrize("plc", OUTPUT_FAMILIES, indirect=True),
+    pytest.mark.usefixtures("outputs_at_rest"),
+]
 
 SECONDS = 25.0
 """The supervision (or travel) time of the test entities: longer than a poll interval."""
@@ -52,7 +55,7 @@ KINDS = {
 }
 
 
-def parts(plc: Plc, kind: Kind, seconds: float | None = SECONDS) -> list[PointData]:
+def parts(plc: PlcUnderTest, kind: Kind, seconds: float | None = SECONDS) -> list[PointData]:
     """The test entity's parts, supervised for `seconds` (a cover's or valve's travel time)."""
     name, platform = "Pump", kind.platform
     time = {} if seconds is None else {"supervision": seconds}
@@ -70,7 +73,7 @@ def parts(plc: Plc, kind: Kind, seconds: float | None = SECONDS) -> list[PointDa
     ]
 
 
-async def command(hass: HomeAssistant, plc: Plc, kind: Kind) -> None:
+async def command(hass: HomeAssistant, plc: PlcUnderTest, kind: Kind) -> None:
     """Send the kind's command; the PLC's program sets a reset role back at once."""
     entity_id = plc.entity(kind.platform, "pump")
     await hass.services.async_call(
@@ -99,7 +102,7 @@ def captured(hass: HomeAssistant) -> tuple[list[Event[Any]], list[Event[Any]]]:
 
 @pytest.mark.parametrize("name", list(KINDS))
 async def test_raised_then_cleared_when_it_follows(
-    hass: HomeAssistant, freezer: FrozenDateTimeFactory, plc: Plc, name: str
+    hass: HomeAssistant, freezer: FrozenDateTimeFactory, plc: PlcUnderTest, name: str
 ) -> None:
     """No state following in time: an event and an issue; the state following clears both."""
     kind = KINDS[name]
@@ -135,7 +138,7 @@ async def test_raised_then_cleared_when_it_follows(
 
 @pytest.mark.parametrize("name", list(KINDS))
 async def test_not_raised_when_it_follows_in_time(
-    hass: HomeAssistant, freezer: FrozenDateTimeFactory, plc: Plc, name: str
+    hass: HomeAssistant, freezer: FrozenDateTimeFactory, plc: PlcUnderTest, name: str
 ) -> None:
     """The state following before the time is up: no event, no issue, then or later."""
     kind = KINDS[name]
@@ -150,7 +153,7 @@ async def test_not_raised_when_it_follows_in_time(
 
 
 async def test_not_supervised_without_a_time(
-    hass: HomeAssistant, freezer: FrozenDateTimeFactory, plc: Plc
+    hass: HomeAssistant, freezer: FrozenDateTimeFactory, plc: PlcUnderTest
 ) -> None:
     """A switch without a supervision time raises nothing, however long its state lags."""
     kind = KINDS["switch"]
@@ -162,7 +165,7 @@ async def test_not_supervised_without_a_time(
 
 
 async def test_reload_cancels_and_a_left_issue_is_cleared(
-    hass: HomeAssistant, freezer: FrozenDateTimeFactory, plc: Plc
+    hass: HomeAssistant, freezer: FrozenDateTimeFactory, plc: PlcUnderTest
 ) -> None:
     """A reload cancels a pending timer; an issue raised before it is cleared by a poll after."""
     kind = KINDS["switch"]
@@ -188,7 +191,7 @@ async def test_reload_cancels_and_a_left_issue_is_cleared(
 
 
 async def test_a_stop_withdraws_the_cover_issue(
-    hass: HomeAssistant, freezer: FrozenDateTimeFactory, plc: Plc
+    hass: HomeAssistant, freezer: FrozenDateTimeFactory, plc: PlcUnderTest
 ) -> None:
     """A cover stopped by hand ends the watch of its open: its issue goes, no event says so."""
     kind = KINDS["cover"]

@@ -10,9 +10,9 @@ from custom_components.plc_bridge.const import DOMAIN
 from custom_components.plc_bridge.model.config_file import dump_config
 from custom_components.plc_bridge.model.point_table import export_points, parse_points
 from simulators.s7_smart import S7SmartSimulator
+from tests.entries import make_entry, point, sim_data
 
-from .flow_fixtures import smart_data, step, strings_at
-from .ha_fixtures import make_entry, point
+from .flow_fixtures import step, strings_at
 from .test_command_layouts import SMART, composite, fields, key_only, machines
 from .test_config_file import CONFIG, paste
 
@@ -22,7 +22,7 @@ pytestmark = pytest.mark.no_pacing
 @pytest.fixture
 def smart_entry(hass: HomeAssistant, flow_sim: S7SmartSimulator) -> MockConfigEntry:
     """An S7-200 SMART entry without machines (not set up)."""
-    entry = MockConfigEntry(domain=DOMAIN, data=smart_data(flow_sim), version=2)
+    entry = MockConfigEntry(domain=DOMAIN, data=sim_data(flow_sim), version=2)
     entry.add_to_hass(hass)
     return entry
 

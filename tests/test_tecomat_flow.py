@@ -15,10 +15,10 @@ import pytest
 
 from custom_components.plc_bridge.const import CONF_TLS, CONF_VENDOR, DOMAIN, SUBENTRY_DEVICE
 from simulators.tecomat import DEFAULT_PASSWORD, DEFAULT_USER, TecomatSimulator
+from tests.entries import point, read_edits
 from tests.flow_fixtures import error_message, translated
-from tests.ha_fixtures import point, read_edits
+from tests.harness import TECOMAT_SERIAL, make_tecomat_entry
 from tests.loopback import running
-from tests.tecomat_ha_fixtures import TECOMAT_SERIAL, make_tecomat_entry
 
 CONFIG = ("config",)
 DEVICES = ("config_subentries", SUBENTRY_DEVICE)
@@ -139,18 +139,20 @@ async def test_wrong_method(
     assert result["errors"] == {CONF_PASSWORD: "invalid_auth"}
 
 
-async def test_clock_variable_checked(hass: HomeAssistant, tecomat_sim: TecomatSimulator) -> None:
+async def test_clock_variable_checked(
+    hass: HomeAssistant, tecomat_ha_sim: TecomatSimulator
+) -> None:
     """A clock variable that is no variable path is refused with the client's words."""
     result = await connection_form(hass)
     result = await hass.config_entries.flow.async_configure(
-        result["flow_id"], connection(tecomat_sim, "digest", clock_variable="set time")
+        result["flow_id"], connection(tecomat_ha_sim, "digest", clock_variable="set time")
     )
     assert result["errors"] == {"base": "invalid_options"}
     problem = "clock variable: 'set time' is not a TecoApi variable path; write it like"
     assert error_message(result, "base", *CONFIG).startswith(
         f"The connection settings are not valid: {problem}"
     )
-    assert tecomat_sim.requests == 0
+    assert tecomat_ha_sim.requests == 0
 
 
 async def open_pick(hass: HomeAssistant, entry: Any, text: str = "") -> Any:
@@ -178,11 +180,11 @@ def labels_of(result: Any) -> dict[str, str]:
 
 
 async def test_browse_lists_leaves_and_picks(
-    hass: HomeAssistant, tecomat_sim: TecomatSimulator, freezer: FrozenDateTimeFactory
+    hass: HomeAssistant, tecomat_ha_sim: TecomatSimulator, freezer: FrozenDateTimeFactory
 ) -> None:
     """Browsing the real simulator: leaves of structs, arrays and Main; a 5.3 object fills in."""
     entry = make_tecomat_entry(
-        hass, tecomat_sim, [point("dint", "Dint", "sensor", "plcData.varDint", "DINT")]
+        hass, tecomat_ha_sim, [point("dint", "Dint", "sensor", "plcData.varDint", "DINT")]
     )
     assert await hass.config_entries.async_setup(entry.entry_id)
     await hass.async_block_till_done()
@@ -244,38 +246,38 @@ async def test_browse_lists_leaves_and_picks(
     assert entry.state is ConfigEntryState.LOADED
 
 
-async def test_same_plc_aborts(hass: HomeAssistant, tecomat_sim: TecomatSimulator) -> None:
+async def test_same_plc_aborts(hass: HomeAssistant, tecomat_ha_sim: TecomatSimulator) -> None:
     """A second flow for the same PLC aborts: the serial number is configured already."""
-    make_tecomat_entry(hass, tecomat_sim, [])
+    make_tecomat_entry(hass, tecomat_ha_sim, [])
     result = await connection_form(hass)
     result = await hass.config_entries.flow.async_configure(
-        result["flow_id"], connection(tecomat_sim, "digest")
+        result["flow_id"], connection(tecomat_ha_sim, "digest")
     )
     assert result["type"] is FlowResultType.ABORT
     assert result["reason"] == "already_configured"
 
 
 async def test_reconfigure(
-    hass: HomeAssistant, tecomat_sim: TecomatSimulator, mock_setup_entry: AsyncMock
+    hass: HomeAssistant, tecomat_ha_sim: TecomatSimulator, mock_setup_entry: AsyncMock
 ) -> None:
     """Reconfigure shows the TecoApi page without credentials, filled in; the same PLC is kept."""
-    entry = make_tecomat_entry(hass, tecomat_sim)
+    entry = make_tecomat_entry(hass, tecomat_ha_sim)
     result = translated(await entry.start_reconfigure_flow(hass), *CONFIG)
     assert result["step_id"] == "reconfigure_tecomat"
     fields = [str(marker) for marker in result["data_schema"].schema]
     assert fields == [CONF_HOST, CONF_PORT, CONF_TLS, "auth", "clock_variable"]
     result = await hass.config_entries.flow.async_configure(
         result["flow_id"],
-        {CONF_HOST: tecomat_sim.host, CONF_PORT: tecomat_sim.port, CONF_TLS: "none"}
-        | {"auth": tecomat_sim.auth.method, "clock_variable": "set time"},
+        {CONF_HOST: tecomat_ha_sim.host, CONF_PORT: tecomat_ha_sim.port, CONF_TLS: "none"}
+        | {"auth": tecomat_ha_sim.auth.method, "clock_variable": "set time"},
     )
     assert translated(result, *CONFIG)["errors"] == {"base": "invalid_options"}
     assert result["step_id"] == "reconfigure_tecomat"
-    assert tecomat_sim.requests == 0
+    assert tecomat_ha_sim.requests == 0
     result = await hass.config_entries.flow.async_configure(
         result["flow_id"],
-        {CONF_HOST: tecomat_sim.host, CONF_PORT: tecomat_sim.port, CONF_TLS: "none"}
-        | {"auth": tecomat_sim.auth.method, "clock_variable": "setTime"},
+        {CONF_HOST: tecomat_ha_sim.host, CONF_PORT: tecomat_ha_sim.port, CONF_TLS: "none"}
+        | {"auth": tecomat_ha_sim.auth.method, "clock_variable": "setTime"},
     )
     assert result["type"] is FlowResultType.ABORT
     assert result["reason"] == "reconfigure_successful"

@@ -29,8 +29,7 @@ from custom_components.plc_bridge.plc.vendors import client_class
 from custom_components.plc_bridge.runtime.write_guard import WriteGuard
 from custom_components.plc_bridge.services import MAX_READ
 from simulators.s7_smart import S7SmartSimulator
-
-from .ha_fixtures import POINTS, call, make_entry, point
+from tests.entries import POINTS, call, make_entry, point
 
 pytestmark = pytest.mark.no_pacing
 
@@ -40,9 +39,9 @@ NEIGHBOUR = point("neighbour", "Neighbour", "number", "VB51", "unsigned")
 
 
 @pytest.fixture
-async def locked_entry(hass: HomeAssistant, s7_smart_sim: S7SmartSimulator) -> MockConfigEntry:
+async def locked_entry(hass: HomeAssistant, s7_smart_ha_sim: S7SmartSimulator) -> MockConfigEntry:
     """The simulator's entry with a read-only word and a number on one of its bytes."""
-    entry = make_entry(hass, s7_smart_sim, [*POINTS, LOCKED, NEIGHBOUR])
+    entry = make_entry(hass, s7_smart_ha_sim, [*POINTS, LOCKED, NEIGHBOUR])
     assert await hass.config_entries.async_setup(entry.entry_id)
     await hass.async_block_till_done()
     return entry
@@ -65,13 +64,13 @@ async def locked_entry(hass: HomeAssistant, s7_smart_sim: S7SmartSimulator) -> M
 )
 async def test_write_action_refuses_read_only_data(
     hass: HomeAssistant,
-    s7_smart_sim: S7SmartSimulator,
+    s7_smart_ha_sim: S7SmartSimulator,
     address: str,
     data_type: str,
     message: str,
 ) -> None:
     """Another width, mode or spelling of read-only data, or an input: refused, nothing sent."""
-    before = s7_smart_sim.calls["write"]
+    before = s7_smart_ha_sim.calls["write"]
     value: Any = [1] if data_type == "raw" else 1
     with pytest.raises(ServiceValidationError) as err:
         await call(
@@ -84,12 +83,12 @@ async def test_write_action_refuses_read_only_data(
             ],
         )
     assert str(err.value).startswith(message)
-    assert s7_smart_sim.calls["write"] == before
-    assert s7_smart_sim.get("VW30") == 0
+    assert s7_smart_ha_sim.calls["write"] == before
+    assert s7_smart_ha_sim.get("VW30") == 0
 
 
 async def test_write_next_to_read_only_data_goes_through(
-    hass: HomeAssistant, s7_smart_sim: S7SmartSimulator, locked_entry: MockConfigEntry
+    hass: HomeAssistant, s7_smart_ha_sim: S7SmartSimulator, locked_entry: MockConfigEntry
 ) -> None:
     """The bytes beside a read-only word stay writable."""
     await call(
@@ -98,14 +97,14 @@ async def test_write_next_to_read_only_data_goes_through(
         locked_entry,
         points=[{"address": "VB52", "data_type": "unsigned", "value": 9}],
     )
-    assert s7_smart_sim.get("VB52", "unsigned") == 9
+    assert s7_smart_ha_sim.get("VB52", "unsigned") == 9
 
 
 async def test_entity_write_passes_the_same_guard(
-    hass: HomeAssistant, s7_smart_sim: S7SmartSimulator, locked_entry: MockConfigEntry
+    hass: HomeAssistant, s7_smart_ha_sim: S7SmartSimulator, locked_entry: MockConfigEntry
 ) -> None:
     """A number over a read-only word's byte cannot write it either."""
-    before = s7_smart_sim.calls["write"]
+    before = s7_smart_ha_sim.calls["write"]
     with pytest.raises(ServiceValidationError, match="VB51 covers data of the read-only point"):
         await hass.services.async_call(
             NUMBER_DOMAIN,
@@ -113,7 +112,7 @@ async def test_entity_write_passes_the_same_guard(
             {ATTR_ENTITY_ID: "number.s7_200_smart_neighbour", ATTR_VALUE: 3},
             blocking=True,
         )
-    assert s7_smart_sim.calls["write"] == before
+    assert s7_smart_ha_sim.calls["write"] == before
 
 
 def test_names_folded_and_elements_covered() -> None:
@@ -128,10 +127,10 @@ def test_names_folded_and_elements_covered() -> None:
 
 
 async def test_read_list_is_capped(
-    hass: HomeAssistant, s7_smart_sim: S7SmartSimulator, locked_entry: MockConfigEntry
+    hass: HomeAssistant, s7_smart_ha_sim: S7SmartSimulator, locked_entry: MockConfigEntry
 ) -> None:
     """A read names at most MAX_READ points: a longer list never reaches the PLC."""
-    before = s7_smart_sim.calls["read"]
+    before = s7_smart_ha_sim.calls["read"]
     points = [{"address": f"VW{2 * index}", "data_type": "signed"} for index in range(MAX_READ)]
     with pytest.raises(vol.Invalid):
         await call(
@@ -140,7 +139,7 @@ async def test_read_list_is_capped(
             locked_entry,
             points=[*points, {"address": "VW999", "data_type": "signed"}],
         )
-    assert s7_smart_sim.calls["read"] == before
+    assert s7_smart_ha_sim.calls["read"] == before
     response = await call(hass, "read", locked_entry, points=points)
     assert response is not None
     assert len(response["values"]) == MAX_READ
@@ -149,7 +148,7 @@ async def test_read_list_is_capped(
 @pytest.mark.usefixtures("entity_registry_enabled_by_default")
 async def test_clock_entity_for_administrators_only(
     hass: HomeAssistant,
-    s7_smart_sim: S7SmartSimulator,
+    s7_smart_ha_sim: S7SmartSimulator,
     locked_entry: MockConfigEntry,
     hass_admin_user: MockUser,
 ) -> None:
@@ -160,12 +159,12 @@ async def test_clock_entity_for_administrators_only(
         ATTR_ENTITY_ID: "datetime.s7_200_smart_plc_clock",
         ATTR_DATETIME: datetime(2026, 7, 4, 18, 0, tzinfo=UTC),
     }
-    before = s7_smart_sim.clock
+    before = s7_smart_ha_sim.clock
     with pytest.raises(Unauthorized):
         await hass.services.async_call(
             DATETIME_DOMAIN, SET_DATETIME, data, blocking=True, context=Context(user_id=user.id)
         )
-    assert s7_smart_sim.clock == before
+    assert s7_smart_ha_sim.clock == before
     await hass.services.async_call(
         DATETIME_DOMAIN,
         SET_DATETIME,
@@ -173,4 +172,4 @@ async def test_clock_entity_for_administrators_only(
         blocking=True,
         context=Context(user_id=hass_admin_user.id),
     )
-    assert s7_smart_sim.clock == datetime(2026, 7, 4, 11, 0)
+    assert s7_smart_ha_sim.clock == datetime(2026, 7, 4, 11, 0)

@@ -1,18 +1,28 @@
-"""Home Assistant fixtures: the S7-200 SMART simulator, an entry with a point of every platform.
+"""Entries as the flows store them: points, machines, a PLC's entry; set up, polled, called.
 
+The S7-200 SMART entry most Home Assistant tests use (POINTS, `make_entry`) is here too; the
+simulators of every family, `PlcUnderTest` and the `plc` fixtures are in tests/harness.py.
 Registered for every test through `pytest_plugins` in tests/conftest.py.
 """
 
 from __future__ import annotations
 
-from collections.abc import AsyncGenerator, AsyncIterator, Generator, Iterable
+from collections.abc import (
+    AsyncGenerator,
+    AsyncIterator,
+    Generator,
+    Iterable,
+)
 from contextlib import asynccontextmanager
 from datetime import datetime, timedelta
 from typing import Any
 from unittest.mock import patch
 
 from freezegun.api import FrozenDateTimeFactory
-from homeassistant.config_entries import ConfigEntryState, ConfigSubentryDataWithId
+from homeassistant.config_entries import (
+    ConfigEntryState,
+    ConfigSubentryDataWithId,
+)
 from homeassistant.const import (
     CONF_HOST,
     CONF_NAME,
@@ -266,30 +276,9 @@ async def set_up(hass: HomeAssistant, entry: MockConfigEntry) -> MockConfigEntry
 
 
 @pytest.fixture
-async def s7_smart_sim(
-    hass: HomeAssistant, freezer: FrozenDateTimeFactory
-) -> AsyncGenerator[S7SmartSimulator]:
-    """A started S7-200 SMART simulator (HTTPS, own CA) holding the values of POINTS.
-
-    Time is frozen from before any entry is set up until every entry is unloaded: the clients
-    pace their requests by the monotonic clock, which the freezer moves by years.
-    """
-    sim = S7SmartSimulator()
-    sim.clock = CLOCK
-    sim.set("VD100", 21.5, "float")
-    sim.set("VW10", 235)
-    sim.set("VB200", "Line 1", "string")
-    sim.set("VD300", [1, 2, 171, 205], "raw")
-    sim.set("I0.0", True)
-    sim.set("VW20", 40)
-    async with serving(hass, sim):
-        yield sim
-
-
-@pytest.fixture
-def s7_smart_entry(hass: HomeAssistant, s7_smart_sim: S7SmartSimulator) -> MockConfigEntry:
+def s7_smart_entry(hass: HomeAssistant, s7_smart_ha_sim: S7SmartSimulator) -> MockConfigEntry:
     """The simulator's entry: pinned certificate, a point of every platform."""
-    return make_entry(hass, s7_smart_sim)
+    return make_entry(hass, s7_smart_ha_sim)
 
 
 @pytest.fixture
