@@ -17,7 +17,7 @@ from syrupy.assertion import SnapshotAssertion
 
 from custom_components.plc_bridge.plc.vendors import client_class, implemented
 
-pytest_plugins = ["tests.flow_fixtures", "tests.entries", "tests.harness"]
+pytest_plugins = ["tests.flows.forms", "tests.entries", "tests.harness"]
 
 
 @pytest.fixture(autouse=True)

@@ -38,6 +38,7 @@ from simulators.plcnext import DEFAULT_PASSWORD as PLCNEXT_PASSWORD
 from simulators.s7_smart import DEFAULT_PASSWORD as SMART_PASSWORD
 from simulators.tecomat import DEFAULT_PASSWORD as TECOMAT_PASSWORD
 from tests.entries import POINTS, PointData, add_entry, device, sim_data
+from tests.flows.forms import suggested, translated
 from tests.harness import (
     PLCNEXT_POINTS,
     S7_POINTS,
@@ -53,13 +54,11 @@ from tests.harness import (
     softplc_data,
     tecomat_data,
 )
-
-from .flow_fixtures import suggested, translated
-from .test_cover import SHUTTER as SMART_COVER
-from .test_plcnext_composite import POINTS as PLCNEXT_FAN
-from .test_s7_composite import POINTS as S7_GATE
-from .test_softplc_composite import POINTS as SOFTPLC_LIGHT
-from .test_tecomat_composite import POINTS as TECOMAT_ROOM
+from tests.test_cover import SHUTTER as SMART_COVER
+from tests.test_plcnext_composite import POINTS as PLCNEXT_FAN
+from tests.test_s7_composite import POINTS as S7_GATE
+from tests.test_softplc_composite import POINTS as SOFTPLC_LIGHT
+from tests.test_tecomat_composite import POINTS as TECOMAT_ROOM
 
 pytestmark = pytest.mark.no_pacing
 

@@ -23,9 +23,8 @@ from custom_components.plc_bridge.const import SUBENTRY_DEVICE
 from simulators.plcnext import PlcnextSimulator
 from simulators.tecomat import TecomatSimulator
 from tests.entries import point, poll, read_edits, set_up
+from tests.flows.forms import step
 from tests.harness import make_plcnext_entry, make_tecomat_entry
-
-from .flow_fixtures import step
 
 sys.path.insert(0, str(Path(__file__).parents[1] / "scripts"))
 from demo_plcs import JOURNEYS  # the demo check's own tables and drives

@@ -17,8 +17,7 @@ from pytest_homeassistant_custom_component.common import MockConfigEntry
 from custom_components.plc_bridge.plc import Point
 from simulators.s7_smart import S7SmartSimulator
 from tests.entries import make_entry, point, poll
-
-from .test_poll_classes import reads, set_up_classes, tick
+from tests.runtime.test_poll_classes import reads, set_up_classes, tick
 
 pytestmark = pytest.mark.no_pacing
 

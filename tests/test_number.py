@@ -16,9 +16,8 @@ from pytest_homeassistant_custom_component.common import MockConfigEntry, snapsh
 from syrupy.assertion import SnapshotAssertion
 
 from simulators.s7_smart import S7SmartSimulator
+from tests.conftest import current_release_only
 from tests.entries import make_entry, point
-
-from .conftest import current_release_only
 
 pytestmark = pytest.mark.no_pacing
 

@@ -23,9 +23,8 @@ from custom_components.plc_bridge.model.conversion import scaled
 from custom_components.plc_bridge.plc import Point, ReadResult, ValueKind
 from custom_components.plc_bridge.plc.vendors.s7_smart import S7SmartClient
 from simulators.s7_smart import S7SmartSimulator
+from tests.conftest import current_release_only
 from tests.entries import DEVICE_ID, make_entry, point, poll
-
-from .conftest import current_release_only
 
 pytestmark = pytest.mark.no_pacing
 

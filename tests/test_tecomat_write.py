@@ -26,7 +26,7 @@ from pytest_homeassistant_custom_component.common import MockConfigEntry
 from custom_components.plc_bridge.const import ATTR_CONFIG_ENTRY_ID, DOMAIN
 from simulators.tecomat import TecomatSimulator
 from tests.entries import poll
-from tests.flow_fixtures import strings_at
+from tests.flows.forms import strings_at
 from tests.harness import make_tecomat_entry
 
 NUMBER = "number.fx2_cp2080_requested_temperature"
