@@ -17,11 +17,15 @@ from homeassistant.config_entries import ConfigEntryState, ConfigSubentryDataWit
 from homeassistant.core import HomeAssistant, State
 from homeassistant.helpers import device_registry as dr, entity_registry as er
 import pytest
-from pytest_homeassistant_custom_component.common import MockConfigEntry, mock_restore_cache
+from pytest_homeassistant_custom_component.common import (
+    MockConfigEntry,
+    mock_restore_cache_with_extra_data,
+)
 
 from custom_components.plc_bridge.config_flow import PlcBridgeConfigFlow
 from custom_components.plc_bridge.const import CONF_POINTS, DOMAIN, SUBENTRY_DEVICE
 from simulators.s7_smart import DEFAULT_PASSWORD, DEFAULT_USER, S7SmartSimulator
+from tests.test_snapshots import VALUES
 
 pytestmark = pytest.mark.no_pacing
 
@@ -90,8 +94,12 @@ async def upgraded(
     device_registry: dr.DeviceRegistry,
 ) -> tuple[MockConfigEntry, dict[str, str]]:
     """Store the old entry, set it up; return it and each old entity's registry entry id."""
-    mock_restore_cache(
-        hass, [State(entity_id, state) for entity_id, state in old["states"].items()]
+    mock_restore_cache_with_extra_data(
+        hass,
+        [
+            (State(item["entity_id"], item["state"], item.get("attributes")), item.get("extra", {}))
+            for item in old["restored"]
+        ],
     )
     entry = add_stored(hass, old, entity_registry, device_registry)
     before = {e["entity_id"]: entity_registry.async_get(e["entity_id"]).id for e in old["entities"]}
@@ -152,3 +160,31 @@ async def test_upgrade_from_0_1(
     identified = {identifier for d in plcs for _, identifier in d.identifiers}
     assert entry.entry_id in identified
     assert entry.unique_id not in identified  # the old device was re-keyed, not left beside
+
+
+async def test_upgrade_from_0_9(
+    hass: HomeAssistant,
+    s7_smart_ha_sim: S7SmartSimulator,
+    entity_registry: er.EntityRegistry,
+    device_registry: dr.DeviceRegistry,
+) -> None:
+    """0.9's entry of every kind loads as stored: same shape, entities, restored states."""
+    for address, value in VALUES.items():
+        s7_smart_ha_sim.set(address, value)
+    old = stored("entry_0_9.json", s7_smart_ha_sim)
+    entry, before = await upgraded(hass, old, entity_registry, device_registry)
+    now = kept(hass, entry, before, entry.entry_id)
+    assert set(now.values()) == set(before)  # nothing new, nothing gone
+    assert dict(entry.data) == old["data"]
+    assert dict(entry.options) == old["options"]
+    assert {
+        s.subentry_id: (s.subentry_type, s.title, s.unique_id, dict(s.data))
+        for s in entry.subentries.values()
+    } == {
+        s["subentry_id"]: (s["subentry_type"], s["title"], s["unique_id"], s["data"])
+        for s in old["subentries"]
+    }
+    for item in old["restored"]:
+        assert hass.states.get(item["entity_id"]).state == item["state"], item["entity_id"]
+    assert hass.states.get("event.plant_alarms").attributes["event_type"] == "Overheat"
+    assert hass.states.get("cover.plant_shutter").attributes["current_position"] == 50
