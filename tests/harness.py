@@ -109,6 +109,7 @@ def flow_entry(hass: HomeAssistant, flow_sim: S7SmartSimulator) -> MockConfigEnt
         title="Boiler house PLC",
         data=sim_data(flow_sim),
         unique_id=f"{flow_sim.host}:{flow_sim.port}",
+        version=2,
     )
     entry.add_to_hass(hass)
     return entry

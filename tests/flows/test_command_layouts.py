@@ -23,9 +23,8 @@ from custom_components.plc_bridge.model.config_file import dump_config
 from custom_components.plc_bridge.model.point_table import export_points, parse_points
 from custom_components.plc_bridge.plc import Point
 from custom_components.plc_bridge.plc.vendors import client_class
-from simulators.s7_smart import S7SmartSimulator
 from simulators.softplc import SoftplcSimulator
-from tests.entries import PointData, call, point, sim_data
+from tests.entries import PointData, call, point
 from tests.flows.forms import MACHINE, error_message, step, strings_at
 from tests.harness import make_softplc_entry, softplc_data
 from tests.test_config_file import CONFIG, paste
@@ -37,14 +36,6 @@ SMART = client_class("s7_smart")
 COMMAND = point("cmd", "Lamp", "switch", "B3:3/0", "BOOL")
 STATE = point("state", "Lamp on", "binary_sensor", "B3:3/1", "BOOL", read_only=True)
 """The usual SoftPLC layout: a command bit beside a read-only state bit, in one B3 word."""
-
-
-@pytest.fixture
-def smart_entry(hass: HomeAssistant, flow_sim: S7SmartSimulator) -> MockConfigEntry:
-    """An S7-200 SMART entry without machines (not set up)."""
-    entry = MockConfigEntry(domain=DOMAIN, data=sim_data(flow_sim), version=2)
-    entry.add_to_hass(hass)
-    return entry
 
 
 @pytest.fixture
@@ -87,10 +78,10 @@ async def composite(hass: HomeAssistant, entry: MockConfigEntry, platform: str) 
 
 
 async def test_command_part_never_read_only(
-    hass: HomeAssistant, smart_entry: MockConfigEntry
+    hass: HomeAssistant, flow_entry: MockConfigEntry
 ) -> None:
     """Ticking "Read only" on a cover's open command is refused on that field; nothing stored."""
-    result = await composite(hass, smart_entry, "cover")
+    result = await composite(hass, flow_entry, "cover")
     result = await step(hass, result, {"open": "Q0.4", "closed_limit": "I0.1"})
     assert result["description_placeholders"]["role"] == "open"
     result = await step(hass, result, {"read_only": True})
@@ -100,24 +91,24 @@ async def test_command_part_never_read_only(
     assert result["description_placeholders"]["role"] == "closed_limit"
     result = await step(hass, result, {"read_only": True})
     assert result["type"] is FlowResultType.MENU
-    assert machines(smart_entry) == []
+    assert machines(flow_entry) == []
 
 
 async def test_set_point_part_never_read_only(
-    hass: HomeAssistant, smart_entry: MockConfigEntry
+    hass: HomeAssistant, flow_entry: MockConfigEntry
 ) -> None:
     """A climate's target temperature is written to command an output: never read only."""
-    result = await composite(hass, smart_entry, "climate")
+    result = await composite(hass, flow_entry, "climate")
     result = await step(hass, result, {"target_temperature": "VW40"})
     result = await step(hass, result, {"scale": 1, "offset": 0, "read_only": True})
     assert result["errors"] == {"read_only": "command_read_only"}
 
 
 async def test_button_never_read_only_and_without_poll_class(
-    hass: HomeAssistant, smart_entry: MockConfigEntry
+    hass: HomeAssistant, flow_entry: MockConfigEntry
 ) -> None:
     """A button's form offers no poll class and refuses "Read only"; its data has no class."""
-    result = await step(hass, await menu_of(hass, smart_entry), {"next_step_id": "point"})
+    result = await step(hass, await menu_of(hass, flow_entry), {"next_step_id": "point"})
     where = {"name": "Bell", "platform": "button", "address": "Q0.5", "data_type": "signed"}
     result = await step(hass, result, where)
     assert result["step_id"] == "details"
@@ -126,7 +117,7 @@ async def test_button_never_read_only_and_without_poll_class(
     assert result["errors"] == {"read_only": "command_read_only"}
     menu = await step(hass, result, {"read_only": False, "pulse": 0.5})
     await step(hass, menu, {"next_step_id": "save"})
-    (bell,) = machines(smart_entry)
+    (bell,) = machines(flow_entry)
     assert bell["pulse"] == 0.5
     assert "poll" not in bell
 
@@ -150,10 +141,10 @@ def test_table_refuses_read_only_commands_and_classed_buttons() -> None:
 
 
 async def test_travel_time_on_the_cover_form(
-    hass: HomeAssistant, smart_entry: MockConfigEntry
+    hass: HomeAssistant, flow_entry: MockConfigEntry
 ) -> None:
     """A cover's travel time is bounded on its field, then stored on every part and exported."""
-    result = await composite(hass, smart_entry, "cover")
+    result = await composite(hass, flow_entry, "cover")
     assert "travel_time" in fields(result)
     parts = {"open": "Q0.4", "close": "Q0.5", "closed_limit": "I0.1"}
     result = await step(hass, result, {**parts, "travel_time": 700})
@@ -162,7 +153,7 @@ async def test_travel_time_on_the_cover_form(
     for _part in parts:
         result = await step(hass, result, {"read_only": _part == "closed_limit"})
     await step(hass, result, {"next_step_id": "save"})
-    stored = machines(smart_entry)
+    stored = machines(flow_entry)
     assert {data["travel_time"] for data in stored} == {25.0}
     table = export_points(stored)
     assert table.splitlines()[0].endswith(",travel_time")
@@ -172,11 +163,11 @@ async def test_travel_time_on_the_cover_form(
 
 
 async def test_travel_time_asked_of_covers_and_valves_only(
-    hass: HomeAssistant, smart_entry: MockConfigEntry
+    hass: HomeAssistant, flow_entry: MockConfigEntry
 ) -> None:
     """A fan's parts form has no travel time; a valve's has."""
-    assert "travel_time" not in fields(await composite(hass, smart_entry, "fan"))
-    assert "travel_time" in fields(await composite(hass, smart_entry, "valve"))
+    assert "travel_time" not in fields(await composite(hass, flow_entry, "fan"))
+    assert "travel_time" in fields(await composite(hass, flow_entry, "valve"))
 
 
 def test_table_travel_time_bounded_and_shared() -> None:
@@ -317,27 +308,27 @@ async def test_pasted_file_runs_the_same_checks(
 
 
 async def test_edited_part_sets_the_whole_entitys_travel_time(
-    hass: HomeAssistant, smart_entry: MockConfigEntry
+    hass: HomeAssistant, flow_entry: MockConfigEntry
 ) -> None:
     """Editing one part's travel time changes every part's; out of bounds is refused on it."""
-    result = await composite(hass, smart_entry, "valve")
+    result = await composite(hass, flow_entry, "valve")
     result = await step(hass, result, {"open": "Q0.4", "close": "Q0.5", "travel_time": 20})
     result = await step(hass, await step(hass, result, {"read_only": False}), {"read_only": False})
     await step(hass, result, {"next_step_id": "save"})
-    subentry_id = next(iter(smart_entry.subentries))
+    subentry_id = next(iter(flow_entry.subentries))
     menu = await hass.config_entries.subentries.async_init(
-        (smart_entry.entry_id, SUBENTRY_DEVICE),
+        (flow_entry.entry_id, SUBENTRY_DEVICE),
         context={"source": "reconfigure", "subentry_id": subentry_id},
     )
     result = await step(hass, menu, {"next_step_id": "edit"})
-    part = next(iter(smart_entry.subentries[subentry_id].data[CONF_POINTS]))
+    part = next(iter(flow_entry.subentries[subentry_id].data[CONF_POINTS]))
     result = await step(hass, result, {"point": part})
     assert result["step_id"] == "composite_edit"
-    stored = smart_entry.subentries[subentry_id].data[CONF_POINTS][part]
+    stored = flow_entry.subentries[subentry_id].data[CONF_POINTS][part]
     where = {"address": stored["address"], "data_type": stored["data_type"]}
     result = await step(hass, result, {**where, "travel_time": 601})
     assert result["errors"] == {"travel_time": "travel_time_out_of_range"}
     result = await step(hass, result, {**where, "travel_time": 40})
     menu = await step(hass, result, {"read_only": False})
     await step(hass, menu, {"next_step_id": "save"})
-    assert {data["travel_time"] for data in machines(smart_entry)} == {40.0}
+    assert {data["travel_time"] for data in machines(flow_entry)} == {40.0}

@@ -10,22 +10,12 @@ from homeassistant.data_entry_flow import FlowResultType
 import pytest
 from pytest_homeassistant_custom_component.common import MockConfigEntry
 
-from custom_components.plc_bridge.const import CONF_POINTS, DOMAIN, SUBENTRY_DEVICE
-from simulators.s7_smart import S7SmartSimulator
-from tests.entries import sim_data
+from custom_components.plc_bridge.const import CONF_POINTS, SUBENTRY_DEVICE
 from tests.flows.forms import translated
 
 pytestmark = pytest.mark.no_pacing
 
 DEVICE = ("config_subentries", SUBENTRY_DEVICE)
-
-
-@pytest.fixture
-def entry(hass: HomeAssistant, flow_sim: S7SmartSimulator) -> MockConfigEntry:
-    """An S7-200 SMART entry without devices (not set up)."""
-    entry = MockConfigEntry(domain=DOMAIN, data=sim_data(flow_sim), version=2)
-    entry.add_to_hass(hass)
-    return entry
 
 
 async def step(hass: HomeAssistant, result: Any, values: dict[str, Any]) -> Any:
@@ -39,10 +29,10 @@ def fields(result: Any) -> set[str]:
     return {str(marker) for marker in result["data_schema"].schema}
 
 
-async def start(hass: HomeAssistant, entry: MockConfigEntry, platform: str, name: str) -> Any:
+async def start(hass: HomeAssistant, flow_entry: MockConfigEntry, platform: str, name: str) -> Any:
     """Open the device flow and choose an entity of several addresses of this kind."""
     menu = await hass.config_entries.subentries.async_init(
-        (entry.entry_id, SUBENTRY_DEVICE), context={"source": SOURCE_USER}
+        (flow_entry.entry_id, SUBENTRY_DEVICE), context={"source": SOURCE_USER}
     )
     menu = await step(hass, menu, {"name": "Garage"})
     assert "composite" in menu["menu_options"]
@@ -50,9 +40,9 @@ async def start(hass: HomeAssistant, entry: MockConfigEntry, platform: str, name
     return await step(hass, result, {"platform": platform, "name": name})
 
 
-async def test_cover_from_the_menu(hass: HomeAssistant, entry: MockConfigEntry) -> None:
+async def test_cover_from_the_menu(hass: HomeAssistant, flow_entry: MockConfigEntry) -> None:
     """Only the cover's parts are asked, then each part's own settings; all join the machine."""
-    result = await start(hass, entry, "cover", "Door")
+    result = await start(hass, flow_entry, "cover", "Door")
     assert "open" in fields(result)
     assert "target_temperature" not in fields(result)
     result = await step(hass, result, {"position": "AIW16", "open": "IW0"})
@@ -69,7 +59,7 @@ async def test_cover_from_the_menu(hass: HomeAssistant, entry: MockConfigEntry) 
     result = await step(hass, result, {"pulse": 1.5, "read_only": False})
     assert result["type"] is FlowResultType.MENU
     result = await step(hass, result, {"next_step_id": "save"})
-    (device,) = entry.subentries.values()
+    (device,) = flow_entry.subentries.values()
     parts = {data["role"]: data for data in device.data[CONF_POINTS].values()}
     assert set(parts) == {"position", "open", "stop"}
     assert {data["name"] for data in parts.values()} == {"Door"}
@@ -78,9 +68,11 @@ async def test_cover_from_the_menu(hass: HomeAssistant, entry: MockConfigEntry) 
     assert parts["stop"]["pulse"] == 1.5
 
 
-async def test_climate_needs_a_part_that_shows(hass: HomeAssistant, entry: MockConfigEntry) -> None:
+async def test_climate_needs_a_part_that_shows(
+    hass: HomeAssistant, flow_entry: MockConfigEntry
+) -> None:
     """An entity of an action map alone shows nothing: the form says which parts it needs."""
-    result = await start(hass, entry, "climate", "Boiler")
+    result = await start(hass, flow_entry, "climate", "Boiler")
     result = await step(hass, result, {"hvac_action": "VW56"})
     assert result["errors"] == {"base": "role_missing"}
     result = await step(hass, result, {"hvac_mode": "VW54"})
@@ -90,17 +82,17 @@ async def test_climate_needs_a_part_that_shows(hass: HomeAssistant, entry: MockC
     assert result["type"] is FlowResultType.MENU
 
 
-async def test_edit_a_part(hass: HomeAssistant, entry: MockConfigEntry) -> None:
+async def test_edit_a_part(hass: HomeAssistant, flow_entry: MockConfigEntry) -> None:
     """Editing a part asks its address and settings again, keeps its role and its entity."""
-    result = await start(hass, entry, "switch", "Hall")
+    result = await start(hass, flow_entry, "switch", "Hall")
     result = await step(hass, result, {"state": "Q0.3", "command": "M1.1"})
     result = await step(hass, result, {"invert": False, "read_only": True})
     menu = await step(hass, result, {"pulse": 0.5, "read_only": False})
-    points = await saved(hass, entry, menu)
+    points = await saved(hass, flow_entry, menu)
     (command,) = (pid for pid, data in points.items() if data["role"] == "command")
     menu = await hass.config_entries.subentries.async_init(
-        (entry.entry_id, SUBENTRY_DEVICE),
-        context={"source": "reconfigure", "subentry_id": next(iter(entry.subentries))},
+        (flow_entry.entry_id, SUBENTRY_DEVICE),
+        context={"source": "reconfigure", "subentry_id": next(iter(flow_entry.subentries))},
     )
     result = await step(hass, menu, {"next_step_id": "edit"})
     result = await step(hass, result, {"point": command})
@@ -108,14 +100,14 @@ async def test_edit_a_part(hass: HomeAssistant, entry: MockConfigEntry) -> None:
     result = await step(hass, result, {"address": "M1.1"})  # its own address is not taken
     assert result["step_id"] == "composite_part"
     menu = await step(hass, result, {"read_only": False})
-    points = await saved(hass, entry, menu)
+    points = await saved(hass, flow_entry, menu)
     assert "pulse" not in points[command]
     assert points[command]["role"] == "command"
     assert len({data["entity"] for data in points.values()}) == 1
 
 
-async def saved(hass: HomeAssistant, entry: MockConfigEntry, menu: Any) -> dict[str, Any]:
+async def saved(hass: HomeAssistant, flow_entry: MockConfigEntry, menu: Any) -> dict[str, Any]:
     """Save the machine from its menu; return its stored points."""
     await step(hass, menu, {"next_step_id": "save"})
-    (device,) = entry.subentries.values()
+    (device,) = flow_entry.subentries.values()
     return dict(device.data[CONF_POINTS])

@@ -10,22 +10,12 @@ from homeassistant.data_entry_flow import FlowResultType
 import pytest
 from pytest_homeassistant_custom_component.common import MockConfigEntry
 
-from custom_components.plc_bridge.const import CONF_POINTS, DOMAIN, SUBENTRY_DEVICE
-from simulators.s7_smart import S7SmartSimulator
-from tests.entries import sim_data
+from custom_components.plc_bridge.const import CONF_POINTS, SUBENTRY_DEVICE
 from tests.flows.forms import translated
 
 pytestmark = pytest.mark.no_pacing
 
 DEVICE = ("config_subentries", SUBENTRY_DEVICE)
-
-
-@pytest.fixture
-def entry(hass: HomeAssistant, flow_sim: S7SmartSimulator) -> MockConfigEntry:
-    """An S7-200 SMART entry without devices (not set up)."""
-    entry = MockConfigEntry(domain=DOMAIN, data=sim_data(flow_sim), version=2)
-    entry.add_to_hass(hass)
-    return entry
 
 
 async def step(hass: HomeAssistant, result: Any, values: dict[str, Any]) -> Any:
@@ -39,9 +29,11 @@ def fields(result: Any) -> set[str]:
     return {str(marker) for marker in result["data_schema"].schema}
 
 
-async def test_select_button_and_alarm_word(hass: HomeAssistant, entry: MockConfigEntry) -> None:
+async def test_select_button_and_alarm_word(
+    hass: HomeAssistant, flow_entry: MockConfigEntry
+) -> None:
     menu = await hass.config_entries.subentries.async_init(
-        (entry.entry_id, SUBENTRY_DEVICE), context={"source": SOURCE_USER}
+        (flow_entry.entry_id, SUBENTRY_DEVICE), context={"source": SOURCE_USER}
     )
     menu = await step(hass, menu, {"name": "Boiler"})
 
@@ -69,7 +61,7 @@ async def test_select_button_and_alarm_word(hass: HomeAssistant, entry: MockConf
 
     result = await step(hass, menu, {"next_step_id": "save"})
     assert result["type"] is FlowResultType.CREATE_ENTRY
-    (device,) = entry.subentries.values()
+    (device,) = flow_entry.subentries.values()
     points = {data["name"]: data for data in device.data[CONF_POINTS].values()}
     assert points["Mode"]["value_map"] == "0=Off;1=Auto;2=Manual"
     assert points["Start"]["pulse"] == 0.5

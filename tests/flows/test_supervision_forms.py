@@ -10,7 +10,7 @@ from custom_components.plc_bridge.const import DOMAIN
 from custom_components.plc_bridge.model.config_file import dump_config
 from custom_components.plc_bridge.model.point_table import export_points, parse_points
 from simulators.s7_smart import S7SmartSimulator
-from tests.entries import make_entry, point, sim_data
+from tests.entries import make_entry, point
 from tests.flows.forms import step, strings_at
 from tests.flows.test_command_layouts import SMART, composite, fields, key_only, machines
 from tests.test_config_file import CONFIG, paste
@@ -18,19 +18,11 @@ from tests.test_config_file import CONFIG, paste
 pytestmark = pytest.mark.no_pacing
 
 
-@pytest.fixture
-def smart_entry(hass: HomeAssistant, flow_sim: S7SmartSimulator) -> MockConfigEntry:
-    """An S7-200 SMART entry without machines (not set up)."""
-    entry = MockConfigEntry(domain=DOMAIN, data=sim_data(flow_sim), version=2)
-    entry.add_to_hass(hass)
-    return entry
-
-
 async def test_supervision_on_the_switch_form(
-    hass: HomeAssistant, smart_entry: MockConfigEntry
+    hass: HomeAssistant, flow_entry: MockConfigEntry
 ) -> None:
     """Bounded on its field, then stored on every part, exported and read back from the table."""
-    result = await composite(hass, smart_entry, "switch")
+    result = await composite(hass, flow_entry, "switch")
     assert "supervision" in fields(result)
     parts = {"state": "I0.1", "command": "Q0.4"}
     result = await step(hass, result, {**parts, "supervision": 700})
@@ -39,7 +31,7 @@ async def test_supervision_on_the_switch_form(
     for part in parts:
         result = await step(hass, result, {"read_only": part == "state"})
     await step(hass, result, {"next_step_id": "save"})
-    stored = machines(smart_entry)
+    stored = machines(flow_entry)
     assert {data["supervision"] for data in stored} == {10.0}
     table = export_points(stored)
     assert "supervision" in table.splitlines()[0].split(",")
@@ -53,10 +45,10 @@ async def test_supervision_on_the_switch_form(
     [("light", True), ("fan", True), ("climate", True), ("cover", False), ("valve", False)],
 )
 async def test_supervision_asked_of_supervised_kinds_only(
-    hass: HomeAssistant, smart_entry: MockConfigEntry, platform: str, offered: bool
+    hass: HomeAssistant, flow_entry: MockConfigEntry, platform: str, offered: bool
 ) -> None:
     """Lights, fans and climates are asked; covers and valves have their travel time."""
-    assert ("supervision" in fields(await composite(hass, smart_entry, platform))) is offered
+    assert ("supervision" in fields(await composite(hass, flow_entry, platform))) is offered
 
 
 def test_table_supervision_bounded_and_shared() -> None:
