@@ -25,6 +25,7 @@ from pytest_homeassistant_custom_component.common import (
 from custom_components.plc_bridge.config_flow import PlcBridgeConfigFlow
 from custom_components.plc_bridge.const import CONF_POINTS, DOMAIN, SUBENTRY_DEVICE
 from simulators.s7_smart import DEFAULT_PASSWORD, DEFAULT_USER, S7SmartSimulator
+from tests.entries import ENTRY_ID, POINTS, UNIQUE_ID, add_entry, legacy_point, sim_data
 from tests.test_snapshots import VALUES
 
 pytestmark = pytest.mark.no_pacing
@@ -188,3 +189,78 @@ async def test_upgrade_from_0_9(
         assert hass.states.get(item["entity_id"]).state == item["state"], item["entity_id"]
     assert hass.states.get("event.plant_alarms").attributes["event_type"] == "Overheat"
     assert hass.states.get("cover.plant_shutter").attributes["current_position"] == 50
+
+
+def legacy_entry(hass: HomeAssistant, sim: S7SmartSimulator) -> MockConfigEntry:
+    """Add an entry stored as version 1 did: one point per subentry, the PLC's device shared."""
+    return add_entry(
+        hass,
+        title="S7-200 SMART",
+        entry_id=ENTRY_ID,
+        unique_id=UNIQUE_ID,
+        data=sim_data(sim),
+        subentries=[legacy_point(item) for item in POINTS],
+        version=1,
+    )
+
+
+async def test_migration_keeps_entities(
+    hass: HomeAssistant,
+    s7_smart_ha_sim: S7SmartSimulator,
+    entity_registry: er.EntityRegistry,
+    device_registry: dr.DeviceRegistry,
+) -> None:
+    """Version 1 points move into one device: unique ids, entity ids and names unchanged."""
+    entry = legacy_entry(hass, s7_smart_ha_sim)
+    plc = device_registry.async_get_or_create(
+        config_entry_id=entry.entry_id, identifiers={(DOMAIN, ENTRY_ID)}, name="S7-200 SMART"
+    )
+    stored: dict[str, Any] = {}
+    for point_id, data in POINTS:
+        platform = data["platform"]
+        registered = entity_registry.async_get_or_create(
+            platform,
+            DOMAIN,
+            f"{ENTRY_ID}_{point_id}",
+            config_entry=entry,
+            config_subentry_id=point_id,
+            device_id=plc.id,
+            suggested_object_id=f"my_{point_id}",
+            original_name=data["name"],
+        )
+        stored[registered.entity_id] = registered.unique_id
+    assert await hass.config_entries.async_setup(entry.entry_id)
+    await hass.async_block_till_done()
+    assert entry.version == 2
+    (device,) = entry.subentries.values()
+    assert device.subentry_type == SUBENTRY_DEVICE
+    assert device.title == "S7-200 SMART points"  # told apart from the PLC's own device
+    assert set(device.data[CONF_POINTS]) == {point_id for point_id, _ in POINTS}
+    for entity_id, unique_id in stored.items():
+        registered = entity_registry.async_get(entity_id)
+        assert registered is not None, entity_id
+        assert registered.unique_id == unique_id
+        assert registered.config_subentry_id == device.subentry_id
+        assert hass.states.get(entity_id) is not None
+    assert hass.states.get("sensor.my_temperature").state == "21.5"
+    assert hass.states.get("sensor.my_temperature").name == "S7-200 SMART points Temperature"
+    names = [d.name for d in dr.async_entries_for_config_entry(dr.async_get(hass), entry.entry_id)]
+    assert sorted(names) == ["S7-200 SMART", "S7-200 SMART points"]
+    assert device_registry.async_get(plc.id) is not None
+
+
+async def test_newer_version_is_refused(
+    hass: HomeAssistant, s7_smart_ha_sim: S7SmartSimulator
+) -> None:
+    """An entry from a newer release is not set up (and not changed)."""
+    entry = add_entry(
+        hass,
+        title="x",
+        entry_id=ENTRY_ID,
+        unique_id=UNIQUE_ID,
+        data=sim_data(s7_smart_ha_sim),
+        points=[],
+    )
+    hass.config_entries.async_update_entry(entry, version=3)
+    assert not await hass.config_entries.async_setup(entry.entry_id)
+    assert entry.state is ConfigEntryState.MIGRATION_ERROR
