@@ -324,6 +324,13 @@ async def tecomat_entry(
     await unload_all(hass)
 
 
+@pytest.fixture
+async def tecomat_basic_ha_sim(hass: HomeAssistant) -> AsyncGenerator[TecomatSimulator]:
+    """A started Tecomat simulator taking Basic authentication over plain HTTP."""
+    async with serving(hass, TecomatSimulator(auth="basic", bench=0)) as sim:
+        yield sim
+
+
 # PLCnext
 
 PLCNEXT_ENTRY_ID = "01JPLCBR1DGE00000000PLCNEXT"
@@ -997,13 +1004,6 @@ async def wait(hass: HomeAssistant, freezer: FrozenDateTimeFactory, seconds: flo
     freezer.tick(timedelta(seconds=seconds))
     async_fire_time_changed(hass)
     await hass.async_block_till_done(wait_background_tasks=True)
-
-
-@pytest.fixture
-async def tecomat_basic_ha_sim(hass: HomeAssistant) -> AsyncGenerator[TecomatSimulator]:
-    """A started Tecomat simulator taking Basic authentication over plain HTTP."""
-    async with serving(hass, TecomatSimulator(auth="basic", bench=0)) as sim:
-        yield sim
 
 
 OUTPUT_FAMILIES = ("s7_smart", "tecomat")
