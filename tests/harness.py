@@ -499,6 +499,19 @@ def make_logo_entry(
     )
 
 
+@pytest.fixture(params=["0ba7", "0ba8", "8_x"])
+async def logo_ha_sim(
+    request: pytest.FixtureRequest, hass: HomeAssistant
+) -> AsyncGenerator[LogoSimulator]:
+    """A LOGO! of each generation on loopback, serving its default server TSAP.
+
+    Afterwards every entry is unloaded, the LOGO! stopped, and no snap7 thread may stay.
+    """
+    async with serving(hass, LogoSimulator(request.param)) as sim:
+        yield sim
+    no_snap7_thread_left()
+
+
 def fill_logo(sim: LogoSimulator) -> None:
     """Put the values of LOGO_POINTS into the LOGO!."""
     sim.set_block("I1", True)

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from collections.abc import AsyncGenerator, Callable
+from collections.abc import Callable
 from typing import Any
 
 import aiohttp
@@ -30,11 +30,11 @@ FOUND = {"0ba7": "0ba7", "0ba8": "0ba8", "8_x": "0ba8"}  # a LOGO! 8.x serves 0B
 
 LOGO_PORT = client_class("logo").default_port  # 102: the probe's port, as the page suggests it
 
-type Ports = Callable[..., None]
+type Probes = Callable[..., None]
 
 
 @pytest.fixture
-def ports(monkeypatch: pytest.MonkeyPatch, unused_tcp_port_factory: Callable[[], int]) -> Ports:
+def probes(monkeypatch: pytest.MonkeyPatch, unused_tcp_port_factory: Callable[[], int]) -> Probes:
     """Probe every interface on a port nothing listens on; a test moves some to its simulator.
 
     The probes themselves run unchanged; only the port each is handed is replaced.
@@ -62,13 +62,6 @@ def ports(monkeypatch: pytest.MonkeyPatch, unused_tcp_port_factory: Callable[[],
     return move
 
 
-@pytest.fixture(params=list(FOUND))
-async def logo(request: pytest.FixtureRequest) -> AsyncGenerator[LogoSimulator]:
-    """A LOGO! of each generation, serving its default server TSAP, on loopback."""
-    async with running(LogoSimulator(request.param)) as sim:
-        yield sim
-
-
 async def dhcp(hass: HomeAssistant, mac: str = SIEMENS_MAC) -> Any:
     """Start the flow Home Assistant starts for a DHCP sighting of the MAC at 127.0.0.1."""
     info = DhcpServiceInfo(ip="127.0.0.1", hostname="logo", macaddress=mac.replace(":", ""))
@@ -87,7 +80,7 @@ async def submit(hass: HomeAssistant, result: Any, values: dict[str, Any]) -> An
 
 @pytest.mark.usefixtures("mock_setup_entry")
 async def test_logo_offered_and_added(
-    hass: HomeAssistant, ports: Ports, logo: LogoSimulator
+    hass: HomeAssistant, probes: Probes, logo_ha_sim: LogoSimulator
 ) -> None:
     """S7 and LOGO! probed on the LOGO!'s port 102: only LOGO! answers, its pages filled in.
 
@@ -95,45 +88,45 @@ async def test_logo_offered_and_added(
     generation whose server TSAP answered, the next page that generation's TSAPs; the entry
     notes the MAC. (The probes are handed the simulator's port in place of 102.)
     """
-    ports(s7=logo.port, logo=logo.port)
+    probes(s7=logo_ha_sim.port, logo=logo_ha_sim.port)
     result = await dhcp(hass)
     assert result["step_id"] == "discovery_confirm"
     assert result["description_placeholders"] == {"family": "Siemens", "host": "127.0.0.1"}
     assert not result["data_schema"].schema  # one family answered: nothing to choose
-    assert logo.calls["setup"] == 0  # the probes send no S7 job
+    assert logo_ha_sim.calls["setup"] == 0  # the probes send no S7 job
 
     result = await submit(hass, result, {})
     assert result["step_id"] == "connection_logo"
-    generation = FOUND[logo.generation]
+    generation = FOUND[logo_ha_sim.generation]
     wanted = {CONF_HOST: "127.0.0.1", CONF_PORT: LOGO_PORT, "generation": generation}
     assert {field: suggested(result, field) for field in wanted} == wanted
 
     result = await submit(
-        hass, result, wanted | {CONF_PORT: logo.port, "generation": logo.generation}
+        hass, result, wanted | {CONF_PORT: logo_ha_sim.port, "generation": logo_ha_sim.generation}
     )
-    assert result["step_id"] == f"logo_{logo.generation}"
-    local, remote = DEFAULT_TSAPS[logo.generation]
+    assert result["step_id"] == f"logo_{logo_ha_sim.generation}"
+    local, remote = DEFAULT_TSAPS[logo_ha_sim.generation]
     assert (suggested(result, "local_tsap"), suggested(result, "remote_tsap")) == (local, remote)
     result = await submit(hass, result, {"local_tsap": local, "remote_tsap": remote})
     assert result["type"] is FlowResultType.CREATE_ENTRY
     assert result["data"][CONF_VENDOR] == "logo"
     assert result["data"][CONF_MAC] == SIEMENS_MAC
     assert result["data"][CONF_OPTIONS] == {
-        "generation": logo.generation,
+        "generation": logo_ha_sim.generation,
         "local_tsap": local,
         "remote_tsap": remote,
     }
 
 
 @pytest.mark.parametrize("where", ["nothing", "other_tsap"])
-async def test_nothing_answers_as_a_logo(hass: HomeAssistant, ports: Ports, where: str) -> None:
+async def test_nothing_answers_as_a_logo(hass: HomeAssistant, probes: Probes, where: str) -> None:
     """Nothing on port 102, or a LOGO! serving only a TSAP of the user's own: aborted.
 
     A connection configured with other TSAPs cannot be found without its TSAP (READINGS row 1).
     """
     async with running(LogoSimulator("0ba8", server_tsaps={0x2100})) as sim:
         if where == "other_tsap":
-            ports(s7=sim.port, logo=sim.port)
+            probes(s7=sim.port, logo=sim.port)
         result = await dhcp(hass)
         assert result["type"] is FlowResultType.ABORT
         assert result["reason"] == "no_interface"
