@@ -43,7 +43,9 @@ POINTS = [
 
 
 @pytest.fixture
-async def entry(hass: HomeAssistant, s7_smart_ha_sim: S7SmartSimulator) -> MockConfigEntry:
+async def switches_and_lights(
+    hass: HomeAssistant, s7_smart_ha_sim: S7SmartSimulator
+) -> MockConfigEntry:
     """The simulator's entry with plain and two-address switches and lights, set up."""
     s7_smart_ha_sim.set("VW60", 13824)
     s7_smart_ha_sim.set("VW62", 40)
@@ -71,7 +73,7 @@ async def test_level_command(
     hass: HomeAssistant,
     freezer: FrozenDateTimeFactory,
     s7_smart_ha_sim: S7SmartSimulator,
-    entry: MockConfigEntry,
+    switches_and_lights: MockConfigEntry,
 ) -> None:
     """The state is read from one address, the command written to another; plain stays."""
     assert hass.states.get("switch.s7_200_smart_plain") is not None
@@ -90,7 +92,7 @@ async def test_impulse_relay(
     hass: HomeAssistant,
     freezer: FrozenDateTimeFactory,
     s7_smart_ha_sim: S7SmartSimulator,
-    entry: MockConfigEntry,
+    switches_and_lights: MockConfigEntry,
 ) -> None:
     """A pulse is sent only when the state differs from the one asked for."""
     await act(hass, SWITCH_DOMAIN, SERVICE_TURN_ON, "hall")
@@ -128,7 +130,7 @@ async def test_dimmable_light(
     hass: HomeAssistant,
     freezer: FrozenDateTimeFactory,
     s7_smart_ha_sim: S7SmartSimulator,
-    entry: MockConfigEntry,
+    switches_and_lights: MockConfigEntry,
 ) -> None:
     """Brightness through the range; a pulse command toggles only a light that is off."""
     state = hass.states.get("light.s7_200_smart_lamp")
@@ -148,7 +150,7 @@ async def test_dimmable_light(
 
 
 async def test_dimmer_without_command(
-    hass: HomeAssistant, s7_smart_ha_sim: S7SmartSimulator, entry: MockConfigEntry
+    hass: HomeAssistant, s7_smart_ha_sim: S7SmartSimulator, switches_and_lights: MockConfigEntry
 ) -> None:
     """A light of a brightness alone is on above 0 %, and switches by its brightness."""
     state = hass.states.get("light.s7_200_smart_dimmer")

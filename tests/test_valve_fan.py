@@ -52,7 +52,7 @@ POINTS = [
 
 
 @pytest.fixture
-async def entry(hass: HomeAssistant, s7_smart_ha_sim: S7SmartSimulator) -> MockConfigEntry:
+async def valves_and_fan(hass: HomeAssistant, s7_smart_ha_sim: S7SmartSimulator) -> MockConfigEntry:
     """The simulator's entry with two valves and a fan, set up."""
     s7_smart_ha_sim.set("VW80", 6912)
     s7_smart_ha_sim.set("I1.0", True)
@@ -75,7 +75,7 @@ async def test_valves(
     hass: HomeAssistant,
     freezer: FrozenDateTimeFactory,
     s7_smart_ha_sim: S7SmartSimulator,
-    entry: MockConfigEntry,
+    valves_and_fan: MockConfigEntry,
 ) -> None:
     """A valve with a position; a valve with open and close commands and a closed limit."""
     mixer = hass.states.get("valve.s7_200_smart_mixer")
@@ -96,7 +96,7 @@ async def test_fan(
     hass: HomeAssistant,
     freezer: FrozenDateTimeFactory,
     s7_smart_ha_sim: S7SmartSimulator,
-    entry: MockConfigEntry,
+    valves_and_fan: MockConfigEntry,
 ) -> None:
     """On and off by command, state read back, speed and presets written."""
     vent = hass.states.get("fan.s7_200_smart_vent")
