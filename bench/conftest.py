@@ -6,7 +6,7 @@ import pytest
 
 from custom_components.plc_bridge.plc.vendors.s7_smart import S7SmartClient
 
-pytest_plugins = ["tests.ha_fixtures"]
+pytest_plugins = ["tests.entries", "tests.harness"]
 
 
 @pytest.fixture(autouse=True)

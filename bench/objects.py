@@ -50,7 +50,7 @@ from homeassistant.helpers.update_coordinator import DataUpdateCoordinator
 
 from bench.against import tree_with
 from custom_components.plc_bridge.const import DOMAIN
-from tests.ha_fixtures import PointData, device, point
+from tests.entries import PointData, device, point
 
 ROOT = Path(__file__).resolve().parent.parent
 MACHINES = 10

@@ -25,7 +25,7 @@ from custom_components.plc_bridge.const import CONF_POINTS
 from custom_components.plc_bridge.plc import Point
 from custom_components.plc_bridge.plc.vendors.s7_smart import S7SmartClient
 from simulators.s7_smart import S7SmartSimulator
-from tests.ha_fixtures import DEVICE_ID, PointData, make_entry, point, set_points
+from tests.entries import DEVICE_ID, PointData, make_entry, point, set_points
 
 POINTS = int(os.environ.get("BENCH_EDIT_POINTS", "1000"))
 PACING = float(os.environ.get("BENCH_EDIT_PACING", "1.0"))

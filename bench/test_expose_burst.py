@@ -8,9 +8,9 @@ fewest requests the vendor allows).
 
 from __future__ import annotations
 
+from collections.abc import AsyncGenerator
 from dataclasses import replace
 import json
-from typing import Any
 
 from freezegun.api import FrozenDateTimeFactory
 from homeassistant.core import HomeAssistant
@@ -18,11 +18,7 @@ import pytest
 
 from custom_components.plc_bridge.plc import Point
 from custom_components.plc_bridge.plc.vendors import client_class, implemented
-from tests.expose_fixtures import VENDORS, VendorCase, burst
-from tests.plcnext_ha_fixtures import plcnext_sim  # noqa: F401  (fixtures by name)
-from tests.s7_ha_fixtures import s7_ha_sim, s7_ha_sims  # noqa: F401
-from tests.softplc_ha_fixtures import softplc_sim  # noqa: F401
-from tests.tecomat_ha_fixtures import tecomat_sim  # noqa: F401
+from tests.harness import FAMILIES, PlcUnderTest, burst, started
 
 
 @pytest.fixture(autouse=True)
@@ -32,31 +28,34 @@ def no_vendor_pacing(monkeypatch: pytest.MonkeyPatch) -> None:
         monkeypatch.setattr(client_class(vendor), "request_interval", 0.0)
 
 
-SMART_40 = replace(VENDORS[0], burst=[(f"VW{600 + 2 * i}", "signed") for i in range(40)])
+FORTY = [(f"VW{600 + 2 * i}", "signed") for i in range(40)]
 """Forty exposes on the S7-200 SMART: more than one request's 32 nodes."""
 
 
-@pytest.fixture(params=[*VENDORS, SMART_40], ids=lambda case: f"{case.vendor}-{len(case.burst)}")
-def case(request: pytest.FixtureRequest) -> tuple[VendorCase, Any]:
-    """Each vendor, with its simulator started (time frozen until its entries are unloaded)."""
-    vendor: VendorCase = request.param
-    return vendor, request.getfixturevalue(vendor.sim)
+@pytest.fixture(params=[*FAMILIES, "s7_smart-40"])
+async def every_plc(
+    request: pytest.FixtureRequest, hass: HomeAssistant, freezer: FrozenDateTimeFactory
+) -> AsyncGenerator[PlcUnderTest]:
+    """Each family's PLC with its ten exposes, and an S7-200 SMART with forty."""
+    key, _, forty = request.param.partition("-")
+    async with started(hass, key) as plc:
+        yield replace(plc, family=replace(plc.family, burst=FORTY)) if forty else plc
 
 
 async def test_expose_burst(
-    hass: HomeAssistant, freezer: FrozenDateTimeFactory, case: tuple[VendorCase, Any]
+    hass: HomeAssistant, freezer: FrozenDateTimeFactory, every_plc: PlcUnderTest
 ) -> None:
     """Change every exposed entity at once; count the write requests the PLC serves."""
-    vendor, sim = case
-    entry, cost = await burst(hass, freezer, vendor, sim)
+    plc = every_plc
+    entry, cost = await burst(hass, freezer, plc)
     client = entry.runtime_data.client
     result = {
         "check": "expose_burst",
-        "vendor": vendor.vendor,
+        "vendor": plc.vendor,
         "exposes": len(cost.sent),
         "write_requests": cost.writes,
         "requests": cost.requests,
-        "minimum": client.planned_requests([Point(*target) for target in vendor.burst]),
+        "minimum": client.planned_requests([Point(*target) for target in plc.family.burst]),
         "written": sum(held == sent for held, sent in zip(cost.held, cost.sent, strict=True)),
     }
     print("\nBENCH " + json.dumps(result))

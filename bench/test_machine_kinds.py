@@ -13,7 +13,7 @@ from freezegun.api import FrozenDateTimeFactory
 from homeassistant.core import HomeAssistant
 
 from simulators.s7_smart import S7SmartSimulator
-from tests.ha_fixtures import make_entry, point, poll
+from tests.entries import make_entry, point, poll
 
 POLLS = 3
 KINDS = "a climate, a cover, a select and an alarm word"
@@ -33,20 +33,20 @@ MACHINE = [
 
 
 async def test_machine_kinds(
-    hass: HomeAssistant, freezer: FrozenDateTimeFactory, s7_smart_sim: S7SmartSimulator
+    hass: HomeAssistant, freezer: FrozenDateTimeFactory, s7_smart_ha_sim: S7SmartSimulator
 ) -> None:
     """Poll the machine a few times; its requests per poll equal the plan of its addresses."""
     for address, value in (("VW50", 215), ("VW52", 220), ("VW54", 1), ("VW30", 1), ("VW70", 0)):
-        s7_smart_sim.set(address, value)
-    entry = make_entry(hass, s7_smart_sim, MACHINE)
+        s7_smart_ha_sim.set(address, value)
+    entry = make_entry(hass, s7_smart_ha_sim, MACHINE)
     assert await hass.config_entries.async_setup(entry.entry_id)
     await hass.async_block_till_done()
     await poll(hass, freezer)  # the first poll after setup may still fill in values
     per_poll: list[int] = []
     for _ in range(POLLS):
-        before = s7_smart_sim.requests
+        before = s7_smart_ha_sim.requests
         await poll(hass, freezer)
-        per_poll.append(s7_smart_sim.requests - before)
+        per_poll.append(s7_smart_ha_sim.requests - before)
     runtime = entry.runtime_data
     values = runtime.coordinator.data.values
     result = {

@@ -24,7 +24,7 @@ from bench.objects import (
     tracked_types,
 )
 from simulators.s7_smart import S7SmartSimulator
-from tests.ha_fixtures import ENTRY_ID, UNIQUE_ID, add_entry, poll, sim_data
+from tests.entries import ENTRY_ID, UNIQUE_ID, add_entry, poll, sim_data
 
 POINTS = int(os.environ.get("BENCH_POINTS", "10"))
 TRACE = os.environ.get("BENCH_TRACE", "") == "1"
@@ -32,7 +32,7 @@ TRACE = os.environ.get("BENCH_TRACE", "") == "1"
 
 
 async def test_objects(
-    hass: HomeAssistant, freezer: FrozenDateTimeFactory, s7_smart_sim: S7SmartSimulator
+    hass: HomeAssistant, freezer: FrozenDateTimeFactory, s7_smart_ha_sim: S7SmartSimulator
 ) -> None:
     """Set the machines up, restart them, poll, and print the figures as one BENCH line.
 
@@ -44,7 +44,7 @@ async def test_objects(
         title="Empty",
         entry_id="01JPLCBR1DGE00000000EMPTY0",
         unique_id="plc-bridge-empty",
-        data=sim_data(s7_smart_sim),
+        data=sim_data(s7_smart_ha_sim),
     )
     assert await hass.config_entries.async_setup(empty.entry_id)
     await poll(hass, freezer)
@@ -60,7 +60,7 @@ async def test_objects(
         title="S7-200 SMART",
         entry_id=ENTRY_ID,
         unique_id=UNIQUE_ID,
-        data=sim_data(s7_smart_sim),
+        data=sim_data(s7_smart_ha_sim),
         subentries=machines(POINTS),
     )
     assert await hass.config_entries.async_setup(entry.entry_id)

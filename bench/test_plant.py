@@ -34,7 +34,7 @@ import pytest
 from custom_components.plc_bridge.const import CONF_FINGERPRINT, CONF_OPTIONS, CONF_TLS, CONF_VENDOR
 from custom_components.plc_bridge.coordinator import PlcCoordinator
 from custom_components.plc_bridge.plc.vendors.s7_smart import S7SmartClient
-from tests.ha_fixtures import add_entry, device, point
+from tests.entries import add_entry, device, point
 
 PLCS = int(os.environ.get("BENCH_PLCS", "10"))
 POINTS = int(os.environ.get("BENCH_POINTS", "1000"))

@@ -20,18 +20,18 @@ from homeassistant.helpers.entity import Entity
 
 from custom_components.plc_bridge.const import DOMAIN
 from simulators.s7_smart import S7SmartSimulator
-from tests.ha_fixtures import make_entry, point, poll
+from tests.entries import make_entry, point, poll
 
 POINTS = int(os.environ.get("BENCH_QUIET_POINTS", "100"))
 POLLS = 3
 
 
 async def test_quiet_poll(
-    hass: HomeAssistant, freezer: FrozenDateTimeFactory, s7_smart_sim: S7SmartSimulator
+    hass: HomeAssistant, freezer: FrozenDateTimeFactory, s7_smart_ha_sim: S7SmartSimulator
 ) -> None:
     """Unchanged values: no state_changed event; count the state writes Home Assistant does."""
     points = [point(f"p{i}", f"Point {i}", "sensor", f"VD{4 * i}", "float") for i in range(POINTS)]
-    entry = make_entry(hass, s7_smart_sim, points)
+    entry = make_entry(hass, s7_smart_ha_sim, points)
     assert await hass.config_entries.async_setup(entry.entry_id)
     await hass.async_block_till_done()
     registry = er.async_get(hass)
@@ -62,7 +62,7 @@ async def test_quiet_poll(
     with patch.object(Entity, "async_write_ha_state", counting_write):
         await poll(hass, freezer, POLLS)
     unsubscribe()
-    requests = s7_smart_sim.requests
+    requests = s7_smart_ha_sim.requests
     result = {
         "check": "quiet_poll",
         "vendor": "s7_smart",

@@ -14,7 +14,7 @@ from homeassistant.core import HomeAssistant
 from homeassistant.helpers import device_registry as dr
 
 from simulators.s7_smart import S7SmartSimulator
-from tests.ha_fixtures import plant_entry
+from tests.entries import plant_entry
 
 DEVICES = 10
 PER_DEVICE = 100
@@ -25,12 +25,12 @@ def wall() -> float:
     return time.clock_gettime(time.CLOCK_MONOTONIC_RAW)
 
 
-async def test_setup_time(hass: HomeAssistant, s7_smart_sim: S7SmartSimulator) -> None:
+async def test_setup_time(hass: HomeAssistant, s7_smart_ha_sim: S7SmartSimulator) -> None:
     """Set the PLC up; every point's state written and available; print the figures.
 
     The fixture freezes the clock (the clients pace by it), so the time is taken from another.
     """
-    entry = plant_entry(hass, s7_smart_sim, DEVICES, PER_DEVICE)
+    entry = plant_entry(hass, s7_smart_ha_sim, DEVICES, PER_DEVICE)
     started = wall()
     assert await hass.config_entries.async_setup(entry.entry_id)
     await hass.async_block_till_done()

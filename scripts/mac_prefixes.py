@@ -4,7 +4,7 @@ Usage: .venv/bin/python scripts/mac_prefixes.py path/to/oui.txt [--table]
 The registry text is the one the `netaddr` package ships (`netaddr/eui/oui.txt`); it is used
 while developing only. Without --table this prints the manifest's `dhcp` list; with --table the
 `MAC_PREFIXES` table of custom_components/plc_bridge/flows/mac_prefixes.py.
-tests/test_discovery_matchers.py checks both against a committed excerpt of the registry, so
+tests/flows/test_discovery_matchers.py checks both against a committed excerpt of the registry, so
 neither can drift from this script.
 """
 

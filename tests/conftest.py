@@ -17,14 +17,7 @@ from syrupy.assertion import SnapshotAssertion
 
 from custom_components.plc_bridge.plc.vendors import client_class, implemented
 
-pytest_plugins = [
-    "tests.flow_fixtures",
-    "tests.ha_fixtures",
-    "tests.tecomat_ha_fixtures",
-    "tests.s7_ha_fixtures",
-    "tests.plcnext_ha_fixtures",
-    "tests.softplc_ha_fixtures",
-]
+pytest_plugins = ["tests.flows.forms", "tests.entries", "tests.harness"]
 
 
 @pytest.fixture(autouse=True)

@@ -19,9 +19,8 @@ import yaml
 from custom_components.plc_bridge.const import DOMAIN
 from custom_components.plc_bridge.plc.vendors import client_class, implemented
 from simulators.s7_smart import S7SmartSimulator
-
-from .flow_fixtures import strings_at
-from .ha_fixtures import call
+from tests.entries import call
+from tests.flows.forms import strings_at
 
 pytestmark = pytest.mark.no_pacing
 
@@ -58,16 +57,16 @@ def test_fields_have_selectors(action: str) -> None:
 
 
 async def test_write_one_point_from_fields(
-    hass: HomeAssistant, s7_smart_sim: S7SmartSimulator, setup_integration: MockConfigEntry
+    hass: HomeAssistant, s7_smart_ha_sim: S7SmartSimulator, setup_integration: MockConfigEntry
 ) -> None:
     """Address, data type and value as the form sends them write that one point."""
     await call(hass, "write", setup_integration, address="VW30", data_type="signed", value=-5)
-    assert s7_smart_sim.calls["write"] == 1
-    assert s7_smart_sim.get("VW30") == -5
+    assert s7_smart_ha_sim.calls["write"] == 1
+    assert s7_smart_ha_sim.get("VW30") == -5
 
 
 async def test_read_one_point_from_fields(
-    hass: HomeAssistant, s7_smart_sim: S7SmartSimulator, setup_integration: MockConfigEntry
+    hass: HomeAssistant, s7_smart_ha_sim: S7SmartSimulator, setup_integration: MockConfigEntry
 ) -> None:
     """Address and data type as the form sends them read that one point."""
     response = await call(hass, "read", setup_integration, address="VD100", data_type="float")
@@ -96,7 +95,7 @@ async def test_read_one_point_from_fields(
 )
 async def test_one_point_or_a_list(
     hass: HomeAssistant,
-    s7_smart_sim: S7SmartSimulator,
+    s7_smart_ha_sim: S7SmartSimulator,
     setup_integration: MockConfigEntry,
     *,
     action: str,
@@ -104,12 +103,12 @@ async def test_one_point_or_a_list(
     key: str,
 ) -> None:
     """Both, neither or a point lacking a field: refused with a clear message, nothing sent."""
-    before = dict(s7_smart_sim.calls)
+    before = dict(s7_smart_ha_sim.calls)
     with pytest.raises(ServiceValidationError) as err:
         await call(hass, action, setup_integration, **data)
     assert err.value.translation_key == key
     message = strings_at("exceptions", key, "message")
     assert str(err.value) == message.format(**(err.value.translation_placeholders or {}))
-    assert s7_smart_sim.calls.get("write", 0) == before.get("write", 0)
-    assert s7_smart_sim.calls.get("read", 0) == before.get("read", 0)
-    assert s7_smart_sim.get("VW30") == 0
+    assert s7_smart_ha_sim.calls.get("write", 0) == before.get("write", 0)
+    assert s7_smart_ha_sim.calls.get("read", 0) == before.get("read", 0)
+    assert s7_smart_ha_sim.get("VW30") == 0

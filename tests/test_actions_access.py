@@ -11,8 +11,7 @@ from custom_components.plc_bridge.const import DOMAIN
 from custom_components.plc_bridge.model.point_table import parse_points, point_order
 from custom_components.plc_bridge.plc.vendors.s7_smart import S7SmartClient
 from simulators.s7_smart import S7SmartSimulator
-
-from .ha_fixtures import POINTS, call, make_entry, point
+from tests.entries import POINTS, call, make_entry, point
 
 pytestmark = pytest.mark.no_pacing
 
@@ -67,18 +66,18 @@ async def test_read_for_administrators(
 
 
 async def test_write_to_a_read_only_point_refused(
-    hass: HomeAssistant, s7_smart_sim: S7SmartSimulator
+    hass: HomeAssistant, s7_smart_ha_sim: S7SmartSimulator
 ) -> None:
     """The write action refuses an address a read-only point names; nothing is sent."""
     points = [*POINTS, point("locked", "Locked", "sensor", "VW50", "signed", read_only=True)]
-    entry = make_entry(hass, s7_smart_sim, points)
+    entry = make_entry(hass, s7_smart_ha_sim, points)
     assert await hass.config_entries.async_setup(entry.entry_id)
-    before = s7_smart_sim.calls["write"]
+    before = s7_smart_ha_sim.calls["write"]
     with pytest.raises(ServiceValidationError, match="VW50 is a read-only point"):
         await call(
             hass, "write", entry, points=[{"address": "vw50", "data_type": "signed", "value": 3}]
         )
-    assert s7_smart_sim.calls["write"] == before
+    assert s7_smart_ha_sim.calls["write"] == before
 
 
 async def test_read_action_leaves_the_poll_alone(

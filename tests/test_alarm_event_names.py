@@ -22,8 +22,7 @@ from pytest_homeassistant_custom_component.common import (
 from custom_components.plc_bridge import logbook
 from custom_components.plc_bridge.const import DOMAIN, EVENT_ALARM
 from simulators.s7_smart import S7SmartSimulator
-
-from .ha_fixtures import make_entry, point
+from tests.entries import make_entry, point
 
 pytestmark = pytest.mark.no_pacing
 
@@ -40,10 +39,10 @@ async def set_up(hass: HomeAssistant, sim: S7SmartSimulator) -> MockConfigEntry:
 
 
 async def test_event_types_name_the_alarms(
-    hass: HomeAssistant, s7_smart_sim: S7SmartSimulator
+    hass: HomeAssistant, s7_smart_ha_sim: S7SmartSimulator
 ) -> None:
     """The word offers a raised and a cleared event type per named bit, in the bits' order."""
-    await set_up(hass, s7_smart_sim)
+    await set_up(hass, s7_smart_ha_sim)
     assert hass.states.get(ALARMS).attributes[ATTR_EVENT_TYPES] == [
         "Overheat raised",
         "Overheat cleared",
@@ -53,10 +52,10 @@ async def test_event_types_name_the_alarms(
 
 
 async def test_automation_triggered_by_one_alarm(
-    hass: HomeAssistant, s7_smart_sim: S7SmartSimulator
+    hass: HomeAssistant, s7_smart_ha_sim: S7SmartSimulator
 ) -> None:
     """An automation on `Low water raised` runs for that alarm only, with its data."""
-    entry = await set_up(hass, s7_smart_sim)
+    entry = await set_up(hass, s7_smart_ha_sim)
     calls: list[ServiceCall] = async_mock_service(hass, "test", "alarm")
     assert await async_setup_component(
         hass,
@@ -80,35 +79,37 @@ async def test_automation_triggered_by_one_alarm(
             }
         },
     )
-    s7_smart_sim.set("VW70", 0b0001)  # Overheat
+    s7_smart_ha_sim.set("VW70", 0b0001)  # Overheat
     await entry.runtime_data.coordinator.async_refresh()
     await hass.async_block_till_done()
     assert calls == []
-    s7_smart_sim.set("VW70", 0b1001)  # and Low water
+    s7_smart_ha_sim.set("VW70", 0b1001)  # and Low water
     await entry.runtime_data.coordinator.async_refresh()
     await hass.async_block_till_done()
     assert [call.data for call in calls] == [{"name": "Low water", "bit": 3, "change": "raised"}]
 
 
-async def test_word_without_names(hass: HomeAssistant, s7_smart_sim: S7SmartSimulator) -> None:
+async def test_word_without_names(hass: HomeAssistant, s7_smart_ha_sim: S7SmartSimulator) -> None:
     """A word whose bits have no names keeps the generic types and fires nothing."""
     point_id, data = WORD
     entry = make_entry(
-        hass, s7_smart_sim, [(point_id, {k: v for k, v in data.items() if k != "bits"})]
+        hass, s7_smart_ha_sim, [(point_id, {k: v for k, v in data.items() if k != "bits"})]
     )
     assert await hass.config_entries.async_setup(entry.entry_id)
     await hass.async_block_till_done()
     assert hass.states.get(ALARMS).attributes[ATTR_EVENT_TYPES] == ["raised", "cleared"]
 
 
-async def test_logbook_names_the_alarm(hass: HomeAssistant, s7_smart_sim: S7SmartSimulator) -> None:
+async def test_logbook_names_the_alarm(
+    hass: HomeAssistant, s7_smart_ha_sim: S7SmartSimulator
+) -> None:
     """Each change is fired on the bus; the logbook writes it as the alarm's name and change,
     on the alarm word's entity, in Home Assistant's language."""
-    entry = await set_up(hass, s7_smart_sim)
+    entry = await set_up(hass, s7_smart_ha_sim)
     fired = async_capture_events(hass, EVENT_ALARM)
-    s7_smart_sim.set("VW70", 0b1000)  # Low water
+    s7_smart_ha_sim.set("VW70", 0b1000)  # Low water
     await entry.runtime_data.coordinator.async_refresh()
-    s7_smart_sim.set("VW70", 0b0000)
+    s7_smart_ha_sim.set("VW70", 0b0000)
     await entry.runtime_data.coordinator.async_refresh()
     await hass.async_block_till_done()
     assert [event.data for event in fired] == [

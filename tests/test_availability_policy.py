@@ -27,11 +27,10 @@ from custom_components.plc_bridge.model.availability import (
 from custom_components.plc_bridge.model.config_file import dump_config
 from custom_components.plc_bridge.model.point_table import export_points, parse_points
 from simulators.s7_smart import S7SmartSimulator
-
-from .flow_fixtures import smart_data, step, strings_at
-from .ha_fixtures import add_entry, device, make_entry, point, poll, sim_data
-from .test_command_layouts import SMART, key_only, machines
-from .test_config_file import CONFIG, paste
+from tests.entries import add_entry, device, make_entry, point, poll, sim_data
+from tests.flows.forms import step, strings_at
+from tests.flows.test_command_layouts import SMART, key_only, machines
+from tests.test_config_file import CONFIG, paste
 
 pytestmark = pytest.mark.no_pacing
 
@@ -102,11 +101,11 @@ def last_read(hass: HomeAssistant) -> dict[str, Any]:
 
 
 async def test_each_policy_with_the_plc_away(
-    hass: HomeAssistant, s7_smart_sim: S7SmartSimulator, freezer: FrozenDateTimeFactory
+    hass: HomeAssistant, s7_smart_ha_sim: S7SmartSimulator, freezer: FrozenDateTimeFactory
 ) -> None:
     """PLC away: plc and data_valid unavailable, keep shows its last value and when it was read."""
-    hold(s7_smart_sim, 10)
-    entry = plant(hass, s7_smart_sim)
+    hold(s7_smart_ha_sim, 10)
+    entry = plant(hass, s7_smart_ha_sim)
     assert await hass.config_entries.async_setup(entry.entry_id)
     await hass.async_block_till_done()
     await poll(hass, freezer)
@@ -121,7 +120,7 @@ async def test_each_policy_with_the_plc_away(
     }
     assert last_read(hass) == {}
 
-    await s7_smart_sim.stop()
+    await s7_smart_ha_sim.stop()
     await poll(hass, freezer, 2)
     assert states(hass) == {
         "temperature": STATE_UNAVAILABLE,
@@ -133,9 +132,9 @@ async def test_each_policy_with_the_plc_away(
     }
     assert last_read(hass) == {"level": read_at, "burner": read_at, "hours": read_at}
 
-    hold(s7_smart_sim, 20)
-    s7_smart_sim.set("I0.3", False)
-    await s7_smart_sim.start(s7_smart_sim.host, s7_smart_sim.port)
+    hold(s7_smart_ha_sim, 20)
+    s7_smart_ha_sim.set("I0.3", False)
+    await s7_smart_ha_sim.start(s7_smart_ha_sim.host, s7_smart_ha_sim.port)
     await poll(hass, freezer)
     assert states(hass) == {
         "temperature": "20",
@@ -149,15 +148,15 @@ async def test_each_policy_with_the_plc_away(
 
 
 async def test_each_policy_with_data_not_valid(
-    hass: HomeAssistant, s7_smart_sim: S7SmartSimulator, freezer: FrozenDateTimeFactory
+    hass: HomeAssistant, s7_smart_ha_sim: S7SmartSimulator, freezer: FrozenDateTimeFactory
 ) -> None:
     """Data-valid address says not valid: only its followers (the default there) unavailable."""
-    hold(s7_smart_sim, 10)
-    entry = plant(hass, s7_smart_sim)
+    hold(s7_smart_ha_sim, 10)
+    entry = plant(hass, s7_smart_ha_sim)
     assert await hass.config_entries.async_setup(entry.entry_id)
     await hass.async_block_till_done()
-    s7_smart_sim.set("M0.0", 0)
-    s7_smart_sim.set("VW6", 31)
+    s7_smart_ha_sim.set("M0.0", 0)
+    s7_smart_ha_sim.set("VW6", 31)
     await poll(hass, freezer, 2)
     assert states(hass) == {
         "temperature": STATE_UNAVAILABLE,
@@ -213,7 +212,7 @@ def test_table_column() -> None:
 @pytest.fixture
 def smart_entry(hass: HomeAssistant, flow_sim: S7SmartSimulator) -> MockConfigEntry:
     """An S7-200 SMART entry without machines (not set up)."""
-    entry = MockConfigEntry(domain=DOMAIN, data=smart_data(flow_sim), version=2)
+    entry = MockConfigEntry(domain=DOMAIN, data=sim_data(flow_sim), version=2)
     entry.add_to_hass(hass)
     return entry
 

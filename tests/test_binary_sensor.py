@@ -11,9 +11,8 @@ from pytest_homeassistant_custom_component.common import MockConfigEntry, snapsh
 from syrupy.assertion import SnapshotAssertion
 
 from simulators.s7_smart import S7SmartSimulator
-
-from .conftest import current_release_only
-from .ha_fixtures import poll
+from tests.conftest import current_release_only
+from tests.entries import poll
 
 pytestmark = pytest.mark.no_pacing
 
@@ -36,11 +35,11 @@ async def test_snapshot(
 
 async def test_follows_the_input(
     hass: HomeAssistant,
-    s7_smart_sim: S7SmartSimulator,
+    s7_smart_ha_sim: S7SmartSimulator,
     setup_integration: MockConfigEntry,
     freezer: FrozenDateTimeFactory,
 ) -> None:
     assert hass.states.get("binary_sensor.s7_200_smart_door").state == STATE_ON
-    s7_smart_sim.set("I0.0", False)
+    s7_smart_ha_sim.set("I0.0", False)
     await poll(hass, freezer)
     assert hass.states.get("binary_sensor.s7_200_smart_door").state == STATE_OFF

@@ -28,8 +28,7 @@ import pytest
 from pytest_homeassistant_custom_component.common import MockConfigEntry
 
 from simulators.s7_smart import S7SmartSimulator
-
-from .ha_fixtures import make_entry, point, poll
+from tests.entries import make_entry, point, poll
 
 pytestmark = pytest.mark.no_pacing
 
@@ -74,11 +73,11 @@ BOILER_ID = "climate.s7_200_smart_boiler"
 
 
 @pytest.fixture
-def boiler_sim(s7_smart_sim: S7SmartSimulator) -> S7SmartSimulator:
+def boiler_sim(s7_smart_ha_sim: S7SmartSimulator) -> S7SmartSimulator:
     """The simulator holding a boiler at 21.5 °C, set to 20 °C, heating."""
     for address, value in (("VW50", 215), ("VW52", 200), ("VW54", 1), ("VW56", 1)):
-        s7_smart_sim.set(address, value)
-    return s7_smart_sim
+        s7_smart_ha_sim.set(address, value)
+    return s7_smart_ha_sim
 
 
 async def set_up(hass: HomeAssistant, sim: S7SmartSimulator, points: list[Any]) -> MockConfigEntry:

@@ -36,19 +36,28 @@ from custom_components.plc_bridge.runtime.connection import create_client
 from simulators.plcnext import DEFAULT_PASSWORD as PLCNEXT_PASSWORD
 from simulators.s7_smart import DEFAULT_PASSWORD as SMART_PASSWORD
 from simulators.tecomat import DEFAULT_PASSWORD as TECOMAT_PASSWORD
-
-from .expose_fixtures import add_expose, settle
-from .flow_fixtures import suggested, translated
-from .ha_fixtures import POINTS, PointData, add_entry, device, sim_data
-from .plcnext_ha_fixtures import PLCNEXT_POINTS, plcnext_data
-from .s7_ha_fixtures import S7_POINTS, S7_TITLE, fill, s7_data
-from .softplc_ha_fixtures import SOFTPLC_POINTS, pem_pair, softplc_data
-from .tecomat_ha_fixtures import TECOMAT_POINTS, tecomat_data
-from .test_cover import SHUTTER as SMART_COVER
-from .test_plcnext_composite import POINTS as PLCNEXT_FAN
-from .test_s7_composite import POINTS as S7_GATE
-from .test_softplc_composite import POINTS as SOFTPLC_LIGHT
-from .test_tecomat_composite import POINTS as TECOMAT_ROOM
+from tests.entries import POINTS, PointData, add_entry, device, sim_data
+from tests.flows.forms import suggested, translated
+from tests.harness import (
+    PLCNEXT_POINTS,
+    S7_POINTS,
+    S7_TITLE,
+    SOFTPLC_POINTS,
+    TECOMAT_POINTS,
+    add_expose,
+    fill,
+    pem_pair,
+    plcnext_data,
+    s7_data,
+    settle,
+    softplc_data,
+    tecomat_data,
+)
+from tests.test_cover import SHUTTER as SMART_COVER
+from tests.test_plcnext_composite import POINTS as PLCNEXT_FAN
+from tests.test_s7_composite import POINTS as S7_GATE
+from tests.test_softplc_composite import POINTS as SOFTPLC_LIGHT
+from tests.test_tecomat_composite import POINTS as TECOMAT_ROOM
 
 pytestmark = pytest.mark.no_pacing
 
@@ -69,7 +78,7 @@ class Vendor:
 
 VENDORS = {
     "s7_smart": Vendor(
-        "s7_smart_sim",
+        "s7_smart_ha_sim",
         "S7-200 SMART",
         lambda sim, _: sim_data(sim),
         POINTS,
@@ -77,7 +86,7 @@ VENDORS = {
         lambda _: {CONF_PASSWORD: SMART_PASSWORD},
     ),
     "tecomat": Vendor(
-        "tecomat_sim",
+        "tecomat_ha_sim",
         "Fx2 CP2080",
         lambda sim, _: tecomat_data(sim),
         TECOMAT_POINTS,
@@ -85,7 +94,7 @@ VENDORS = {
         lambda _: {CONF_PASSWORD: TECOMAT_PASSWORD},
     ),
     "plcnext": Vendor(
-        "plcnext_sim",
+        "plcnext_ha_sim",
         "PLCnext",
         lambda sim, _: plcnext_data(sim),
         PLCNEXT_POINTS,
@@ -93,7 +102,7 @@ VENDORS = {
         lambda _: {CONF_PASSWORD: PLCNEXT_PASSWORD},
     ),
     "softplc": Vendor(
-        "softplc_sim",
+        "softplc_ha_sim",
         "SoftPLC",
         lambda sim, secrets: softplc_data(sim, vendor_options=secrets),
         SOFTPLC_POINTS,
@@ -256,7 +265,7 @@ async def test_round_trip(hass: HomeAssistant, vendor_sim: tuple[Vendor, Any]) -
 
 
 async def test_round_trip_carries_exposes_and_poll_classes(
-    hass: HomeAssistant, s7_smart_sim: Any, freezer: FrozenDateTimeFactory
+    hass: HomeAssistant, s7_smart_ha_sim: Any, freezer: FrozenDateTimeFactory
 ) -> None:
     """An expose, points of each poll class and the classes' intervals come back as they were."""
     vendor = VENDORS["s7_smart"]
@@ -270,8 +279,8 @@ async def test_round_trip_carries_exposes_and_poll_classes(
         hass,
         title=vendor.title,
         entry_id="01JPLCBR1DGE000000ORIGINAL",
-        unique_id=await flow_unique_id(hass, sim_data(s7_smart_sim)),
-        data=sim_data(s7_smart_sim),
+        unique_id=await flow_unique_id(hass, sim_data(s7_smart_ha_sim)),
+        data=sim_data(s7_smart_ha_sim),
         subentries=[device(classed, subentry_id="plain", title=vendor.title)],
     )
     hass.config_entries.async_update_entry(
@@ -280,24 +289,24 @@ async def test_round_trip_carries_exposes_and_poll_classes(
     add_expose(hass, entry, "sensor.outdoor", ("VD200", "float"), **{CONF_SEND_ON_START: True})
     assert await hass.config_entries.async_setup(entry.entry_id)
     await settle(hass, freezer)
-    assert s7_smart_sim.get("VD200", "float") == pytest.approx(21.5)
+    assert s7_smart_ha_sim.get("VD200", "float") == pytest.approx(21.5)
     kept = contents(entry)
     text = await export(hass, entry)
     assert "sensor.outdoor" in text
     assert await hass.config_entries.async_remove(entry.entry_id)
     await hass.async_block_till_done()
-    s7_smart_sim.set("VD200", 0.0, "float")
+    s7_smart_ha_sim.set("VD200", 0.0, "float")
     result = await paste(hass, text)
-    result = await confirm(hass, result, vendor.secrets(s7_smart_sim))
+    result = await confirm(hass, result, vendor.secrets(s7_smart_ha_sim))
     assert result["type"] is FlowResultType.CREATE_ENTRY
     await settle(hass, freezer)
     new = result["result"]
     (expose,) = [s for s in new.subentries.values() if s.subentry_type == SUBENTRY_EXPOSE]
     assert expose.data[CONF_SEND] is False  # pasted: sends nothing until turned on
     assert contents(new)[:3] == kept[:3]
-    assert s7_smart_sim.get("VD200", "float") == 0.0
+    assert s7_smart_ha_sim.get("VD200", "float") == 0.0
     sending = {key: value for key, value in expose.data.items() if key != CONF_SEND}
     hass.config_entries.async_update_subentry(new, expose, data=sending)
     await settle(hass, freezer)
     assert contents(new) == kept
-    assert s7_smart_sim.get("VD200", "float") == pytest.approx(21.5)  # turned on: it runs
+    assert s7_smart_ha_sim.get("VD200", "float") == pytest.approx(21.5)  # turned on: it runs

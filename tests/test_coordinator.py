@@ -17,8 +17,7 @@ from pytest_homeassistant_custom_component.common import MockConfigEntry
 from custom_components.plc_bridge.const import DOMAIN
 from custom_components.plc_bridge.plc.vendors.s7_smart import S7SmartClient
 from simulators.s7_smart import DEFAULT_USER, S7SmartSimulator
-
-from .ha_fixtures import make_entry, point, poll
+from tests.entries import make_entry, point, poll
 
 pytestmark = pytest.mark.no_pacing
 
@@ -34,41 +33,41 @@ def words(count: int) -> list:
 @pytest.mark.parametrize("count", [1, 32, 33, 100])
 async def test_one_read_per_32_points(
     hass: HomeAssistant,
-    s7_smart_sim: S7SmartSimulator,
+    s7_smart_ha_sim: S7SmartSimulator,
     freezer: FrozenDateTimeFactory,
     count: int,
 ) -> None:
-    entry = make_entry(hass, s7_smart_sim, words(count))
+    entry = make_entry(hass, s7_smart_ha_sim, words(count))
     assert await hass.config_entries.async_setup(entry.entry_id)
-    before = s7_smart_sim.calls["read"]
+    before = s7_smart_ha_sim.calls["read"]
     await poll(hass, freezer)
-    assert s7_smart_sim.calls["read"] - before == math.ceil(count / 32)
+    assert s7_smart_ha_sim.calls["read"] - before == math.ceil(count / 32)
     assert entry.runtime_data.client.metrics.last_poll_requests == math.ceil(count / 32)
     # and the operating mode and the clock drift
     assert len(hass.states.async_entity_ids("sensor")) == count + 2
 
 
 async def test_points_read_once(
-    hass: HomeAssistant, s7_smart_sim: S7SmartSimulator, freezer: FrozenDateTimeFactory
+    hass: HomeAssistant, s7_smart_ha_sim: S7SmartSimulator, freezer: FrozenDateTimeFactory
 ) -> None:
     """Two entities of one address are one node: 33 entities, 32 addresses, one request."""
     twin = point("twin", "Twin", "sensor", "VW0", "signed")
-    entry = make_entry(hass, s7_smart_sim, [*words(32), twin])
+    entry = make_entry(hass, s7_smart_ha_sim, [*words(32), twin])
     assert await hass.config_entries.async_setup(entry.entry_id)
-    before = s7_smart_sim.calls["read"]
+    before = s7_smart_ha_sim.calls["read"]
     await poll(hass, freezer)
-    assert s7_smart_sim.calls["read"] - before == 1
+    assert s7_smart_ha_sim.calls["read"] - before == 1
 
 
 async def test_failing_point_alone_unavailable_logged_once(
     hass: HomeAssistant,
-    s7_smart_sim: S7SmartSimulator,
+    s7_smart_ha_sim: S7SmartSimulator,
     setup_integration: MockConfigEntry,
     freezer: FrozenDateTimeFactory,
     caplog: pytest.LogCaptureFixture,
 ) -> None:
     caplog.set_level(logging.INFO)
-    s7_smart_sim.v_size = 150  # a smaller CPU: VB200 and VD300 are outside its V memory
+    s7_smart_ha_sim.v_size = 150  # a smaller CPU: VB200 and VD300 are outside its V memory
     await poll(hass, freezer, times=3)
     assert hass.states.get("sensor.s7_200_smart_label").state == STATE_UNAVAILABLE
     assert hass.states.get("sensor.s7_200_smart_raw").state == STATE_UNAVAILABLE
@@ -79,7 +78,7 @@ async def test_failing_point_alone_unavailable_logged_once(
     assert warnings[0].levelno == logging.WARNING
     assert "the PLC has no such address (code 3004)" in warnings[0].getMessage()
 
-    s7_smart_sim.v_size = 20480
+    s7_smart_ha_sim.v_size = 20480
     await poll(hass, freezer, times=2)
     assert hass.states.get("sensor.s7_200_smart_label").state == "Line 1"
     assert len([r for r in caplog.records if "VB200 (string) can be read again" in r.message]) == 1
@@ -87,17 +86,17 @@ async def test_failing_point_alone_unavailable_logged_once(
 
 async def test_unavailable_while_plc_restarts(
     hass: HomeAssistant,
-    s7_smart_sim: S7SmartSimulator,
+    s7_smart_ha_sim: S7SmartSimulator,
     setup_integration: MockConfigEntry,
     freezer: FrozenDateTimeFactory,
 ) -> None:
-    await s7_smart_sim.stop()
+    await s7_smart_ha_sim.stop()
     await poll(hass, freezer)
     assert hass.states.get("sensor.s7_200_smart_temperature").state == STATE_UNAVAILABLE
     assert hass.states.get("sensor.s7_200_smart_operating_mode").state == STATE_UNAVAILABLE
 
-    s7_smart_sim.set("VD100", 22.0, "float")
-    await s7_smart_sim.start(s7_smart_sim.host, s7_smart_sim.port)
+    s7_smart_ha_sim.set("VD100", 22.0, "float")
+    await s7_smart_ha_sim.start(s7_smart_ha_sim.host, s7_smart_ha_sim.port)
     await poll(hass, freezer)
     assert hass.states.get("sensor.s7_200_smart_temperature").state == "22.0"
     assert hass.states.get("sensor.s7_200_smart_operating_mode").state == "run"
@@ -105,7 +104,7 @@ async def test_unavailable_while_plc_restarts(
 
 async def test_session_conflict_issue(
     hass: HomeAssistant,
-    s7_smart_sim: S7SmartSimulator,
+    s7_smart_ha_sim: S7SmartSimulator,
     setup_integration: MockConfigEntry,
     freezer: FrozenDateTimeFactory,
     issue_registry: ir.IssueRegistry,
@@ -113,7 +112,7 @@ async def test_session_conflict_issue(
     """Another client logging in with the same user ends our session before every poll."""
     issue_id = f"session_conflict_{setup_integration.entry_id}"
     for _ in range(3):
-        s7_smart_sim.invalidate_tokens()
+        s7_smart_ha_sim.invalidate_tokens()
         await poll(hass, freezer)
     assert hass.states.get("sensor.s7_200_smart_temperature").state == "21.5"
     assert setup_integration.runtime_data.client.metrics.session_renewals == 3
@@ -127,12 +126,12 @@ async def test_session_conflict_issue(
 
 async def test_auth_failure_while_polling_starts_reauth(
     hass: HomeAssistant,
-    s7_smart_sim: S7SmartSimulator,
+    s7_smart_ha_sim: S7SmartSimulator,
     setup_integration: MockConfigEntry,
     freezer: FrozenDateTimeFactory,
 ) -> None:
-    s7_smart_sim._hashes[DEFAULT_USER] = hashlib.sha512(b"changed").hexdigest()
-    s7_smart_sim.invalidate_tokens()
+    s7_smart_ha_sim._hashes[DEFAULT_USER] = hashlib.sha512(b"changed").hexdigest()
+    s7_smart_ha_sim.invalidate_tokens()
     await poll(hass, freezer)
     assert hass.states.get("sensor.s7_200_smart_temperature").state == STATE_UNAVAILABLE
     flows = setup_integration.async_get_active_flows(hass, {SOURCE_REAUTH})
@@ -141,11 +140,11 @@ async def test_auth_failure_while_polling_starts_reauth(
 
 async def test_malformed_reply_makes_poll_fail(
     hass: HomeAssistant,
-    s7_smart_sim: S7SmartSimulator,
+    s7_smart_ha_sim: S7SmartSimulator,
     setup_integration: MockConfigEntry,
     freezer: FrozenDateTimeFactory,
 ) -> None:
-    s7_smart_sim.malformed = True
+    s7_smart_ha_sim.malformed = True
     await poll(hass, freezer)
     coordinator = setup_integration.runtime_data.coordinator
     assert not coordinator.last_update_success
@@ -162,14 +161,14 @@ async def test_malformed_reply_makes_poll_fail(
 )
 async def test_poll_interval(
     hass: HomeAssistant,
-    s7_smart_sim: S7SmartSimulator,
+    s7_smart_ha_sim: S7SmartSimulator,
     monkeypatch: pytest.MonkeyPatch,
     options: dict[str, float],
     pace: tuple[float, float],
 ) -> None:
     """The interval: the user's, else the vendor's default, never faster than its pacing."""
     request_interval, expected = pace
-    entry = make_entry(hass, s7_smart_sim, words(100))
+    entry = make_entry(hass, s7_smart_ha_sim, words(100))
     hass.config_entries.async_update_entry(entry, options=options)
     # Only the coordinator's arithmetic is under test: no request is made at this pace.
     monkeypatch.setattr(

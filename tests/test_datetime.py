@@ -18,9 +18,8 @@ from pytest_homeassistant_custom_component.common import MockConfigEntry, snapsh
 from syrupy.assertion import SnapshotAssertion
 
 from simulators.s7_smart import S7SmartSimulator
-
-from .conftest import current_release_only
-from .ha_fixtures import poll
+from tests.conftest import current_release_only
+from tests.entries import poll
 
 pytestmark = pytest.mark.no_pacing
 
@@ -45,7 +44,7 @@ async def test_snapshot(
 
 
 async def test_set_clock_point(
-    hass: HomeAssistant, s7_smart_sim: S7SmartSimulator, setup_integration: MockConfigEntry
+    hass: HomeAssistant, s7_smart_ha_sim: S7SmartSimulator, setup_integration: MockConfigEntry
 ) -> None:
     """The value is written in the PLC's local time (Home Assistant's zone: US/Pacific)."""
     await hass.services.async_call(
@@ -54,14 +53,14 @@ async def test_set_clock_point(
         {ATTR_ENTITY_ID: CLOCK, ATTR_DATETIME: datetime(2026, 7, 4, 18, 0, tzinfo=UTC)},
         blocking=True,
     )
-    assert s7_smart_sim.clock == datetime(2026, 7, 4, 11, 0)
+    assert s7_smart_ha_sim.clock == datetime(2026, 7, 4, 11, 0)
     assert hass.states.get(CLOCK).state == "2026-07-04T18:00:00+00:00"
 
 
 @pytest.mark.usefixtures("entity_registry_enabled_by_default")
 async def test_plc_clock_entity(
     hass: HomeAssistant,
-    s7_smart_sim: S7SmartSimulator,
+    s7_smart_ha_sim: S7SmartSimulator,
     setup_integration: MockConfigEntry,
     freezer: FrozenDateTimeFactory,
 ) -> None:
@@ -74,8 +73,8 @@ async def test_plc_clock_entity(
         {ATTR_ENTITY_ID: plc_clock, ATTR_DATETIME: datetime(2026, 7, 4, 18, 0, tzinfo=UTC)},
         blocking=True,
     )
-    assert s7_smart_sim.clock == datetime(2026, 7, 4, 11, 0)
+    assert s7_smart_ha_sim.clock == datetime(2026, 7, 4, 11, 0)
     assert hass.states.get(plc_clock).state == "2026-07-04T18:00:00+00:00"
-    s7_smart_sim.clock = datetime(2026, 7, 4, 11, 5)
+    s7_smart_ha_sim.clock = datetime(2026, 7, 4, 11, 5)
     await poll(hass, freezer)
     assert hass.states.get(plc_clock).state == "2026-07-04T18:05:00+00:00"

@@ -22,11 +22,9 @@ from pytest_homeassistant_custom_component.common import MockConfigEntry
 from custom_components.plc_bridge.const import SUBENTRY_DEVICE
 from simulators.plcnext import PlcnextSimulator
 from simulators.tecomat import TecomatSimulator
-
-from .flow_fixtures import step
-from .ha_fixtures import point, poll, read_edits, set_up
-from .plcnext_ha_fixtures import make_plcnext_entry
-from .tecomat_ha_fixtures import make_tecomat_entry
+from tests.entries import point, poll, read_edits, set_up
+from tests.flows.forms import step
+from tests.harness import make_plcnext_entry, make_tecomat_entry
 
 sys.path.insert(0, str(Path(__file__).parents[1] / "scripts"))
 from demo_plcs import JOURNEYS  # the demo check's own tables and drives
@@ -63,19 +61,19 @@ def first_of(hass: HomeAssistant, entry: MockConfigEntry, domain: str, name: str
 
 
 async def test_tecomat_demo_machines(
-    hass: HomeAssistant, freezer: FrozenDateTimeFactory, tecomat_sim: TecomatSimulator
+    hass: HomeAssistant, freezer: FrozenDateTimeFactory, tecomat_ha_sim: TecomatSimulator
 ) -> None:
     """The public variables of the Tecomat's demo program hold the machines."""
-    entry = await set_up(hass, make_tecomat_entry(hass, tecomat_sim, [FIRST["tecomat"]]))
-    await drive_machines(hass, freezer, entry, tecomat_sim, "tecomat")
+    entry = await set_up(hass, make_tecomat_entry(hass, tecomat_ha_sim, [FIRST["tecomat"]]))
+    await drive_machines(hass, freezer, entry, tecomat_ha_sim, "tecomat")
 
 
 async def test_plcnext_demo_machines(
-    hass: HomeAssistant, freezer: FrozenDateTimeFactory, plcnext_sim: PlcnextSimulator
+    hass: HomeAssistant, freezer: FrozenDateTimeFactory, plcnext_ha_sim: PlcnextSimulator
 ) -> None:
     """The instance variables of the PLCnext's demo project hold the machines."""
-    entry = await set_up(hass, make_plcnext_entry(hass, plcnext_sim, [FIRST["plcnext"]]))
-    await drive_machines(hass, freezer, entry, plcnext_sim, "plcnext")
+    entry = await set_up(hass, make_plcnext_entry(hass, plcnext_ha_sim, [FIRST["plcnext"]]))
+    await drive_machines(hass, freezer, entry, plcnext_ha_sim, "plcnext")
 
 
 async def drive_machines(

@@ -1,9 +1,8 @@
-"""Device subentries holding points: devices, edits in place, and the migration from version 1."""
+"""Device subentries holding points: devices, edits in place (the migration: tests/model/)."""
 
 from __future__ import annotations
 
 from datetime import timedelta
-from typing import Any
 
 from freezegun.api import FrozenDateTimeFactory
 from homeassistant.config_entries import ConfigEntryState, ConfigSubentry
@@ -20,22 +19,17 @@ from pytest_homeassistant_custom_component.common import MockConfigEntry, async_
 from custom_components.plc_bridge.const import CONF_AREA, CONF_POINTS, DOMAIN, SUBENTRY_DEVICE
 from custom_components.plc_bridge.plc import Point
 from simulators.s7_smart import S7SmartSimulator
-
-from .ha_fixtures import (
+from tests.entries import (
     DEVICE_ID,
     ENTRY_ID,
     POINTS,
-    UNIQUE_ID,
-    add_entry,
     edit_point,
-    legacy_point,
     make_entry,
     plant_entry,
     point,
     read_edits,
     remove_point,
     set_points,
-    sim_data,
 )
 
 pytestmark = pytest.mark.no_pacing
@@ -175,20 +169,20 @@ async def test_points_added_one_second_apart(
 
 
 async def test_read_only_points_of_the_coordinator(
-    hass: HomeAssistant, s7_smart_sim: S7SmartSimulator
+    hass: HomeAssistant, s7_smart_ha_sim: S7SmartSimulator
 ) -> None:
     """The coordinator knows which addresses read-only points name (writes to them are refused)."""
     points = [*POINTS, point("locked", "Locked", "sensor", "VW50", "signed", read_only=True)]
-    entry = make_entry(hass, s7_smart_sim, points)
+    entry = make_entry(hass, s7_smart_ha_sim, points)
     assert await hass.config_entries.async_setup(entry.entry_id)
     assert entry.runtime_data.coordinator.read_only_points == {Point("VW50", "signed")}
 
 
 async def test_thousand_points_in_ten_devices(
-    hass: HomeAssistant, s7_smart_sim: S7SmartSimulator, device_registry: dr.DeviceRegistry
+    hass: HomeAssistant, s7_smart_ha_sim: S7SmartSimulator, device_registry: dr.DeviceRegistry
 ) -> None:
     """1,000 points in 10 devices: every entity available, 10 + 1 devices, 32 requests a poll."""
-    entry = plant_entry(hass, s7_smart_sim, 10, 100)
+    entry = plant_entry(hass, s7_smart_ha_sim, 10, 100)
     assert await hass.config_entries.async_setup(entry.entry_id)
     await hass.async_block_till_done()
     states = [s for s in hass.states.async_all("sensor") if s.entity_id.startswith("sensor.mach")]
@@ -196,81 +190,6 @@ async def test_thousand_points_in_ten_devices(
     assert all(state.state != STATE_UNAVAILABLE for state in states)
     assert len(entry_devices(device_registry, entry)) == 11
     assert entry.runtime_data.client.metrics.last_poll_requests == 32
-
-
-def legacy_entry(hass: HomeAssistant, sim: S7SmartSimulator) -> MockConfigEntry:
-    """Add an entry stored as version 1 did: one point per subentry, the PLC's device shared."""
-    return add_entry(
-        hass,
-        title="S7-200 SMART",
-        entry_id=ENTRY_ID,
-        unique_id=UNIQUE_ID,
-        data=sim_data(sim),
-        subentries=[legacy_point(item) for item in POINTS],
-        version=1,
-    )
-
-
-async def test_migration_keeps_entities(
-    hass: HomeAssistant,
-    s7_smart_sim: S7SmartSimulator,
-    entity_registry: er.EntityRegistry,
-    device_registry: dr.DeviceRegistry,
-) -> None:
-    """Version 1 points move into one device: unique ids, entity ids and names unchanged."""
-    entry = legacy_entry(hass, s7_smart_sim)
-    plc = device_registry.async_get_or_create(
-        config_entry_id=entry.entry_id, identifiers={(DOMAIN, ENTRY_ID)}, name="S7-200 SMART"
-    )
-    stored: dict[str, Any] = {}
-    for point_id, data in POINTS:
-        platform = data["platform"]
-        registered = entity_registry.async_get_or_create(
-            platform,
-            DOMAIN,
-            f"{ENTRY_ID}_{point_id}",
-            config_entry=entry,
-            config_subentry_id=point_id,
-            device_id=plc.id,
-            suggested_object_id=f"my_{point_id}",
-            original_name=data["name"],
-        )
-        stored[registered.entity_id] = registered.unique_id
-    assert await hass.config_entries.async_setup(entry.entry_id)
-    await hass.async_block_till_done()
-    assert entry.version == 2
-    (device,) = entry.subentries.values()
-    assert device.subentry_type == SUBENTRY_DEVICE
-    assert device.title == "S7-200 SMART points"  # told apart from the PLC's own device
-    assert set(device.data[CONF_POINTS]) == {point_id for point_id, _ in POINTS}
-    for entity_id, unique_id in stored.items():
-        registered = entity_registry.async_get(entity_id)
-        assert registered is not None, entity_id
-        assert registered.unique_id == unique_id
-        assert registered.config_subentry_id == device.subentry_id
-        assert hass.states.get(entity_id) is not None
-    assert hass.states.get("sensor.my_temperature").state == "21.5"
-    assert hass.states.get("sensor.my_temperature").name == "S7-200 SMART points Temperature"
-    names = [d.name for d in dr.async_entries_for_config_entry(dr.async_get(hass), entry.entry_id)]
-    assert sorted(names) == ["S7-200 SMART", "S7-200 SMART points"]
-    assert device_registry.async_get(plc.id) is not None
-
-
-async def test_newer_version_is_refused(
-    hass: HomeAssistant, s7_smart_sim: S7SmartSimulator
-) -> None:
-    """An entry from a newer release is not set up (and not changed)."""
-    entry = add_entry(
-        hass,
-        title="x",
-        entry_id=ENTRY_ID,
-        unique_id=UNIQUE_ID,
-        data=sim_data(s7_smart_sim),
-        points=[],
-    )
-    hass.config_entries.async_update_entry(entry, version=3)
-    assert not await hass.config_entries.async_setup(entry.entry_id)
-    assert entry.state is ConfigEntryState.MIGRATION_ERROR
 
 
 async def test_edited_area_moves_the_device(

@@ -22,10 +22,8 @@ from custom_components.plc_bridge.plc.vendors.plcnext import PlcnextClient
 from custom_components.plc_bridge.plc.vendors.tecomat import TecomatClient
 from simulators.plcnext import PlcnextSimulator
 from simulators.tecomat import TecomatSimulator
-
-from .ha_fixtures import point, poll, set_up
-from .plcnext_ha_fixtures import make_plcnext_entry
-from .tecomat_ha_fixtures import make_tecomat_entry
+from tests.entries import point, poll, set_up
+from tests.harness import make_plcnext_entry, make_tecomat_entry
 
 MAIN = "Arp.Plc.Eclr/MainInstance."
 
@@ -38,7 +36,7 @@ async def set_number(hass: HomeAssistant, entity_id: str, value: float) -> None:
 
 
 async def test_tecomat_durations(
-    hass: HomeAssistant, tecomat_sim: TecomatSimulator, freezer: FrozenDateTimeFactory
+    hass: HomeAssistant, tecomat_ha_sim: TecomatSimulator, freezer: FrozenDateTimeFactory
 ) -> None:
     """TIME a number of seconds, TOD a duration sensor, a TIME text as hh:mm:ss.zzz."""
     points = [
@@ -47,7 +45,7 @@ async def test_tecomat_durations(
         point("clock", "Clock", "text", "plcData.varTime", "TIME"),
         point("int", "Int", "sensor", "plcData.varInt", "INT"),
     ]
-    await set_up(hass, make_tecomat_entry(hass, tecomat_sim, points))
+    await set_up(hass, make_tecomat_entry(hass, tecomat_ha_sim, points))
     runtime = hass.states.get("number.fx2_cp2080_runtime")
     assert runtime.state == "432123.45"
     assert runtime.attributes[ATTR_DEVICE_CLASS] == "duration"
@@ -57,7 +55,7 @@ async def test_tecomat_durations(
     assert hass.states.get("text.fx2_cp2080_clock").state == "120:02:03.450"
 
     await set_number(hass, "number.fx2_cp2080_runtime", 90.5)
-    assert tecomat_sim.get("plcData.varTime") == 90_500
+    assert tecomat_ha_sim.get("plcData.varTime") == 90_500
     assert hass.states.get("text.fx2_cp2080_clock").state == "00:01:30.500"
     await hass.services.async_call(
         "text",
@@ -65,8 +63,8 @@ async def test_tecomat_durations(
         {ATTR_ENTITY_ID: "text.fx2_cp2080_clock", ATTR_VALUE: "1:00:00"},
         blocking=True,
     )
-    assert tecomat_sim.get("plcData.varTime") == 3_600_000
-    before = tecomat_sim.requests
+    assert tecomat_ha_sim.get("plcData.varTime") == 3_600_000
+    before = tecomat_ha_sim.requests
     with pytest.raises(HomeAssistantError, match="a TIME holds 0"):
         await set_number(hass, "number.fx2_cp2080_runtime", 2_147_484)  # past 24d20:31:23.647
     with pytest.raises(HomeAssistantError):
@@ -76,10 +74,10 @@ async def test_tecomat_durations(
             {ATTR_ENTITY_ID: "text.fx2_cp2080_clock", ATTR_VALUE: "soon"},
             blocking=True,
         )
-    assert tecomat_sim.requests == before  # refused before anything is sent
-    assert tecomat_sim.get("plcData.varTime") == 3_600_000
+    assert tecomat_ha_sim.requests == before  # refused before anything is sent
+    assert tecomat_ha_sim.get("plcData.varTime") == 3_600_000
 
-    tecomat_sim.rewrite = lambda body: body.replace(b'"07:30:00.000"', b'"7h"')
+    tecomat_ha_sim.rewrite = lambda body: body.replace(b'"07:30:00.000"', b'"7h"')
     await poll(hass, freezer)
     assert hass.states.get("sensor.fx2_cp2080_start").state == STATE_UNAVAILABLE
     assert hass.states.get("number.fx2_cp2080_runtime").state == "3600.0"
@@ -87,7 +85,7 @@ async def test_tecomat_durations(
 
 
 async def test_plcnext_durations(
-    hass: HomeAssistant, plcnext_sim: PlcnextSimulator, freezer: FrozenDateTimeFactory
+    hass: HomeAssistant, plcnext_ha_sim: PlcnextSimulator, freezer: FrozenDateTimeFactory
 ) -> None:
     """TIME and LTIME as durations: seconds, or the time unit the point names."""
     points = [
@@ -103,7 +101,7 @@ async def test_plcnext_durations(
         point("uptime", "Uptime", "sensor", MAIN + "Uptime", "LTIME", read_only=True),
         point("speed", "Speed", "sensor", MAIN + "Speed", "INT"),
     ]
-    await set_up(hass, make_plcnext_entry(hass, plcnext_sim, points))
+    await set_up(hass, make_plcnext_entry(hass, plcnext_ha_sim, points))
     assert hass.states.get("number.plcnext_runtime").state == "90.0"
     runtime_ms = hass.states.get("number.plcnext_runtime_ms")
     assert runtime_ms.state == "90000"
@@ -113,17 +111,17 @@ async def test_plcnext_durations(
     assert uptime.attributes[ATTR_DEVICE_CLASS] == "duration"
 
     await set_number(hass, "number.plcnext_runtime", 1.5)
-    assert plcnext_sim.get(MAIN + "Runtime") == 1_500
+    assert plcnext_ha_sim.get(MAIN + "Runtime") == 1_500
     await set_number(hass, "number.plcnext_runtime_ms", 250)
-    assert plcnext_sim.get(MAIN + "Runtime") == 250
-    before = plcnext_sim.requests
+    assert plcnext_ha_sim.get(MAIN + "Runtime") == 250
+    before = plcnext_ha_sim.requests
     with pytest.raises(HomeAssistantError, match=r"a TIME holds -2147483\.648"):
         await set_number(hass, "number.plcnext_runtime", -2_147_484)
-    assert plcnext_sim.requests == before
-    assert plcnext_sim.get(MAIN + "Runtime") == 250
+    assert plcnext_ha_sim.requests == before
+    assert plcnext_ha_sim.get(MAIN + "Runtime") == 250
 
-    plcnext_sim.set(MAIN + "Runtime", "soon")
-    plcnext_sim.set(MAIN + "Uptime", 7_000_000_001)  # ns: shown to the microsecond
+    plcnext_ha_sim.set(MAIN + "Runtime", "soon")
+    plcnext_ha_sim.set(MAIN + "Uptime", 7_000_000_001)  # ns: shown to the microsecond
     await poll(hass, freezer)
     assert hass.states.get("number.plcnext_runtime").state == STATE_UNAVAILABLE
     assert hass.states.get("sensor.plcnext_uptime").state == "7.0"

@@ -8,8 +8,7 @@ from homeassistant.core import HomeAssistant
 import pytest
 
 from simulators.s7_smart import S7SmartSimulator
-
-from .ha_fixtures import add_entry, device, point, sim_data
+from tests.entries import add_entry, device, point, sim_data
 
 pytestmark = pytest.mark.no_pacing
 
@@ -21,15 +20,15 @@ PUMP = [
 START = [point("start", "start", "button", "M2.0", "signed", pulse=0.5)]
 
 
-async def test_named_as_the_machine(hass: HomeAssistant, s7_smart_sim: S7SmartSimulator) -> None:
+async def test_named_as_the_machine(hass: HomeAssistant, s7_smart_ha_sim: S7SmartSimulator) -> None:
     """A switch "Pump" of the machine "Pump" is `switch.pump`, "Pump"; the others keep names."""
-    s7_smart_sim.set("VW6", 7)
+    s7_smart_ha_sim.set("VW6", 7)
     entry = add_entry(
         hass,
         title="S7-200 SMART",
         entry_id="01JPLCBR1DGE0000000000NAME",
         unique_id="plc-bridge-names",
-        data=sim_data(s7_smart_sim),
+        data=sim_data(s7_smart_ha_sim),
         subentries=[
             device(PUMP, subentry_id="pump", title="Pump"),
             device(START, subentry_id="start", title="Start"),
@@ -44,4 +43,4 @@ async def test_named_as_the_machine(hass: HomeAssistant, s7_smart_sim: S7SmartSi
     await hass.services.async_call(
         BUTTON_DOMAIN, SERVICE_PRESS, {ATTR_ENTITY_ID: "button.start"}, blocking=True
     )
-    assert s7_smart_sim.get("M2.0") == 1
+    assert s7_smart_ha_sim.get("M2.0") == 1

@@ -11,9 +11,8 @@ from custom_components.plc_bridge.const import DOMAIN
 from custom_components.plc_bridge.entity import device_key
 from custom_components.plc_bridge.flows.base import entry_title
 from custom_components.plc_bridge.plc import DeviceInfo
-
-from .ha_fixtures import UNIQUE_ID, set_up, unload_all
-from .test_config_file import export
+from tests.entries import UNIQUE_ID, set_up, unload_all
+from tests.test_config_file import export
 
 pytestmark = pytest.mark.no_pacing
 

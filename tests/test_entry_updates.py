@@ -11,8 +11,7 @@ from pytest_homeassistant_custom_component.common import MockConfigEntry
 
 from custom_components.plc_bridge.const import CONF_TLS
 from simulators.s7_smart import DEFAULT_PASSWORD, DEFAULT_USER, S7SmartSimulator
-
-from .ha_fixtures import ENTRY_ID, edit_point, make_entry, plc_device
+from tests.entries import ENTRY_ID, edit_point, make_entry, plc_device
 
 pytestmark = pytest.mark.no_pacing
 
@@ -41,13 +40,13 @@ async def move(hass: HomeAssistant, entry: MockConfigEntry, port: int) -> None:
 
 async def test_moving_an_address_only_plc_keeps_its_entities(
     hass: HomeAssistant,
-    s7_smart_sim: S7SmartSimulator,
+    s7_smart_ha_sim: S7SmartSimulator,
     entity_registry: er.EntityRegistry,
     device_registry: dr.DeviceRegistry,
 ) -> None:
     """Reconfigure to a new port: same device, same entity ids, none orphaned or doubled."""
-    entry = make_entry(hass, s7_smart_sim)
-    hass.config_entries.async_update_entry(entry, unique_id=f"127.0.0.1:{s7_smart_sim.port}")
+    entry = make_entry(hass, s7_smart_ha_sim)
+    hass.config_entries.async_update_entry(entry, unique_id=f"127.0.0.1:{s7_smart_ha_sim.port}")
     assert await hass.config_entries.async_setup(entry.entry_id)
     await hass.async_block_till_done()
     before = registered(entity_registry, device_registry, entry.entry_id)
@@ -55,23 +54,23 @@ async def test_moving_an_address_only_plc_keeps_its_entities(
     assert len(before[1]) == 2  # the PLC's device and its points' device
     assert plc_device(device_registry, ENTRY_ID) is not None
 
-    old_port = s7_smart_sim.port
-    await s7_smart_sim.stop()
-    await s7_smart_sim.start()  # a free port: the PLC moved
-    assert s7_smart_sim.port != old_port
-    await move(hass, entry, s7_smart_sim.port)
+    old_port = s7_smart_ha_sim.port
+    await s7_smart_ha_sim.stop()
+    await s7_smart_ha_sim.start()  # a free port: the PLC moved
+    assert s7_smart_ha_sim.port != old_port
+    await move(hass, entry, s7_smart_ha_sim.port)
 
     assert entry.state is ConfigEntryState.LOADED
-    assert entry.unique_id == f"127.0.0.1:{s7_smart_sim.port}"
+    assert entry.unique_id == f"127.0.0.1:{s7_smart_ha_sim.port}"
     assert registered(entity_registry, device_registry, entry.entry_id) == before
     assert hass.states.get("sensor.s7_200_smart_temperature").state == "21.5"
 
 
 async def test_reauth_after_a_failed_setup_loads_the_entry(
-    hass: HomeAssistant, s7_smart_sim: S7SmartSimulator
+    hass: HomeAssistant, s7_smart_ha_sim: S7SmartSimulator
 ) -> None:
     """The password was wrong at start-up: the right one sets the PLC up without a restart."""
-    entry = make_entry(hass, s7_smart_sim, password="wrong")
+    entry = make_entry(hass, s7_smart_ha_sim, password="wrong")
     await hass.config_entries.async_setup(entry.entry_id)
     assert entry.state is ConfigEntryState.SETUP_ERROR
     result = await entry.start_reauth_flow(hass)
@@ -85,28 +84,28 @@ async def test_reauth_after_a_failed_setup_loads_the_entry(
 
 
 async def test_reconfigure_after_a_failed_setup_loads_the_entry(
-    hass: HomeAssistant, s7_smart_sim: S7SmartSimulator
+    hass: HomeAssistant, s7_smart_ha_sim: S7SmartSimulator
 ) -> None:
     """The PLC was at another port when Home Assistant started: reconfigured, it loads."""
-    entry = make_entry(hass, s7_smart_sim, port=1)
+    entry = make_entry(hass, s7_smart_ha_sim, port=1)
     await hass.config_entries.async_setup(entry.entry_id)
     assert entry.state is ConfigEntryState.SETUP_RETRY
-    await move(hass, entry, s7_smart_sim.port)
+    await move(hass, entry, s7_smart_ha_sim.port)
     assert entry.state is ConfigEntryState.LOADED
 
 
 async def test_reconfigure_reloads_once(
-    hass: HomeAssistant, s7_smart_sim: S7SmartSimulator, setups: list[str]
+    hass: HomeAssistant, s7_smart_ha_sim: S7SmartSimulator, setups: list[str]
 ) -> None:
     """A reconfigure sets the PLC up again exactly once; editing points sets it up not at all."""
-    entry = make_entry(hass, s7_smart_sim)
-    hass.config_entries.async_update_entry(entry, unique_id=f"127.0.0.1:{s7_smart_sim.port}")
+    entry = make_entry(hass, s7_smart_ha_sim)
+    hass.config_entries.async_update_entry(entry, unique_id=f"127.0.0.1:{s7_smart_ha_sim.port}")
     assert await hass.config_entries.async_setup(entry.entry_id)
     await hass.async_block_till_done()
     setups.clear()
-    await s7_smart_sim.stop()
-    await s7_smart_sim.start()  # on another port: the PLC moved
-    await move(hass, entry, s7_smart_sim.port)
+    await s7_smart_ha_sim.stop()
+    await s7_smart_ha_sim.start()  # on another port: the PLC moved
+    await move(hass, entry, s7_smart_ha_sim.port)
     assert setups == [entry.entry_id]
     edit_point(hass, entry, "pressure", name="Pressure 2")
     await hass.async_block_till_done()

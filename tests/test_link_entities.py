@@ -16,9 +16,8 @@ from pytest_homeassistant_custom_component.common import MockConfigEntry
 
 from custom_components.plc_bridge.plc import Point
 from simulators.s7_smart import S7SmartSimulator
-
-from .ha_fixtures import make_entry, point, poll
-from .test_poll_classes import reads, set_up_classes, tick
+from tests.entries import make_entry, point, poll
+from tests.runtime.test_poll_classes import reads, set_up_classes, tick
 
 pytestmark = pytest.mark.no_pacing
 
@@ -65,17 +64,17 @@ class PollClock:
 
 async def test_connectivity_off_while_plc_stopped(
     hass: HomeAssistant,
-    s7_smart_sim: S7SmartSimulator,
+    s7_smart_ha_sim: S7SmartSimulator,
     setup_integration: MockConfigEntry,
     freezer: FrozenDateTimeFactory,
 ) -> None:
     assert hass.states.get(CONNECTIVITY).state == STATE_ON
-    await s7_smart_sim.stop()
+    await s7_smart_ha_sim.stop()
     await poll(hass, freezer)
     assert hass.states.get(CONNECTIVITY).state == STATE_OFF
     assert hass.states.get("sensor.s7_200_smart_temperature").state == STATE_UNAVAILABLE
 
-    await s7_smart_sim.start(s7_smart_sim.host, s7_smart_sim.port)
+    await s7_smart_ha_sim.start(s7_smart_ha_sim.host, s7_smart_ha_sim.port)
     await poll(hass, freezer)
     assert hass.states.get(CONNECTIVITY).state == STATE_ON
 
@@ -94,7 +93,7 @@ async def test_cost_sensors_disabled_by_default(
 @pytest.mark.usefixtures("entity_registry_enabled_by_default")
 async def test_link_sensors_follow_the_polls(
     hass: HomeAssistant,
-    s7_smart_sim: S7SmartSimulator,
+    s7_smart_ha_sim: S7SmartSimulator,
     setup_integration: MockConfigEntry,
     freezer: FrozenDateTimeFactory,
 ) -> None:
@@ -102,18 +101,18 @@ async def test_link_sensors_follow_the_polls(
     await poll(hass, freezer)
     assert hass.states.get(FAILING).state == "0"
     assert int(hass.states.get(REQUESTS).state) >= 1
-    s7_smart_sim.v_size = 150  # a smaller CPU: VB200 and VD300 are outside its V memory
+    s7_smart_ha_sim.v_size = 150  # a smaller CPU: VB200 and VD300 are outside its V memory
     await poll(hass, freezer)
     assert hass.states.get(FAILING).state == "2"
 
     last = hass.states.get(LAST_POLL).state
-    await s7_smart_sim.stop()
+    await s7_smart_ha_sim.stop()
     await poll(hass, freezer)
     assert hass.states.get(LAST_POLL).state == last
     assert hass.states.get(FAILING).state == STATE_UNAVAILABLE
     assert hass.states.get(DURATION).state == STATE_UNAVAILABLE
 
-    await s7_smart_sim.start(s7_smart_sim.host, s7_smart_sim.port)
+    await s7_smart_ha_sim.start(s7_smart_ha_sim.host, s7_smart_ha_sim.port)
     await poll(hass, freezer)
     assert hass.states.get(LAST_POLL).state > last
 
@@ -183,7 +182,7 @@ class ClassClock:
 @pytest.mark.usefixtures("entity_registry_enabled_by_default")
 async def test_poll_duration_quiet_over_poll_classes(
     hass: HomeAssistant,
-    s7_smart_sim: S7SmartSimulator,
+    s7_smart_ha_sim: S7SmartSimulator,
     freezer: FrozenDateTimeFactory,
     reads: list[list[Point]],
 ) -> None:
@@ -192,7 +191,7 @@ async def test_poll_duration_quiet_over_poll_classes(
         point("fast", "Fast", "sensor", "VW0", "signed", poll="fast"),
         point("other", "Other", "sensor", "VW2", "signed"),
     ]
-    entry = make_entry(hass, s7_smart_sim, points)
+    entry = make_entry(hass, s7_smart_ha_sim, points)
     await set_up_classes(hass, freezer, entry)  # fast every second, normal every 10 s
     with patch("custom_components.plc_bridge.plc.client.time", ClassClock(reads)):
         await tick(hass, freezer, 12)

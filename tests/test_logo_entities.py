@@ -23,11 +23,10 @@ from pytest_homeassistant_custom_component.common import MockConfigEntry
 
 from custom_components.plc_bridge.plc.vendors.logo.options import DEFAULT_TSAPS
 from simulators.logo import LogoSimulator
+from tests.entries import add_entry, call, entry_data, point, poll, set_up, unload_all
+from tests.flows.test_device_subentry_flow import add_point, new_device
+from tests.harness import SNAP7_THREADS
 from tests.loopback import running
-
-from .ha_fixtures import add_entry, call, entry_data, point, poll, set_up, unload_all
-from .s7_ha_fixtures import SNAP7_THREADS
-from .test_device_subentry_flow import add_point, new_device
 
 GENERATIONS = ("0ba7", "0ba8", "8_x")
 LOGO_8 = ("0ba8", "8_x")

@@ -29,9 +29,8 @@ from pytest_homeassistant_custom_component.common import MockConfigEntry, snapsh
 from syrupy.assertion import SnapshotAssertion
 
 from simulators.s7_smart import S7SmartSimulator
-
-from .conftest import current_release_only
-from .ha_fixtures import edit_point, make_entry, point, remove_point
+from tests.conftest import current_release_only
+from tests.entries import edit_point, make_entry, point, remove_point
 
 pytestmark = pytest.mark.no_pacing
 
@@ -59,13 +58,13 @@ POINTS = [
 
 
 @pytest.fixture
-async def machines(hass: HomeAssistant, s7_smart_sim: S7SmartSimulator) -> MockConfigEntry:
+async def machines(hass: HomeAssistant, s7_smart_ha_sim: S7SmartSimulator) -> MockConfigEntry:
     """The simulator's entry with a point of each richer kind, set up."""
-    s7_smart_sim.set("VW30", 1)
-    s7_smart_sim.set("VW32", 2)
-    s7_smart_sim.set("VW40", 13824)
-    s7_smart_sim.set("VW50", 2)
-    entry = make_entry(hass, s7_smart_sim, POINTS)
+    s7_smart_ha_sim.set("VW30", 1)
+    s7_smart_ha_sim.set("VW32", 2)
+    s7_smart_ha_sim.set("VW40", 13824)
+    s7_smart_ha_sim.set("VW50", 2)
+    entry = make_entry(hass, s7_smart_ha_sim, POINTS)
     assert await hass.config_entries.async_setup(entry.entry_id)
     await hass.async_block_till_done()
     return entry
@@ -75,13 +74,13 @@ async def machines(hass: HomeAssistant, s7_smart_sim: S7SmartSimulator) -> MockC
 @pytest.mark.parametrize("platform", [Platform.SELECT, Platform.BUTTON, Platform.EVENT])
 async def test_snapshot(
     hass: HomeAssistant,
-    s7_smart_sim: S7SmartSimulator,
+    s7_smart_ha_sim: S7SmartSimulator,
     entity_registry: er.EntityRegistry,
     snapshot: SnapshotAssertion,
     platform: Platform,
 ) -> None:
     """The entities of the new platforms, one platform at a time."""
-    entry = make_entry(hass, s7_smart_sim, POINTS)
+    entry = make_entry(hass, s7_smart_ha_sim, POINTS)
     with patch("custom_components.plc_bridge.PLATFORMS", [platform]):
         assert await hass.config_entries.async_setup(entry.entry_id)
         await hass.async_block_till_done()
@@ -113,7 +112,7 @@ async def test_states_shown(hass: HomeAssistant, machines: MockConfigEntry) -> N
 
 
 async def test_select_writes_the_code(
-    hass: HomeAssistant, s7_smart_sim: S7SmartSimulator, machines: MockConfigEntry
+    hass: HomeAssistant, s7_smart_ha_sim: S7SmartSimulator, machines: MockConfigEntry
 ) -> None:
     await hass.services.async_call(
         SELECT_DOMAIN,
@@ -121,28 +120,28 @@ async def test_select_writes_the_code(
         {ATTR_ENTITY_ID: "select.s7_200_smart_mode", ATTR_OPTION: "Manual"},
         blocking=True,
     )
-    assert s7_smart_sim.get("VW30") == 2
+    assert s7_smart_ha_sim.get("VW30") == 2
     assert hass.states.get("select.s7_200_smart_mode").state == "Manual"
 
 
 async def test_unmapped_value_logged_once(
     hass: HomeAssistant,
-    s7_smart_sim: S7SmartSimulator,
+    s7_smart_ha_sim: S7SmartSimulator,
     machines: MockConfigEntry,
     caplog: pytest.LogCaptureFixture,
 ) -> None:
     """Unknown outside the map, logged once; again after the value was in the map and left."""
-    s7_smart_sim.set("VW32", 7)
+    s7_smart_ha_sim.set("VW32", 7)
     await refresh(machines, 3)
     assert hass.states.get("sensor.s7_200_smart_state").state == STATE_UNKNOWN
     logged = [r for r in caplog.records if "value map does not name" in r.getMessage()]
     assert [r.getMessage() for r in logged] == [
         "State: the PLC holds 7, which its value map does not name; shown as unknown"
     ]
-    s7_smart_sim.set("VW32", 0)
+    s7_smart_ha_sim.set("VW32", 0)
     await refresh(machines)
     assert hass.states.get("sensor.s7_200_smart_state").state == "Off"
-    s7_smart_sim.set("VW32", 9)
+    s7_smart_ha_sim.set("VW32", 9)
     await refresh(machines, 2)
     logged = [r for r in caplog.records if "value map does not name" in r.getMessage()]
     assert len(logged) == 2
@@ -150,7 +149,7 @@ async def test_unmapped_value_logged_once(
 
 async def test_linear_range_written_back(
     hass: HomeAssistant,
-    s7_smart_sim: S7SmartSimulator,
+    s7_smart_ha_sim: S7SmartSimulator,
     machines: MockConfigEntry,
 ) -> None:
     """25 % is written as 6912; above the raw range the value shows clamped; 150 % is refused."""
@@ -160,8 +159,8 @@ async def test_linear_range_written_back(
         {ATTR_ENTITY_ID: "number.s7_200_smart_valve", "value": 25},
         blocking=True,
     )
-    assert s7_smart_sim.get("VW40") == 6912
-    writes = s7_smart_sim.calls["write"]
+    assert s7_smart_ha_sim.get("VW40") == 6912
+    writes = s7_smart_ha_sim.calls["write"]
     with pytest.raises(ServiceValidationError):
         await hass.services.async_call(
             NUMBER_DOMAIN,
@@ -169,15 +168,15 @@ async def test_linear_range_written_back(
             {ATTR_ENTITY_ID: "number.s7_200_smart_valve", "value": 150},
             blocking=True,
         )
-    assert s7_smart_sim.calls["write"] == writes
-    s7_smart_sim.set("VW40", 30000)
+    assert s7_smart_ha_sim.calls["write"] == writes
+    s7_smart_ha_sim.set("VW40", 30000)
     await refresh(machines)
     assert hass.states.get("number.s7_200_smart_valve").state == "100.0"
 
 
 async def test_switch_codes(
     hass: HomeAssistant,
-    s7_smart_sim: S7SmartSimulator,
+    s7_smart_ha_sim: S7SmartSimulator,
     machines: MockConfigEntry,
 ) -> None:
     """On is written as 5; a value that is neither code shows as unknown."""
@@ -187,16 +186,16 @@ async def test_switch_codes(
         {ATTR_ENTITY_ID: "switch.s7_200_smart_heater"},
         blocking=True,
     )
-    assert s7_smart_sim.get("VW50") == 5
+    assert s7_smart_ha_sim.get("VW50") == 5
     assert hass.states.get("switch.s7_200_smart_heater").state == STATE_ON
-    s7_smart_sim.set("VW50", 7)
+    s7_smart_ha_sim.set("VW50", 7)
     await refresh(machines)
     assert hass.states.get("switch.s7_200_smart_heater").state == STATE_UNKNOWN
 
 
 async def test_alarm_word(
     hass: HomeAssistant,
-    s7_smart_sim: S7SmartSimulator,
+    s7_smart_ha_sim: S7SmartSimulator,
     machines: MockConfigEntry,
 ) -> None:
     """Each named bit is a binary sensor; the event entity fires `<name> raised` and `cleared`."""
@@ -209,11 +208,11 @@ async def test_alarm_word(
             fired.append((state.attributes["event_type"], state.attributes["name"]))
 
     async_track_state_change_event(hass, "event.s7_200_smart_alarms", seen)
-    reads = s7_smart_sim.calls["read"]
-    s7_smart_sim.set("VW70", 0b0001)
+    reads = s7_smart_ha_sim.calls["read"]
+    s7_smart_ha_sim.set("VW70", 0b0001)
     await refresh(machines)
     assert hass.states.get("binary_sensor.s7_200_smart_overheat").state == STATE_ON
-    s7_smart_sim.set("VW70", 0b1110)  # bits 1 and 2 have no name
+    s7_smart_ha_sim.set("VW70", 0b1110)  # bits 1 and 2 have no name
     await refresh(machines)
     assert hass.states.get("binary_sensor.s7_200_smart_overheat").state == STATE_OFF
     assert hass.states.get("binary_sensor.s7_200_smart_low_water").state == STATE_ON
@@ -223,12 +222,12 @@ async def test_alarm_word(
         ("Overheat cleared", "Overheat"),
         ("Low water raised", "Low water"),
     ]
-    assert s7_smart_sim.calls["read"] - reads == 2  # one read per poll for every kind
+    assert s7_smart_ha_sim.calls["read"] - reads == 2  # one read per poll for every kind
 
 
 async def test_edited_bits(
     hass: HomeAssistant,
-    s7_smart_sim: S7SmartSimulator,
+    s7_smart_ha_sim: S7SmartSimulator,
     machines: MockConfigEntry,
     entity_registry: er.EntityRegistry,
 ) -> None:
@@ -246,13 +245,13 @@ async def test_edited_bits(
 
 
 async def test_refused_and_failing_alone(
-    hass: HomeAssistant, s7_smart_sim: S7SmartSimulator
+    hass: HomeAssistant, s7_smart_ha_sim: S7SmartSimulator
 ) -> None:
     """A read-only select is never written; an alarm word at a bad address fails alone."""
-    s7_smart_sim.set("VW30", 1)
+    s7_smart_ha_sim.set("VW30", 1)
     entry = make_entry(
         hass,
-        s7_smart_sim,
+        s7_smart_ha_sim,
         [
             point("mode", "Mode", "select", "VW30", "signed", value_map=MAP, read_only=True),
             point("alarms", "Alarms", "event", "VX1", "signed", bits="0=Overheat"),
@@ -268,7 +267,7 @@ async def test_refused_and_failing_alone(
             blocking=True,
         )
     assert err.value.translation_key == "read_only"
-    assert s7_smart_sim.calls["write"] == 0
+    assert s7_smart_ha_sim.calls["write"] == 0
     assert hass.states.get("select.s7_200_smart_mode").state == "Auto"
     assert hass.states.get("event.s7_200_smart_alarms").state == STATE_UNAVAILABLE
     assert hass.states.get("binary_sensor.s7_200_smart_overheat").state == STATE_UNAVAILABLE

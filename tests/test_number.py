@@ -16,9 +16,8 @@ from pytest_homeassistant_custom_component.common import MockConfigEntry, snapsh
 from syrupy.assertion import SnapshotAssertion
 
 from simulators.s7_smart import S7SmartSimulator
-
-from .conftest import current_release_only
-from .ha_fixtures import make_entry, point
+from tests.conftest import current_release_only
+from tests.entries import make_entry, point
 
 pytestmark = pytest.mark.no_pacing
 
@@ -42,19 +41,19 @@ async def test_snapshot(
 
 
 async def test_set_value_inverts_scaling(
-    hass: HomeAssistant, s7_smart_sim: S7SmartSimulator, setup_integration: MockConfigEntry
+    hass: HomeAssistant, s7_smart_ha_sim: S7SmartSimulator, setup_integration: MockConfigEntry
 ) -> None:
     await hass.services.async_call(
         NUMBER_DOMAIN, SERVICE_SET_VALUE, {ATTR_ENTITY_ID: SETPOINT, ATTR_VALUE: 35}, blocking=True
     )
-    assert s7_smart_sim.get("VW20") == 50  # (35 - 10) / 0.5
+    assert s7_smart_ha_sim.get("VW20") == 50  # (35 - 10) / 0.5
     assert hass.states.get(SETPOINT).state == "35"
 
 
 async def test_out_of_range_refused_before_sending(
-    hass: HomeAssistant, s7_smart_sim: S7SmartSimulator, setup_integration: MockConfigEntry
+    hass: HomeAssistant, s7_smart_ha_sim: S7SmartSimulator, setup_integration: MockConfigEntry
 ) -> None:
-    calls = dict(s7_smart_sim.calls)
+    calls = dict(s7_smart_ha_sim.calls)
     with pytest.raises(ServiceValidationError):
         await hass.services.async_call(
             NUMBER_DOMAIN,
@@ -62,19 +61,21 @@ async def test_out_of_range_refused_before_sending(
             {ATTR_ENTITY_ID: SETPOINT, ATTR_VALUE: 70},
             blocking=True,
         )
-    assert dict(s7_smart_sim.calls) == calls
-    assert s7_smart_sim.get("VW20") == 40
+    assert dict(s7_smart_ha_sim.calls) == calls
+    assert s7_smart_ha_sim.get("VW20") == 40
 
 
 async def test_value_beyond_the_type_refused_before_sending(
-    hass: HomeAssistant, s7_smart_sim: S7SmartSimulator
+    hass: HomeAssistant, s7_smart_ha_sim: S7SmartSimulator
 ) -> None:
     """Without a range from the user, the point's own type still bounds what is sent."""
-    entry = make_entry(hass, s7_smart_sim, [point("level", "Level", "number", "VB60", "unsigned")])
+    entry = make_entry(
+        hass, s7_smart_ha_sim, [point("level", "Level", "number", "VB60", "unsigned")]
+    )
     assert await hass.config_entries.async_setup(entry.entry_id)
     state = hass.states.get("number.s7_200_smart_level")
     assert (state.attributes["min"], state.attributes["step"]) == (-2147483648.0, 1.0)
-    calls = dict(s7_smart_sim.calls)
+    calls = dict(s7_smart_ha_sim.calls)
     with pytest.raises(ServiceValidationError) as err:
         await hass.services.async_call(
             NUMBER_DOMAIN,
@@ -83,11 +84,11 @@ async def test_value_beyond_the_type_refused_before_sending(
             blocking=True,
         )
     assert str(err.value) == "Nothing was sent: VB60 300 is outside 0..255"
-    assert dict(s7_smart_sim.calls) == calls
+    assert dict(s7_smart_ha_sim.calls) == calls
 
 
-async def test_float_point(hass: HomeAssistant, s7_smart_sim: S7SmartSimulator) -> None:
-    entry = make_entry(hass, s7_smart_sim, [point("flow", "Flow", "number", "VD100", "float")])
+async def test_float_point(hass: HomeAssistant, s7_smart_ha_sim: S7SmartSimulator) -> None:
+    entry = make_entry(hass, s7_smart_ha_sim, [point("flow", "Flow", "number", "VD100", "float")])
     assert await hass.config_entries.async_setup(entry.entry_id)
     state = hass.states.get("number.s7_200_smart_flow")
     assert (state.state, state.attributes["step"]) == ("21.5", 0.001)
@@ -97,11 +98,11 @@ async def test_float_point(hass: HomeAssistant, s7_smart_sim: S7SmartSimulator) 
         {ATTR_ENTITY_ID: "number.s7_200_smart_flow", ATTR_VALUE: 2.25},
         blocking=True,
     )
-    assert s7_smart_sim.get("VD100", "float") == 2.25
+    assert s7_smart_ha_sim.get("VD100", "float") == 2.25
 
 
 async def test_quick_writes_show_at_once(
-    hass: HomeAssistant, s7_smart_sim: S7SmartSimulator, setup_integration: MockConfigEntry
+    hass: HomeAssistant, s7_smart_ha_sim: S7SmartSimulator, setup_integration: MockConfigEntry
 ) -> None:
     """The refresh after a write is held back after another one; the PLC's ack shows anyway."""
     for value in (35, 36, 37):
@@ -112,5 +113,5 @@ async def test_quick_writes_show_at_once(
             blocking=True,
         )
         assert hass.states.get(SETPOINT).state == str(value)
-    assert s7_smart_sim.get("VW20") == 54  # (37 - 10) / 0.5
-    assert s7_smart_sim.calls["write"] == 3
+    assert s7_smart_ha_sim.get("VW20") == 54  # (37 - 10) / 0.5
+    assert s7_smart_ha_sim.calls["write"] == 3

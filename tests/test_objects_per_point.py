@@ -8,7 +8,7 @@ import pytest
 
 from bench.objects import OURS, count_objects, count_owners, machines, point_entities
 from simulators.s7_smart import S7SmartSimulator
-from tests.ha_fixtures import ENTRY_ID, UNIQUE_ID, add_entry, poll, set_up, sim_data
+from tests.entries import ENTRY_ID, UNIQUE_ID, add_entry, poll, set_up, sim_data
 
 pytestmark = pytest.mark.no_pacing
 
@@ -25,7 +25,7 @@ with a listener per entity)."""
 
 
 async def test_objects_per_point_entity(
-    hass: HomeAssistant, freezer: FrozenDateTimeFactory, s7_smart_sim: S7SmartSimulator
+    hass: HomeAssistant, freezer: FrozenDateTimeFactory, s7_smart_ha_sim: S7SmartSimulator
 ) -> None:
     """What our code keeps per entity, and all kept per entity, stay within a quarter above."""
     entry = add_entry(
@@ -33,7 +33,7 @@ async def test_objects_per_point_entity(
         title="S7-200 SMART",
         entry_id=ENTRY_ID,
         unique_id=UNIQUE_ID,
-        data=sim_data(s7_smart_sim),
+        data=sim_data(s7_smart_ha_sim),
         subentries=machines(ENTITIES),
     )
     await set_up(hass, entry)
@@ -50,7 +50,7 @@ async def test_objects_per_point_entity(
 
 
 async def test_entities_keep_no_listener_of_their_own(
-    hass: HomeAssistant, freezer: FrozenDateTimeFactory, s7_smart_sim: S7SmartSimulator
+    hass: HomeAssistant, freezer: FrozenDateTimeFactory, s7_smart_ha_sim: S7SmartSimulator
 ) -> None:
     """The coordinator updates its entities through one listener: none keeps a remover."""
     entry = add_entry(
@@ -58,7 +58,7 @@ async def test_entities_keep_no_listener_of_their_own(
         title="S7-200 SMART",
         entry_id=ENTRY_ID,
         unique_id=UNIQUE_ID,
-        data=sim_data(s7_smart_sim),
+        data=sim_data(s7_smart_ha_sim),
         subentries=machines(ENTITIES),
     )
     await set_up(hass, entry)
@@ -75,7 +75,7 @@ async def test_entities_keep_no_listener_of_their_own(
 
 async def test_an_entity_whose_add_was_aborted_is_no_longer_updated(
     hass: HomeAssistant,
-    s7_smart_sim: S7SmartSimulator,
+    s7_smart_ha_sim: S7SmartSimulator,
     caplog: pytest.LogCaptureFixture,
 ) -> None:
     """Home Assistant aborting an add after the entity followed: the next update drops it."""
@@ -84,7 +84,7 @@ async def test_an_entity_whose_add_was_aborted_is_no_longer_updated(
         title="S7-200 SMART",
         entry_id=ENTRY_ID,
         unique_id=UNIQUE_ID,
-        data=sim_data(s7_smart_sim),
+        data=sim_data(s7_smart_ha_sim),
         subentries=machines(8),
     )
     await set_up(hass, entry)

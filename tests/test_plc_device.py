@@ -10,9 +10,8 @@ from pytest_homeassistant_custom_component.common import MockConfigEntry
 
 from custom_components.plc_bridge.const import DOMAIN
 from simulators.tecomat import TecomatSimulator
-
-from .ha_fixtures import ENTRY_ID, plc_device
-from .tecomat_ha_fixtures import TECOMAT_ENTRY_ID, make_tecomat_entry
+from tests.entries import ENTRY_ID, plc_device
+from tests.harness import TECOMAT_ENTRY_ID, make_tecomat_entry
 
 pytestmark = pytest.mark.no_pacing
 
@@ -28,10 +27,10 @@ async def test_link_to_the_plc_web_page(
 
 
 async def test_a_serial_reported_later_re_keys_nothing(
-    hass: HomeAssistant, tecomat_sim: TecomatSimulator, entity_registry: er.EntityRegistry
+    hass: HomeAssistant, tecomat_ha_sim: TecomatSimulator, entity_registry: er.EntityRegistry
 ) -> None:
     """An entry made by address (no serial then) keeps its keys when the PLC reports one."""
-    entry = make_tecomat_entry(hass, tecomat_sim)
+    entry = make_tecomat_entry(hass, tecomat_ha_sim)
     address = f"{entry.data[CONF_HOST]}:{entry.data[CONF_PORT]}"
     hass.config_entries.async_update_entry(entry, unique_id=address)
     assert await hass.config_entries.async_setup(entry.entry_id)

@@ -16,9 +16,8 @@ from homeassistant.core import HomeAssistant
 from pytest_homeassistant_custom_component.common import async_fire_time_changed
 
 from simulators.plcnext import PlcnextSimulator
-
-from .ha_fixtures import point
-from .plcnext_ha_fixtures import make_plcnext_entry
+from tests.entries import point
+from tests.harness import make_plcnext_entry
 
 MAIN = "Arp.Plc.Eclr/MainInstance."
 RANGE = {"raw_min": 0, "raw_max": 250, "shown_min": 0, "shown_max": 100}
@@ -32,10 +31,10 @@ VENT = "fan.plcnext_vent"
 
 
 async def test_plcnext_fan(
-    hass: HomeAssistant, plcnext_sim: PlcnextSimulator, freezer: FrozenDateTimeFactory
+    hass: HomeAssistant, plcnext_ha_sim: PlcnextSimulator, freezer: FrozenDateTimeFactory
 ) -> None:
     """Speed through the range, preset by label, an impulse command pulsed only to change."""
-    entry = make_plcnext_entry(hass, plcnext_sim, POINTS)
+    entry = make_plcnext_entry(hass, plcnext_ha_sim, POINTS)
     assert await hass.config_entries.async_setup(entry.entry_id)
     await hass.async_block_till_done()
     state = hass.states.get(VENT)
@@ -47,13 +46,13 @@ async def test_plcnext_fan(
         {ATTR_ENTITY_ID: VENT, ATTR_PERCENTAGE: 40},
         blocking=True,
     )
-    assert plcnext_sim.get("MainInstance.Tiny") == 100
-    assert plcnext_sim.get("MainInstance.Pump") is False
+    assert plcnext_ha_sim.get("MainInstance.Tiny") == 100
+    assert plcnext_ha_sim.get("MainInstance.Pump") is False
     await hass.services.async_call(
         FAN_DOMAIN, SERVICE_TURN_OFF, {ATTR_ENTITY_ID: VENT}, blocking=True
     )
-    assert plcnext_sim.get("MainInstance.Pump") is True
+    assert plcnext_ha_sim.get("MainInstance.Pump") is True
     freezer.tick(timedelta(seconds=1.1))
     async_fire_time_changed(hass)
     await hass.async_block_till_done(wait_background_tasks=True)
-    assert plcnext_sim.get("MainInstance.Pump") is False
+    assert plcnext_ha_sim.get("MainInstance.Pump") is False

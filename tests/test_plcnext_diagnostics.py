@@ -14,7 +14,7 @@ from pytest_homeassistant_custom_component.components.diagnostics import (
 from pytest_homeassistant_custom_component.typing import ClientSessionGenerator
 
 from simulators.plcnext import DEFAULT_PASSWORD, PlcnextSimulator
-from tests.ha_fixtures import poll
+from tests.entries import poll
 
 REDACTED = "**REDACTED**"
 
@@ -31,13 +31,13 @@ def secrets_of(sim: PlcnextSimulator) -> list[str]:
 async def test_diagnostics(
     hass: HomeAssistant,
     hass_client: ClientSessionGenerator,
-    plcnext_sim: PlcnextSimulator,
+    plcnext_ha_sim: PlcnextSimulator,
     plcnext_entry: MockConfigEntry,
     freezer: FrozenDateTimeFactory,
 ) -> None:
     """Settings, device, program checksum, one request per poll; secrets redacted."""
-    plcnext_sim.access.expire_tokens()  # a second login: two tokens made, neither shown
-    plcnext_sim.download({"Arp.Plc.Eclr/MainInstance.Alarm": "Arp.Plc.Eclr/MainInstance.Fault"})
+    plcnext_ha_sim.access.expire_tokens()  # a second login: two tokens made, neither shown
+    plcnext_ha_sim.download({"Arp.Plc.Eclr/MainInstance.Alarm": "Arp.Plc.Eclr/MainInstance.Fault"})
     await poll(hass, freezer)
     result = await get_diagnostics_for_config_entry(hass, hass_client, plcnext_entry)
     entry = result["entry"]["data"]
@@ -48,7 +48,7 @@ async def test_diagnostics(
     assert device["model"] == "PLCnext Control"
     assert device["extra"]["api_path"] == "/_pxc_api/v1.8"
     assert device["extra"]["user_authentication"] == "on"
-    assert result["status"]["extra"]["project_crc"] == str(plcnext_sim.crc)
+    assert result["status"]["extra"]["project_crc"] == str(plcnext_ha_sim.crc)
     assert result["poll"]["planned_requests"] == 1
     assert result["metrics"]["session_renewals"] == 1
     results = result["results"]
@@ -57,23 +57,23 @@ async def test_diagnostics(
     assert not alarm["ok"]
     assert "does not know this variable" in alarm["error"]
     text = str(result)
-    for secret in [*secrets_of(plcnext_sim), *plcnext_sim.access.sessions, "127.0.0.1"]:
+    for secret in [*secrets_of(plcnext_ha_sim), *plcnext_ha_sim.access.sessions, "127.0.0.1"]:
         assert secret not in text, secret
 
 
 async def test_debug_log_hides_tokens(
     hass: HomeAssistant,
-    plcnext_sim: PlcnextSimulator,
+    plcnext_ha_sim: PlcnextSimulator,
     plcnext_entry: MockConfigEntry,
     freezer: FrozenDateTimeFactory,
     caplog: pytest.LogCaptureFixture,
 ) -> None:
     """With debug logging on, a login and polls show no password, code or access token."""
     caplog.set_level(logging.DEBUG, logger="custom_components.plc_bridge")
-    plcnext_sim.access.expire_tokens()
+    plcnext_ha_sim.access.expire_tokens()
     await poll(hass, freezer)
     assert "POST" in caplog.text
     assert "auth/access-token" in caplog.text
     assert '"code": "***"' in caplog.text
-    for secret in secrets_of(plcnext_sim):
+    for secret in secrets_of(plcnext_ha_sim):
         assert secret not in caplog.text, secret

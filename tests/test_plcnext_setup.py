@@ -15,8 +15,8 @@ from pytest_homeassistant_custom_component.common import MockConfigEntry
 
 from custom_components.plc_bridge.const import DOMAIN
 from simulators.plcnext import PlcnextSimulator
-from tests.ha_fixtures import call, point, poll
-from tests.plcnext_ha_fixtures import make_plcnext_entry
+from tests.entries import call, point, poll
+from tests.harness import make_plcnext_entry
 
 TEMPERATURE = "sensor.plcnext_temperature"
 
@@ -34,20 +34,20 @@ async def test_live_values(hass: HomeAssistant, plcnext_entry: MockConfigEntry) 
 
 async def test_renewals_keep_entities(
     hass: HomeAssistant,
-    plcnext_sim: PlcnextSimulator,
+    plcnext_ha_sim: PlcnextSimulator,
     plcnext_entry: MockConfigEntry,
     freezer: FrozenDateTimeFactory,
 ) -> None:
     """Token expiry, session loss, group expiry and a download: nothing goes unavailable."""
     client = plcnext_entry.runtime_data.client
     for change, shown in (
-        (plcnext_sim.access.expire_tokens, "19.5"),
-        (plcnext_sim.access.expire_sessions, "19.0"),
-        (plcnext_sim.expire_groups, "18.5"),
-        (plcnext_sim.download, "18.0"),
+        (plcnext_ha_sim.access.expire_tokens, "19.5"),
+        (plcnext_ha_sim.access.expire_sessions, "19.0"),
+        (plcnext_ha_sim.expire_groups, "18.5"),
+        (plcnext_ha_sim.download, "18.0"),
     ):
         change()
-        plcnext_sim.set("MainInstance.Temperature", float(shown))
+        plcnext_ha_sim.set("MainInstance.Temperature", float(shown))
         await poll(hass, freezer)
         assert hass.states.get(TEMPERATURE).state == shown
         assert STATE_UNAVAILABLE not in {state.state for state in hass.states.async_all()}
@@ -56,14 +56,14 @@ async def test_renewals_keep_entities(
 
 
 async def test_writes(
-    hass: HomeAssistant, plcnext_sim: PlcnextSimulator, plcnext_entry: MockConfigEntry
+    hass: HomeAssistant, plcnext_ha_sim: PlcnextSimulator, plcnext_entry: MockConfigEntry
 ) -> None:
     """A switch and the write action reach the PLC."""
     await hass.services.async_call(
         SWITCH_DOMAIN, SERVICE_TURN_ON, {ATTR_ENTITY_ID: "switch.plcnext_pump"}, blocking=True
     )
     await hass.async_block_till_done()
-    assert plcnext_sim.get("MainInstance.Pump") is True
+    assert plcnext_ha_sim.get("MainInstance.Pump") is True
     assert hass.states.get("switch.plcnext_pump").state == STATE_ON
     await call(
         hass,
@@ -71,7 +71,7 @@ async def test_writes(
         plcnext_entry,
         points=[{"address": "MainInstance.Speed", "data_type": "INT", "value": -7}],
     )
-    assert plcnext_sim.get("MainInstance.Speed") == -7
+    assert plcnext_ha_sim.get("MainInstance.Speed") == -7
 
 
 def issue_of(entry: MockConfigEntry, point_id: str) -> str:
@@ -81,7 +81,7 @@ def issue_of(entry: MockConfigEntry, point_id: str) -> str:
 
 async def test_renamed_variable_raises_an_issue(
     hass: HomeAssistant,
-    plcnext_sim: PlcnextSimulator,
+    plcnext_ha_sim: PlcnextSimulator,
     plcnext_entry: MockConfigEntry,
     freezer: FrozenDateTimeFactory,
     issue_registry: ir.IssueRegistry,
@@ -91,14 +91,14 @@ async def test_renamed_variable_raises_an_issue(
     The project checksum (a diagnostic sensor, on by default) shows the download.
     """
     checksum = "sensor.plcnext_project_checksum"
-    assert hass.states.get(checksum).state == str(plcnext_sim.crc)
-    plcnext_sim.download({"Arp.Plc.Eclr/MainInstance.Pump": "Arp.Plc.Eclr/MainInstance.PumpOn"})
-    plcnext_sim.set("MainInstance.Temperature", 19.5)
+    assert hass.states.get(checksum).state == str(plcnext_ha_sim.crc)
+    plcnext_ha_sim.download({"Arp.Plc.Eclr/MainInstance.Pump": "Arp.Plc.Eclr/MainInstance.PumpOn"})
+    plcnext_ha_sim.set("MainInstance.Temperature", 19.5)
     await poll(hass, freezer)
     unavailable = [s.entity_id for s in hass.states.async_all() if s.state == STATE_UNAVAILABLE]
     assert unavailable == ["switch.plcnext_pump"]
     assert hass.states.get(TEMPERATURE).state == "19.5"
-    assert hass.states.get(checksum).state == str(plcnext_sim.crc)
+    assert hass.states.get(checksum).state == str(plcnext_ha_sim.crc)
     issue = issue_registry.async_get_issue(DOMAIN, issue_of(plcnext_entry, "pump"))
     assert issue is not None
     assert issue.translation_key == "unknown_address"
@@ -110,7 +110,7 @@ async def test_renamed_variable_raises_an_issue(
     assert plcnext_entry.runtime_data.client.metrics.last_poll_requests == 1
     assert len(issue_registry.issues) == 1
 
-    plcnext_sim.download({"Arp.Plc.Eclr/MainInstance.PumpOn": "Arp.Plc.Eclr/MainInstance.Pump"})
+    plcnext_ha_sim.download({"Arp.Plc.Eclr/MainInstance.PumpOn": "Arp.Plc.Eclr/MainInstance.Pump"})
     await poll(hass, freezer)  # the new projectCRC: the name is asked for again at once
     assert hass.states.get("switch.plcnext_pump").state == STATE_OFF
     assert not issue_registry.issues
@@ -118,14 +118,14 @@ async def test_renamed_variable_raises_an_issue(
 
 async def test_unknown_from_the_start(
     hass: HomeAssistant,
-    plcnext_sim: PlcnextSimulator,
+    plcnext_ha_sim: PlcnextSimulator,
     freezer: FrozenDateTimeFactory,
     issue_registry: ir.IssueRegistry,
 ) -> None:
     """Every point unknown (no HMI flag yet): issues; once the project is fixed, values show."""
     entry = make_plcnext_entry(
         hass,
-        plcnext_sim,
+        plcnext_ha_sim,
         [point("later", "Later", "sensor", "MainInstance.Later", "INT")],
         vendor_options={},
     )
@@ -133,7 +133,7 @@ async def test_unknown_from_the_start(
     await hass.async_block_till_done()
     assert hass.states.get("sensor.plcnext_later").state == STATE_UNAVAILABLE
     assert issue_registry.async_get_issue(DOMAIN, issue_of(entry, "later")) is not None
-    plcnext_sim.download({"Arp.Plc.Eclr/MainInstance.Speed": "Arp.Plc.Eclr/MainInstance.Later"})
+    plcnext_ha_sim.download({"Arp.Plc.Eclr/MainInstance.Speed": "Arp.Plc.Eclr/MainInstance.Later"})
     await poll(hass, freezer)
     assert hass.states.get("sensor.plcnext_later").state == "-1200"
     assert not issue_registry.issues
@@ -141,7 +141,7 @@ async def test_unknown_from_the_start(
 
 async def test_clock_and_sync(
     hass: HomeAssistant,
-    plcnext_sim: PlcnextSimulator,
+    plcnext_ha_sim: PlcnextSimulator,
     plcnext_entry: MockConfigEntry,
     freezer: FrozenDateTimeFactory,
     entity_registry: er.EntityRegistry,
@@ -155,6 +155,6 @@ async def test_clock_and_sync(
     assert int(drift.state) != 0
     now = dt_util.utcnow()
     await call(hass, "sync_clock", plcnext_entry)
-    stored = datetime.fromisoformat(plcnext_sim.get("MainInstance.Clock"))
+    stored = datetime.fromisoformat(plcnext_ha_sim.get("MainInstance.Clock"))
     assert abs((stored - now).total_seconds()) < 1
     assert hass.states.get("sensor.plcnext_clock_drift").state == "0"

@@ -29,8 +29,7 @@ from pytest_homeassistant_custom_component.common import (
 
 from custom_components.plc_bridge.plc.vendors.s7_smart import S7SmartClient
 from simulators.s7_smart import S7SmartSimulator
-
-from .ha_fixtures import PointData, edit_point, make_entry, point, poll, read_edits, set_up
+from tests.entries import PointData, edit_point, make_entry, point, poll, read_edits, set_up
 
 pytestmark = pytest.mark.no_pacing
 
@@ -176,7 +175,7 @@ async def restart(
 
 async def test_every_kind_shows_its_last_value_until_polled(
     hass: HomeAssistant,
-    s7_smart_sim: S7SmartSimulator,
+    s7_smart_ha_sim: S7SmartSimulator,
     freezer: FrozenDateTimeFactory,
     monkeypatch: pytest.MonkeyPatch,
 ) -> None:
@@ -184,13 +183,13 @@ async def test_every_kind_shows_its_last_value_until_polled(
 
     Nothing restored is written: the PLC gets no write request at all.
     """
-    hold(s7_smart_sim, BEFORE)
-    entry = await set_up(hass, make_entry(hass, s7_smart_sim, [*FIRST, *KINDS]))
+    hold(s7_smart_ha_sim, BEFORE)
+    entry = await set_up(hass, make_entry(hass, s7_smart_ha_sim, [*FIRST, *KINDS]))
     ids = entity_ids(hass, entry)
     assert len(ids) == 14  # the six plain kinds, six of several points, an alarm word, its bit
     before = {key: hass.states.get(entity_id) for key, entity_id in ids.items()}
     assert all(state is not None and state.state != STATE_UNAVAILABLE for state in before.values())
-    hold(s7_smart_sim, AFTER)
+    hold(s7_smart_ha_sim, AFTER)
     written = await restart(hass, entry, monkeypatch, freezer)
     for key, entity_id in ids.items():
         if key == "alarms":
@@ -203,27 +202,27 @@ async def test_every_kind_shows_its_last_value_until_polled(
         assert "restored" not in last.attributes, key
         assert last.state != STATE_UNAVAILABLE, key
         assert (last.state, dict(last.attributes)) != (old.state, dict(old.attributes)), key
-    assert s7_smart_sim.calls["write"] == 0
+    assert s7_smart_ha_sim.calls["write"] == 0
     await poll(hass, freezer)
-    assert s7_smart_sim.calls["write"] == 0
+    assert s7_smart_ha_sim.calls["write"] == 0
 
 
 async def test_event_restores_as_home_assistant_does(
     hass: HomeAssistant,
-    s7_smart_sim: S7SmartSimulator,
+    s7_smart_ha_sim: S7SmartSimulator,
     freezer: FrozenDateTimeFactory,
     monkeypatch: pytest.MonkeyPatch,
 ) -> None:
     """An alarm word's event entity is never marked restored: its state is its last event."""
-    hold(s7_smart_sim, BEFORE)
-    entry = await set_up(hass, make_entry(hass, s7_smart_sim, [*FIRST, *KINDS]))
+    hold(s7_smart_ha_sim, BEFORE)
+    entry = await set_up(hass, make_entry(hass, s7_smart_ha_sim, [*FIRST, *KINDS]))
     alarms = entity_ids(hass, entry)["alarms"]
     written = await restart(hass, entry, monkeypatch, freezer)
     assert all("restored" not in state.attributes for state in written[alarms])
 
 
 async def test_an_edited_address_shows_no_value_of_the_old_one(
-    hass: HomeAssistant, s7_smart_sim: S7SmartSimulator, freezer: FrozenDateTimeFactory
+    hass: HomeAssistant, s7_smart_ha_sim: S7SmartSimulator, freezer: FrozenDateTimeFactory
 ) -> None:
     """A point moved to another address: its entity shows no value until the new one is read.
 
@@ -231,9 +230,9 @@ async def test_an_edited_address_shows_no_value_of_the_old_one(
     stored is of the old address. (Unavailable states marked restored are Home Assistant's own,
     written for an entity removed while its registry entry stays.)
     """
-    hold(s7_smart_sim, BEFORE)
-    s7_smart_sim.set("VD104", 30.5, "float")
-    entry = await set_up(hass, make_entry(hass, s7_smart_sim, [*FIRST, *KINDS]))
+    hold(s7_smart_ha_sim, BEFORE)
+    s7_smart_ha_sim.set("VD104", 30.5, "float")
+    entry = await set_up(hass, make_entry(hass, s7_smart_ha_sim, [*FIRST, *KINDS]))
     sensor = entity_ids(hass, entry)["temp"]
     written: list[State] = []
 
@@ -254,7 +253,7 @@ async def test_an_edited_address_shows_no_value_of_the_old_one(
 
 async def test_commands_before_the_first_read_send_nothing(
     hass: HomeAssistant,
-    s7_smart_sim: S7SmartSimulator,
+    s7_smart_ha_sim: S7SmartSimulator,
     freezer: FrozenDateTimeFactory,
     monkeypatch: pytest.MonkeyPatch,
 ) -> None:
@@ -262,8 +261,8 @@ async def test_commands_before_the_first_read_send_nothing(
 
     The poll after the setup's is held until the commands were given: the PLC gets no write.
     """
-    hold(s7_smart_sim, BEFORE)
-    entry = await set_up(hass, make_entry(hass, s7_smart_sim, [*FIRST, *KINDS]))
+    hold(s7_smart_ha_sim, BEFORE)
+    entry = await set_up(hass, make_entry(hass, s7_smart_ha_sim, [*FIRST, *KINDS]))
     ids = entity_ids(hass, entry)
     assert await hass.config_entries.async_unload(entry.entry_id)
     await hass.async_block_till_done()
@@ -294,8 +293,8 @@ async def test_commands_before_the_first_read_send_nothing(
         await hass.services.async_call(
             domain, service, {"entity_id": entity_id, **data}, blocking=True
         )
-    assert s7_smart_sim.calls["write"] == 0
+    assert s7_smart_ha_sim.calls["write"] == 0
     gate.set()
     await poll(hass, freezer)
-    assert s7_smart_sim.calls["write"] == 0
+    assert s7_smart_ha_sim.calls["write"] == 0
     assert "restored" not in hass.states.get(ids["pump"]).attributes  # type: ignore[union-attr]

@@ -14,9 +14,8 @@ from homeassistant.const import ATTR_ENTITY_ID
 from homeassistant.core import HomeAssistant
 
 from simulators.s7 import S7Simulator
-
-from .ha_fixtures import point, poll
-from .s7_ha_fixtures import make_s7_entry
+from tests.entries import point, poll
+from tests.harness import make_s7_entry
 
 RANGE = {"raw_min": 0, "raw_max": 27648, "shown_min": 0, "shown_max": 100}
 POINTS = [

@@ -14,9 +14,8 @@ from pytest_homeassistant_custom_component.common import MockConfigEntry
 from custom_components.plc_bridge.model.points import entry_points
 from custom_components.plc_bridge.plc.vendors.s7 import S7Client
 from simulators.s7 import S7Simulator
-
-from .ha_fixtures import poll
-from .s7_ha_fixtures import SimFactory, make_s7_entry, spread
+from tests.entries import poll
+from tests.harness import SimFactory, make_s7_entry, spread
 
 TEMPERATURE = "sensor.s7_300_temperature"
 MODE = "sensor.s7_300_operating_mode"

@@ -14,9 +14,8 @@ import pytest
 from custom_components.plc_bridge.model.points import suggested_platform
 from custom_components.plc_bridge.plc.vendors.s7 import S7Client
 from simulators.s7 import S7Simulator
-
-from .ha_fixtures import call, point, poll
-from .s7_ha_fixtures import SimFactory, make_s7_entry
+from tests.entries import call, point, poll
+from tests.harness import SimFactory, make_s7_entry
 
 POINTS = [
     point("runtime", "Runtime", "sensor", "DB1.DBD0", "TIME", read_only=True),

@@ -16,8 +16,7 @@ from homeassistant.helpers import device_registry as dr
 from pytest_homeassistant_custom_component.common import MockConfigEntry
 
 from simulators.s7 import S7Simulator
-
-from .ha_fixtures import poll
+from tests.entries import poll
 
 TEMPERATURE = "sensor.s7_300_temperature"
 LEVEL = "sensor.s7_300_level"

@@ -17,9 +17,8 @@ from pytest_homeassistant_custom_component.components.diagnostics import (
 from pytest_homeassistant_custom_component.typing import ClientSessionGenerator
 
 from simulators.s7 import S7Simulator
-
-from .ha_fixtures import call, poll
-from .s7_ha_fixtures import SimFactory, make_s7_entry, spread
+from tests.entries import call, poll
+from tests.harness import SimFactory, make_s7_entry, spread
 
 
 async def test_write_two_points_one_request(

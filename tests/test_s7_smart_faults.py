@@ -17,8 +17,7 @@ from pytest_homeassistant_custom_component.common import MockConfigEntry, async_
 from custom_components.plc_bridge.const import DOMAIN
 from custom_components.plc_bridge.plc.vendors.s7_smart import rpc
 from simulators.s7_smart import HttpFault, S7SmartSimulator
-
-from .ha_fixtures import SCAN_INTERVAL, make_entry, point, poll
+from tests.entries import SCAN_INTERVAL, make_entry, point, poll
 
 pytestmark = pytest.mark.no_pacing
 
@@ -29,7 +28,7 @@ TEMPERATURE = "sensor.s7_200_smart_temperature"
 @pytest.mark.parametrize("status", [500, 503, 404])
 async def test_busy_answers_cost_no_value(  # noqa: PLR0917 - fixtures and parameters
     hass: HomeAssistant,
-    s7_smart_sim: S7SmartSimulator,
+    s7_smart_ha_sim: S7SmartSimulator,
     setup_integration: MockConfigEntry,
     freezer: FrozenDateTimeFactory,
     monkeypatch: pytest.MonkeyPatch,
@@ -39,10 +38,13 @@ async def test_busy_answers_cost_no_value(  # noqa: PLR0917 - fixtures and param
     """One busy answer (issue 19) or two or three in a row (issue 23): resent within the poll
     interval, every entity keeps its value (the first resend after 10 ms here, 1 s in use)."""
     monkeypatch.setattr(rpc, "BUSY_BACKOFF", 0.01)
-    s7_smart_sim.set("VD100", 22.3, "float")
-    s7_smart_sim.real_format = "double"
-    s7_smart_sim.busy, s7_smart_sim.busy_status = times, HttpFault(status, "<html>busy</html>")
-    before = s7_smart_sim.requests
+    s7_smart_ha_sim.set("VD100", 22.3, "float")
+    s7_smart_ha_sim.real_format = "double"
+    s7_smart_ha_sim.busy, s7_smart_ha_sim.busy_status = (
+        times,
+        HttpFault(status, "<html>busy</html>"),
+    )
+    before = s7_smart_ha_sim.requests
     freezer.tick(timedelta(seconds=SCAN_INTERVAL))
     async_fire_time_changed(hass)
     for _turn in range(2000):  # the poll's back-off waits run when their time has come
@@ -52,22 +54,22 @@ async def test_busy_answers_cost_no_value(  # noqa: PLR0917 - fixtures and param
         async_fire_time_changed(hass, dt_util.utcnow() + timedelta(seconds=0.5))
     await hass.async_block_till_done()
     assert hass.states.get(TEMPERATURE).state == "22.3"
-    assert s7_smart_sim.requests - before == times + 1
+    assert s7_smart_ha_sim.requests - before == times + 1
 
 
 async def test_smaller_node_limit_in_other_words(
     hass: HomeAssistant,
-    s7_smart_sim: S7SmartSimulator,
+    s7_smart_ha_sim: S7SmartSimulator,
     freezer: FrozenDateTimeFactory,
     issue_registry: ir.IssueRegistry,
 ) -> None:
     """A firmware taking 10 nodes, saying "Too many nodes." under the code our old table read as
     a lost session: every entity has its value, and no session conflict is raised."""
-    s7_smart_sim.max_nodes, s7_smart_sim.codes = 10, "shuffled"
+    s7_smart_ha_sim.max_nodes, s7_smart_ha_sim.codes = 10, "shuffled"
     for index in range(40):
-        s7_smart_sim.set(f"VW{2 * index}", index)
+        s7_smart_ha_sim.set(f"VW{2 * index}", index)
     words = [point(f"w{i}", f"Word {i}", "sensor", f"VW{2 * i}", "signed") for i in range(40)]
-    entry = make_entry(hass, s7_smart_sim, words)
+    entry = make_entry(hass, s7_smart_ha_sim, words)
     assert await hass.config_entries.async_setup(entry.entry_id)
     await poll(hass, freezer, times=3)
     assert hass.states.get("sensor.s7_200_smart_word_39").state == "39"
@@ -76,9 +78,9 @@ async def test_smaller_node_limit_in_other_words(
 
 
 async def test_deeply_nested_reply_at_setup_is_retried(
-    hass: HomeAssistant, s7_smart_sim: S7SmartSimulator
+    hass: HomeAssistant, s7_smart_ha_sim: S7SmartSimulator
 ) -> None:
-    s7_smart_sim.http_faults = [HttpFault(200, "[" * 100_000 + "]" * 100_000)]
-    entry = make_entry(hass, s7_smart_sim, [])
+    s7_smart_ha_sim.http_faults = [HttpFault(200, "[" * 100_000 + "]" * 100_000)]
+    entry = make_entry(hass, s7_smart_ha_sim, [])
     await hass.config_entries.async_setup(entry.entry_id)
     assert entry.state is ConfigEntryState.SETUP_RETRY

@@ -9,8 +9,7 @@ import pytest
 from pytest_homeassistant_custom_component.common import MockConfigEntry
 
 from simulators.s7_smart import S7SmartSimulator
-
-from .ha_fixtures import POINTS, call, make_entry, point
+from tests.entries import POINTS, call, make_entry, point
 
 pytestmark = pytest.mark.no_pacing
 
@@ -19,13 +18,13 @@ NAME = point("recipe_name", "Recipe name", "sensor", "VB600", "string[20]", read
 
 
 @pytest.fixture
-async def string_entry(hass: HomeAssistant, s7_smart_sim: S7SmartSimulator) -> MockConfigEntry:
+async def string_entry(hass: HomeAssistant, s7_smart_ha_sim: S7SmartSimulator) -> MockConfigEntry:
     """The simulator's entry with a read-only string the program wrote `25°C` to, and a
     read-only string declared 20 characters long."""
-    s7_smart_sim.strings = "raw"
-    s7_smart_sim.put_string("VB500", b"25\xb0C")
-    s7_smart_sim.put_string("VB600", b"Mix A")
-    entry = make_entry(hass, s7_smart_sim, [*POINTS, LABEL, NAME])
+    s7_smart_ha_sim.strings = "raw"
+    s7_smart_ha_sim.put_string("VB500", b"25\xb0C")
+    s7_smart_ha_sim.put_string("VB600", b"Mix A")
+    entry = make_entry(hass, s7_smart_ha_sim, [*POINTS, LABEL, NAME])
     assert await hass.config_entries.async_setup(entry.entry_id)
     await hass.async_block_till_done()
     return entry
@@ -43,14 +42,14 @@ async def string_entry(hass: HomeAssistant, s7_smart_sim: S7SmartSimulator) -> M
 )
 async def test_writes_into_a_read_only_string_refused(  # noqa: PLR0917 - fixtures, parameters
     hass: HomeAssistant,
-    s7_smart_sim: S7SmartSimulator,
+    s7_smart_ha_sim: S7SmartSimulator,
     string_entry: MockConfigEntry,
     address: str,
     data_type: str,
     point: str,
 ) -> None:
     """Its length byte and characters, as read or declared: refused, nothing sent."""
-    before = s7_smart_sim.calls["write"]
+    before = s7_smart_ha_sim.calls["write"]
     with pytest.raises(ServiceValidationError, match=f"covers data of the read-only point {point}"):
         await call(
             hass,
@@ -58,12 +57,12 @@ async def test_writes_into_a_read_only_string_refused(  # noqa: PLR0917 - fixtur
             string_entry,
             points=[{"address": address, "data_type": data_type, "value": 1}],
         )
-    assert s7_smart_sim.calls["write"] == before
+    assert s7_smart_ha_sim.calls["write"] == before
     assert hass.states.get("sensor.s7_200_smart_status_text").state == "25°C"
 
 
 async def test_writes_past_a_read_only_string_go_through(
-    hass: HomeAssistant, s7_smart_sim: S7SmartSimulator, string_entry: MockConfigEntry
+    hass: HomeAssistant, s7_smart_ha_sim: S7SmartSimulator, string_entry: MockConfigEntry
 ) -> None:
     """VW700 and VD704 (refused 14 of 14 before), and the byte after the declared length."""
     await call(
@@ -77,7 +76,7 @@ async def test_writes_past_a_read_only_string_go_through(
             {"address": "VB510", "data_type": "unsigned", "value": 5},
         ],
     )
-    assert s7_smart_sim.get("VW700") == 700
-    assert s7_smart_sim.get("VD704") == 704
-    assert s7_smart_sim.get("VB621", "unsigned") == 9
-    assert s7_smart_sim.get("VB510", "unsigned") == 5
+    assert s7_smart_ha_sim.get("VW700") == 700
+    assert s7_smart_ha_sim.get("VD704") == 704
+    assert s7_smart_ha_sim.get("VB621", "unsigned") == 9
+    assert s7_smart_ha_sim.get("VB510", "unsigned") == 5

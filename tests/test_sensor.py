@@ -23,9 +23,8 @@ from custom_components.plc_bridge.model.conversion import scaled
 from custom_components.plc_bridge.plc import Point, ReadResult, ValueKind
 from custom_components.plc_bridge.plc.vendors.s7_smart import S7SmartClient
 from simulators.s7_smart import S7SmartSimulator
-
-from .conftest import current_release_only
-from .ha_fixtures import DEVICE_ID, make_entry, point, poll
+from tests.conftest import current_release_only
+from tests.entries import DEVICE_ID, make_entry, point, poll
 
 pytestmark = pytest.mark.no_pacing
 
@@ -54,7 +53,7 @@ async def test_snapshot(
 
 async def test_clock_drift_is_quiet(
     hass: HomeAssistant,
-    s7_smart_sim: S7SmartSimulator,
+    s7_smart_ha_sim: S7SmartSimulator,
     setup_integration: MockConfigEntry,
     freezer: FrozenDateTimeFactory,
 ) -> None:
@@ -67,7 +66,7 @@ async def test_clock_drift_is_quiet(
         moment = dt_util.now().astimezone(zone) + timedelta(seconds=ahead)
         return moment.replace(tzinfo=None, microsecond=0)
 
-    s7_smart_sim.clock = plc_time(10 + 20.4)  # the poll below moves time by 10 s
+    s7_smart_ha_sim.clock = plc_time(10 + 20.4)  # the poll below moves time by 10 s
     await poll(hass, freezer)
     state = hass.states.get(DRIFT)
     assert state.state == "20"
@@ -75,10 +74,10 @@ async def test_clock_drift_is_quiet(
     registered = er.async_get(hass).async_get(DRIFT)
     assert registered.options["sensor"]["suggested_display_precision"] == 0  # "20 s", not "20.00"
     for ahead in (20.9, 19.6, 21.0):  # a clock keeping time, read at whatever fraction
-        s7_smart_sim.clock = plc_time(10 + ahead)
+        s7_smart_ha_sim.clock = plc_time(10 + ahead)
         await poll(hass, freezer)
         assert hass.states.get(DRIFT).last_updated == state.last_updated
-    s7_smart_sim.clock = plc_time(10 + 25)
+    s7_smart_ha_sim.clock = plc_time(10 + 25)
     await poll(hass, freezer)
     assert hass.states.get(DRIFT).state == "25"
 
@@ -94,23 +93,23 @@ async def test_status_fields_disabled_by_default(
 
 async def test_values_follow_the_plc(
     hass: HomeAssistant,
-    s7_smart_sim: S7SmartSimulator,
+    s7_smart_ha_sim: S7SmartSimulator,
     setup_integration: MockConfigEntry,
     freezer: FrozenDateTimeFactory,
 ) -> None:
-    s7_smart_sim.set("VW10", -12)
-    s7_smart_sim.mode = "STOP"
+    s7_smart_ha_sim.set("VW10", -12)
+    s7_smart_ha_sim.mode = "STOP"
     await poll(hass, freezer)
     assert hass.states.get("sensor.s7_200_smart_pressure").state == "-1.2"
     assert hass.states.get("sensor.s7_200_smart_operating_mode").state == "stop"
 
-    s7_smart_sim.mode = "SOMETHING ELSE"
+    s7_smart_ha_sim.mode = "SOMETHING ELSE"
     await poll(hass, freezer)
     assert hass.states.get("sensor.s7_200_smart_operating_mode").state == STATE_UNKNOWN
 
 
 @pytest.mark.usefixtures("entity_registry_enabled_by_default")
-async def test_vendor_status_fields(hass: HomeAssistant, s7_smart_sim: S7SmartSimulator) -> None:
+async def test_vendor_status_fields(hass: HomeAssistant, s7_smart_ha_sim: S7SmartSimulator) -> None:
     """Status fields beyond the usual three become sensors, translated where the name is known."""
     read = S7SmartClient._read
 
@@ -122,7 +121,7 @@ async def test_vendor_status_fields(hass: HomeAssistant, s7_smart_sim: S7SmartSi
         extra = {"cycle_time": "12 ms", "Backplane": "ok"}
         return replace(result, status=replace(result.status, extra=extra))
 
-    entry = make_entry(hass, s7_smart_sim, [])
+    entry = make_entry(hass, s7_smart_ha_sim, [])
     with patch.object(S7SmartClient, "_read", with_extra):
         assert await hass.config_entries.async_setup(entry.entry_id)
         await hass.async_block_till_done()
@@ -181,11 +180,13 @@ async def test_entities_belong_to_their_subentry(
     assert plc_device.model == "S7-200 SMART"
 
 
-async def test_other_kinds_of_points(hass: HomeAssistant, s7_smart_sim: S7SmartSimulator) -> None:
+async def test_other_kinds_of_points(
+    hass: HomeAssistant, s7_smart_ha_sim: S7SmartSimulator
+) -> None:
     """The clock as a timestamp, a bit as 0/1, and an address the vendor cannot parse."""
     entry = make_entry(
         hass,
-        s7_smart_sim,
+        s7_smart_ha_sim,
         [
             point("clock", "Clock", "sensor", "DATE", "signed"),
             point("bit", "Bit", "sensor", "I0.0", "signed"),

@@ -16,14 +16,13 @@ from pytest_homeassistant_custom_component.common import MockConfigEntry
 
 from custom_components.plc_bridge.const import DOMAIN
 from simulators.s7_smart import DEFAULT_USER, S7SmartSimulator
-
-from .ha_fixtures import call
+from tests.entries import call
 
 pytestmark = pytest.mark.no_pacing
 
 
 async def test_write_in_one_request(
-    hass: HomeAssistant, s7_smart_sim: S7SmartSimulator, setup_integration: MockConfigEntry
+    hass: HomeAssistant, s7_smart_ha_sim: S7SmartSimulator, setup_integration: MockConfigEntry
 ) -> None:
     points = [
         {"address": "vw30", "data_type": "signed", "value": -5},
@@ -32,11 +31,11 @@ async def test_write_in_one_request(
         {"address": "VB44", "data_type": "string", "value": "abc"},
     ]
     await call(hass, "write", setup_integration, points=points)
-    assert s7_smart_sim.calls["write"] == 1
-    assert s7_smart_sim.get("VW30") == -5
-    assert s7_smart_sim.get("VD34", "float") == 1.25
-    assert s7_smart_sim.get("V40.2") is True
-    assert s7_smart_sim.get("VB44", "string") == "abc"
+    assert s7_smart_ha_sim.calls["write"] == 1
+    assert s7_smart_ha_sim.get("VW30") == -5
+    assert s7_smart_ha_sim.get("VD34", "float") == 1.25
+    assert s7_smart_ha_sim.get("V40.2") is True
+    assert s7_smart_ha_sim.get("VB44", "string") == "abc"
 
 
 @pytest.mark.parametrize(
@@ -55,7 +54,7 @@ async def test_write_in_one_request(
 )
 async def test_write_checked_before_sending(
     hass: HomeAssistant,
-    s7_smart_sim: S7SmartSimulator,
+    s7_smart_ha_sim: S7SmartSimulator,
     setup_integration: MockConfigEntry,
     item: dict[str, Any],
     message: str,
@@ -64,15 +63,15 @@ async def test_write_checked_before_sending(
     with pytest.raises(ServiceValidationError) as err:
         await call(hass, "write", setup_integration, points=[good, item])
     assert str(err.value) == message
-    assert s7_smart_sim.calls["write"] == 0
-    assert s7_smart_sim.get("VW30") == 0
+    assert s7_smart_ha_sim.calls["write"] == 0
+    assert s7_smart_ha_sim.get("VW30") == 0
 
 
 async def test_write_refused_per_point(
-    hass: HomeAssistant, s7_smart_sim: S7SmartSimulator, setup_integration: MockConfigEntry
+    hass: HomeAssistant, s7_smart_ha_sim: S7SmartSimulator, setup_integration: MockConfigEntry
 ) -> None:
     """The PLC writes what it can; the addresses it refused are named in the error."""
-    s7_smart_sim.v_size = 1000
+    s7_smart_ha_sim.v_size = 1000
     points = [
         {"address": "VW30", "data_type": "signed", "value": 7},
         {"address": "VW2000", "data_type": "signed", "value": 8},
@@ -82,14 +81,14 @@ async def test_write_refused_per_point(
     assert str(err.value) == (
         "The PLC did not write every value: VW2000: the PLC has no such address (code 3004)"
     )
-    assert s7_smart_sim.get("VW30") == 7
+    assert s7_smart_ha_sim.get("VW30") == 7
 
 
 async def test_write_auth_failure_starts_reauth(
-    hass: HomeAssistant, s7_smart_sim: S7SmartSimulator, setup_integration: MockConfigEntry
+    hass: HomeAssistant, s7_smart_ha_sim: S7SmartSimulator, setup_integration: MockConfigEntry
 ) -> None:
-    s7_smart_sim._hashes[DEFAULT_USER] = hashlib.sha512(b"changed").hexdigest()
-    s7_smart_sim.invalidate_tokens()
+    s7_smart_ha_sim._hashes[DEFAULT_USER] = hashlib.sha512(b"changed").hexdigest()
+    s7_smart_ha_sim.invalidate_tokens()
     with pytest.raises(HomeAssistantError) as err:
         await call(
             hass,
@@ -102,10 +101,10 @@ async def test_write_auth_failure_starts_reauth(
 
 
 async def test_read(
-    hass: HomeAssistant, s7_smart_sim: S7SmartSimulator, setup_integration: MockConfigEntry
+    hass: HomeAssistant, s7_smart_ha_sim: S7SmartSimulator, setup_integration: MockConfigEntry
 ) -> None:
-    s7_smart_sim.v_size = 1000
-    reads = s7_smart_sim.calls["read"]
+    s7_smart_ha_sim.v_size = 1000
+    reads = s7_smart_ha_sim.calls["read"]
     response = await call(
         hass,
         "read",
@@ -126,13 +125,13 @@ async def test_read(
         },
         "errors": {"VW2000": "VW2000: the PLC has no such address (code 3004)"},
     }
-    assert s7_smart_sim.calls["read"] == reads + 1
+    assert s7_smart_ha_sim.calls["read"] == reads + 1
 
 
 async def test_read_unreachable(
-    hass: HomeAssistant, s7_smart_sim: S7SmartSimulator, setup_integration: MockConfigEntry
+    hass: HomeAssistant, s7_smart_ha_sim: S7SmartSimulator, setup_integration: MockConfigEntry
 ) -> None:
-    await s7_smart_sim.stop()
+    await s7_smart_ha_sim.stop()
     with pytest.raises(HomeAssistantError) as err:
         await call(
             hass, "read", setup_integration, points=[{"address": "VD100", "data_type": "float"}]
@@ -143,7 +142,7 @@ async def test_read_unreachable(
 
 async def test_sync_clock(
     hass: HomeAssistant,
-    s7_smart_sim: S7SmartSimulator,
+    s7_smart_ha_sim: S7SmartSimulator,
     setup_integration: MockConfigEntry,
     freezer: FrozenDateTimeFactory,
 ) -> None:
@@ -153,11 +152,11 @@ async def test_sync_clock(
     now = dt_util.now()
     assert now.tzinfo is not None
     assert str(now.tzinfo) == "US/Pacific"
-    assert s7_smart_sim.clock == now.replace(microsecond=0, tzinfo=None)
+    assert s7_smart_ha_sim.clock == now.replace(microsecond=0, tzinfo=None)
 
 
 async def test_sync_clock_refreshes_the_clock_point(
-    hass: HomeAssistant, s7_smart_sim: S7SmartSimulator, setup_integration: MockConfigEntry
+    hass: HomeAssistant, s7_smart_ha_sim: S7SmartSimulator, setup_integration: MockConfigEntry
 ) -> None:
     """The PLC is polled right after its clock is set: its clock point shows the new time."""
     clock = "datetime.s7_200_smart_clock"
@@ -165,13 +164,13 @@ async def test_sync_clock_refreshes_the_clock_point(
     await call(hass, "sync_clock", setup_integration)
     now = dt_util.now().replace(microsecond=0)
     assert hass.states.get(clock).state == now.astimezone(dt_util.UTC).isoformat()
-    assert s7_smart_sim.calls["read"] == 2
+    assert s7_smart_ha_sim.calls["read"] == 2
 
 
 async def test_sync_clock_in_stop(
-    hass: HomeAssistant, s7_smart_sim: S7SmartSimulator, setup_integration: MockConfigEntry
+    hass: HomeAssistant, s7_smart_ha_sim: S7SmartSimulator, setup_integration: MockConfigEntry
 ) -> None:
-    s7_smart_sim.mode = "STOP"
+    s7_smart_ha_sim.mode = "STOP"
     with pytest.raises(HomeAssistantError) as err:
         await call(hass, "sync_clock", setup_integration)
     assert str(err.value) == (
@@ -196,10 +195,10 @@ async def test_entry_must_exist_and_be_loaded(
 
 
 async def test_user_without_write_permission(
-    hass: HomeAssistant, s7_smart_sim: S7SmartSimulator, setup_integration: MockConfigEntry
+    hass: HomeAssistant, s7_smart_ha_sim: S7SmartSimulator, setup_integration: MockConfigEntry
 ) -> None:
     """The PLC said at connect time that its user may not write: nothing is ever sent."""
-    s7_smart_sim.write_permission = False
+    s7_smart_ha_sim.write_permission = False
     await hass.config_entries.async_reload(setup_integration.entry_id)
     await hass.async_block_till_done()
     assert not setup_integration.runtime_data.device.can_write
@@ -217,4 +216,4 @@ async def test_user_without_write_permission(
         await hass.services.async_call(
             "switch", "turn_on", {"entity_id": "switch.s7_200_smart_pump"}, blocking=True
         )
-    assert s7_smart_sim.calls["write"] == 0
+    assert s7_smart_ha_sim.calls["write"] == 0

@@ -12,9 +12,8 @@ from homeassistant.core import HomeAssistant
 
 from custom_components.plc_bridge.const import CONF_OPTIONS
 from simulators.softplc import SoftplcSimulator
-
-from .ha_fixtures import point, poll
-from .softplc_ha_fixtures import make_softplc_entry
+from tests.entries import point, poll
+from tests.harness import make_softplc_entry
 
 POINTS = [
     point("l1", "Hall", "light", "I:0/0", "BOOL", role="state", read_only=True),
@@ -25,21 +24,21 @@ HALL = "light.softplc_hall"
 
 
 async def test_softplc_light(
-    hass: HomeAssistant, softplc_sim: SoftplcSimulator, freezer: FrozenDateTimeFactory
+    hass: HomeAssistant, softplc_ha_sim: SoftplcSimulator, freezer: FrozenDateTimeFactory
 ) -> None:
     """Every part in the one scattered POST; the command and brightness written together."""
-    cert, key = softplc_sim.client_certificate(trusted=True)
+    cert, key = softplc_ha_sim.client_certificate(trusted=True)
     options = {CONF_OPTIONS: {"client_certificate": cert, "client_key": key}}
-    entry = make_softplc_entry(hass, softplc_sim, POINTS, **options)
+    entry = make_softplc_entry(hass, softplc_ha_sim, POINTS, **options)
     assert await hass.config_entries.async_setup(entry.entry_id)
     await hass.async_block_till_done()
     state = hass.states.get(HALL)
     assert (state.state, state.attributes[ATTR_BRIGHTNESS]) == (STATE_ON, 13)
-    before = softplc_sim.requests
+    before = softplc_ha_sim.requests
     await poll(hass, freezer)
-    assert softplc_sim.requests - before == 1
+    assert softplc_ha_sim.requests - before == 1
     await hass.services.async_call(
         LIGHT_DOMAIN, SERVICE_TURN_ON, {ATTR_ENTITY_ID: HALL, ATTR_BRIGHTNESS: 255}, blocking=True
     )
-    assert softplc_sim.files["B", 3].words[0] & 0b100
-    assert softplc_sim.files["N", 7].words[5] == 100
+    assert softplc_ha_sim.files["B", 3].words[0] & 0b100
+    assert softplc_ha_sim.files["N", 7].words[5] == 100

@@ -14,9 +14,8 @@ from pytest_homeassistant_custom_component.typing import ClientSessionGenerator
 
 from custom_components.plc_bridge.const import CONF_OPTIONS
 from simulators.softplc import SoftplcSimulator
-
-from .ha_fixtures import poll
-from .softplc_ha_fixtures import make_softplc_entry, pem_pair
+from tests.entries import poll
+from tests.harness import make_softplc_entry, pem_pair
 
 REDACTED = "**REDACTED**"
 
@@ -25,19 +24,19 @@ REDACTED = "**REDACTED**"
 async def test_certificate_and_key_redacted(  # noqa: PLR0917
     hass: HomeAssistant,
     hass_client: ClientSessionGenerator,
-    softplc_sim: SoftplcSimulator,
+    softplc_ha_sim: SoftplcSimulator,
     freezer: FrozenDateTimeFactory,
     tmp_path: Path,
     as_files: bool,
 ) -> None:
     """Pasted PEM or file paths: both are redacted; the poll's figures are there."""
-    pair = pem_pair(softplc_sim)
+    pair = pem_pair(softplc_ha_sim)
     options = {key: value.strip() + "\n" for key, value in pair.items()}
     if as_files:
         for key, value in pair.items():
             (tmp_path / key).write_text(value)
         options = {key: str(tmp_path / key) for key in pair}
-    entry = make_softplc_entry(hass, softplc_sim, **{CONF_OPTIONS: options})
+    entry = make_softplc_entry(hass, softplc_ha_sim, **{CONF_OPTIONS: options})
     assert await hass.config_entries.async_setup(entry.entry_id)
     await hass.async_block_till_done()
     await poll(hass, freezer)
@@ -51,7 +50,7 @@ async def test_certificate_and_key_redacted(  # noqa: PLR0917
     assert result["results"]["F8:0|REAL"] == {"ok": True, "value": 21.5}
     assert result["results"]["important_int|INT"] == {"ok": True, "value": 10}
     text = str(result)
-    for secret in (*pair.values(), str(tmp_path), softplc_sim.fingerprint or "", "127.0.0.1"):
+    for secret in (*pair.values(), str(tmp_path), softplc_ha_sim.fingerprint or "", "127.0.0.1"):
         assert secret not in text
     for line in (*pair["client_certificate"].splitlines(), *pair["client_key"].splitlines()):
         if "-----" not in line:

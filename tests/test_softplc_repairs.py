@@ -18,9 +18,8 @@ from custom_components.plc_bridge.const import CONF_OPTIONS, DOMAIN
 from custom_components.plc_bridge.plc.vendors.softplc import SoftplcClient
 from simulators.softplc import SoftplcSimulator
 from simulators.softplc.datatable import File
-
-from .ha_fixtures import point, poll
-from .softplc_ha_fixtures import SOFTPLC_POINTS, make_softplc_entry, pem_pair
+from tests.entries import point, poll
+from tests.harness import SOFTPLC_POINTS, make_softplc_entry, pem_pair
 
 MISSING = [
     point("spare", "Spare", "sensor", "N99:0", "INT"),
@@ -31,13 +30,13 @@ MISSING = [
 
 async def test_refused_addresses_raise_issues(
     hass: HomeAssistant,
-    softplc_sim: SoftplcSimulator,
+    softplc_ha_sim: SoftplcSimulator,
     issue_registry: ir.IssueRegistry,
     freezer: FrozenDateTimeFactory,
 ) -> None:
     """Each refused address gets its issue while the other points read; once the PLC has the
     file, the issue goes at the next probe. Between probes a poll is still one request."""
-    entry = make_softplc_entry(hass, softplc_sim, [*SOFTPLC_POINTS, *MISSING])
+    entry = make_softplc_entry(hass, softplc_ha_sim, [*SOFTPLC_POINTS, *MISSING])
     assert await hass.config_entries.async_setup(entry.entry_id)
     await hass.async_block_till_done()
     assert entry.state is ConfigEntryState.LOADED
@@ -51,11 +50,11 @@ async def test_refused_addresses_raise_issues(
         assert issue.translation_placeholders is not None
         assert issue.translation_placeholders["address"] == address
         assert address in issue.translation_placeholders["error"]
-    requests = softplc_sim.requests
+    requests = softplc_ha_sim.requests
     await poll(hass, freezer)
-    assert softplc_sim.requests - requests == 1  # the refused ones wait for the next probe
+    assert softplc_ha_sim.requests - requests == 1  # the refused ones wait for the next probe
 
-    softplc_sim.files["N", 99] = File("N", 99, [42])
+    softplc_ha_sim.files["N", 99] = File("N", 99, [42])
     freezer.tick(timedelta(seconds=SoftplcClient.probe_interval))
     async_fire_time_changed(hass)
     await hass.async_block_till_done(wait_background_tasks=True)
@@ -66,21 +65,21 @@ async def test_refused_addresses_raise_issues(
 
 async def test_replaced_certificate_repaired(
     hass: HomeAssistant,
-    softplc_sim: SoftplcSimulator,
+    softplc_ha_sim: SoftplcSimulator,
     issue_registry: ir.IssueRegistry,
     freezer: FrozenDateTimeFactory,
 ) -> None:
     """With a client certificate the pin is the client's own context: a PLC presenting a new
     certificate gets no request; trusting it in the repair sets the entry up again."""
-    options = {key: value.strip() + "\n" for key, value in pem_pair(softplc_sim).items()}
-    entry = make_softplc_entry(hass, softplc_sim, **{CONF_OPTIONS: options})
+    options = {key: value.strip() + "\n" for key, value in pem_pair(softplc_ha_sim).items()}
+    entry = make_softplc_entry(hass, softplc_ha_sim, **{CONF_OPTIONS: options})
     assert await hass.config_entries.async_setup(entry.entry_id)
     await hass.async_block_till_done()
-    softplc_sim.new_certificate()  # as after a firmware update
-    await softplc_sim.restart()
-    requests = softplc_sim.requests
+    softplc_ha_sim.new_certificate()  # as after a firmware update
+    await softplc_ha_sim.restart()
+    requests = softplc_ha_sim.requests
     await poll(hass, freezer)
-    assert softplc_sim.requests == requests
+    assert softplc_ha_sim.requests == requests
     assert hass.states.get("sensor.softplc_count").state == STATE_UNAVAILABLE  # type: ignore[union-attr]
     issue_id = f"certificate_changed_{entry.entry_id}"
     assert issue_registry.async_get_issue(DOMAIN, issue_id) is not None

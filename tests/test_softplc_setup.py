@@ -13,9 +13,8 @@ import pytest
 
 from custom_components.plc_bridge.const import CONF_OPTIONS
 from simulators.softplc import SoftplcSimulator
-
-from .ha_fixtures import poll
-from .softplc_ha_fixtures import make_softplc_entry
+from tests.entries import poll
+from tests.harness import make_softplc_entry
 
 SWITCH = "switch.softplc_lamp"
 NUMBER = "number.softplc_preset"
@@ -28,10 +27,10 @@ def certificate(sim: SoftplcSimulator, *, trusted: bool = True) -> dict[str, str
 
 
 async def test_poll_and_write(
-    hass: HomeAssistant, softplc_sim: SoftplcSimulator, freezer: FrozenDateTimeFactory
+    hass: HomeAssistant, softplc_ha_sim: SoftplcSimulator, freezer: FrozenDateTimeFactory
 ) -> None:
     """Every point shows the simulator's value, each poll is one POST, writes land."""
-    entry = make_softplc_entry(hass, softplc_sim, **{CONF_OPTIONS: certificate(softplc_sim)})
+    entry = make_softplc_entry(hass, softplc_ha_sim, **{CONF_OPTIONS: certificate(softplc_ha_sim)})
     assert await hass.config_entries.async_setup(entry.entry_id)
     await hass.async_block_till_done()
     assert entry.state is ConfigEntryState.LOADED
@@ -42,9 +41,9 @@ async def test_poll_and_write(
     assert states[SWITCH] == STATE_OFF
     assert states["binary_sensor.softplc_input"] == STATE_ON
     assert states["sensor.softplc_important"] == "10"
-    before = softplc_sim.requests
+    before = softplc_ha_sim.requests
     await poll(hass, freezer)
-    assert softplc_sim.requests - before == 1
+    assert softplc_ha_sim.requests - before == 1
     await hass.services.async_call(
         SWITCH_DOMAIN, SERVICE_TURN_ON, {ATTR_ENTITY_ID: SWITCH}, blocking=True
     )
@@ -52,18 +51,18 @@ async def test_poll_and_write(
         NUMBER_DOMAIN, SERVICE_SET_VALUE, {ATTR_ENTITY_ID: NUMBER, ATTR_VALUE: 2500}, blocking=True
     )
     await hass.async_block_till_done(wait_background_tasks=True)
-    assert softplc_sim.files["B", 3].words[0] & 0b100
-    assert softplc_sim.files["T", 4].words[1] == 2500
+    assert softplc_ha_sim.files["B", 3].words[0] & 0b100
+    assert softplc_ha_sim.files["T", 4].words[1] == 2500
     assert hass.states.get(SWITCH).state == STATE_ON  # type: ignore[union-attr]
     assert hass.states.get(NUMBER).state == "2500"  # type: ignore[union-attr]
 
 
 async def test_refused_certificate_starts_reauth(
-    hass: HomeAssistant, softplc_sim: SoftplcSimulator
+    hass: HomeAssistant, softplc_ha_sim: SoftplcSimulator
 ) -> None:
     """Reads work without a trusted certificate; a refused write asks for a new certificate."""
     entry = make_softplc_entry(
-        hass, softplc_sim, **{CONF_OPTIONS: certificate(softplc_sim, trusted=False)}
+        hass, softplc_ha_sim, **{CONF_OPTIONS: certificate(softplc_ha_sim, trusted=False)}
     )
     assert await hass.config_entries.async_setup(entry.entry_id)
     await hass.async_block_till_done()
@@ -78,7 +77,7 @@ async def test_refused_certificate_starts_reauth(
     assert reauth
     assert reauth[0]["step_id"] == "reauth_softplc"
     result = await hass.config_entries.flow.async_configure(
-        reauth[0]["flow_id"], certificate(softplc_sim)
+        reauth[0]["flow_id"], certificate(softplc_ha_sim)
     )
     assert result["type"] == "abort"
     assert result["reason"] == "reauth_successful"
@@ -86,4 +85,4 @@ async def test_refused_certificate_starts_reauth(
     await hass.services.async_call(
         SWITCH_DOMAIN, SERVICE_TURN_ON, {ATTR_ENTITY_ID: SWITCH}, blocking=True
     )
-    assert softplc_sim.files["B", 3].words[0] & 0b100
+    assert softplc_ha_sim.files["B", 3].words[0] & 0b100

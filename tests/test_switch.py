@@ -18,9 +18,8 @@ from pytest_homeassistant_custom_component.common import MockConfigEntry, snapsh
 from syrupy.assertion import SnapshotAssertion
 
 from simulators.s7_smart import S7SmartSimulator
-
-from .conftest import current_release_only
-from .ha_fixtures import make_entry, point
+from tests.conftest import current_release_only
+from tests.entries import make_entry, point
 
 pytestmark = pytest.mark.no_pacing
 
@@ -44,25 +43,25 @@ async def test_snapshot(
 
 
 async def test_turn_on_and_off(
-    hass: HomeAssistant, s7_smart_sim: S7SmartSimulator, setup_integration: MockConfigEntry
+    hass: HomeAssistant, s7_smart_ha_sim: S7SmartSimulator, setup_integration: MockConfigEntry
 ) -> None:
     await hass.services.async_call(
         SWITCH_DOMAIN, SERVICE_TURN_ON, {ATTR_ENTITY_ID: PUMP}, blocking=True
     )
-    assert s7_smart_sim.get("Q0.0") is True
+    assert s7_smart_ha_sim.get("Q0.0") is True
     assert hass.states.get(PUMP).state == STATE_ON
 
     await hass.services.async_call(
         SWITCH_DOMAIN, SERVICE_TURN_OFF, {ATTR_ENTITY_ID: PUMP}, blocking=True
     )
-    assert s7_smart_sim.get("Q0.0") is False
-    assert s7_smart_sim.calls["write"] == 2
+    assert s7_smart_ha_sim.get("Q0.0") is False
+    assert s7_smart_ha_sim.calls["write"] == 2
 
 
 async def test_plc_in_stop(
-    hass: HomeAssistant, s7_smart_sim: S7SmartSimulator, setup_integration: MockConfigEntry
+    hass: HomeAssistant, s7_smart_ha_sim: S7SmartSimulator, setup_integration: MockConfigEntry
 ) -> None:
-    s7_smart_sim.mode = "STOP"
+    s7_smart_ha_sim.mode = "STOP"
     with pytest.raises(HomeAssistantError) as err:
         await hass.services.async_call(
             SWITCH_DOMAIN, SERVICE_TURN_ON, {ATTR_ENTITY_ID: PUMP}, blocking=True
@@ -72,16 +71,16 @@ async def test_plc_in_stop(
         " (CPU not in RUN., code 2001)"
     )
     assert err.value.translation_key == "write_refused"
-    assert s7_smart_sim.get("Q0.0") is False
+    assert s7_smart_ha_sim.get("Q0.0") is False
 
 
 async def test_integer_point_and_read_only(
-    hass: HomeAssistant, s7_smart_sim: S7SmartSimulator
+    hass: HomeAssistant, s7_smart_ha_sim: S7SmartSimulator
 ) -> None:
     """A byte used as a switch is written 1 and 0; a read-only point is never written."""
     entry = make_entry(
         hass,
-        s7_smart_sim,
+        s7_smart_ha_sim,
         [
             point("mode", "Mode", "switch", "VB50", "unsigned"),
             point("lamp", "Lamp", "switch", "Q0.1", "signed", read_only=True),
@@ -91,7 +90,7 @@ async def test_integer_point_and_read_only(
     await hass.services.async_call(
         SWITCH_DOMAIN, SERVICE_TURN_ON, {ATTR_ENTITY_ID: "switch.s7_200_smart_mode"}, blocking=True
     )
-    assert s7_smart_sim.get("VB50", "unsigned") == 1
+    assert s7_smart_ha_sim.get("VB50", "unsigned") == 1
 
     with pytest.raises(ServiceValidationError) as err:
         await hass.services.async_call(
@@ -101,4 +100,4 @@ async def test_integer_point_and_read_only(
             blocking=True,
         )
     assert str(err.value) == "Q0.1 is a read-only point; nothing was sent"
-    assert s7_smart_sim.calls["write"] == 1
+    assert s7_smart_ha_sim.calls["write"] == 1

@@ -15,9 +15,8 @@ from homeassistant.const import ATTR_ENTITY_ID, ATTR_TEMPERATURE, SERVICE_TURN_O
 from homeassistant.core import HomeAssistant
 
 from simulators.tecomat import TecomatSimulator
-
-from .ha_fixtures import point
-from .tecomat_ha_fixtures import make_tecomat_entry
+from tests.entries import point
+from tests.harness import make_tecomat_entry
 
 POINTS = [
     point("t1", "Room", "climate", "Main.myObject2.value", "REAL", role="current_temperature"),
@@ -58,10 +57,10 @@ ROOM = "climate.fx2_cp2080_room"
 
 
 async def test_tecomat_thermostat_and_pump(
-    hass: HomeAssistant, tecomat_sim: TecomatSimulator
+    hass: HomeAssistant, tecomat_ha_sim: TecomatSimulator
 ) -> None:
     """One GetObject per poll for every part; the writes go through PutObject."""
-    entry = make_tecomat_entry(hass, tecomat_sim, POINTS)
+    entry = make_tecomat_entry(hass, tecomat_ha_sim, POINTS)
     assert await hass.config_entries.async_setup(entry.entry_id)
     await hass.async_block_till_done()
     state = hass.states.get(ROOM)
@@ -77,14 +76,14 @@ async def test_tecomat_thermostat_and_pump(
         {ATTR_ENTITY_ID: ROOM, ATTR_TEMPERATURE: 21.5},
         blocking=True,
     )
-    assert tecomat_sim.get("Main.myObject3.value") == 21.5
+    assert tecomat_ha_sim.get("Main.myObject3.value") == 21.5
     await hass.services.async_call(
         CLIMATE_DOMAIN,
         SERVICE_SET_HVAC_MODE,
         {ATTR_ENTITY_ID: ROOM, ATTR_HVAC_MODE: "cool"},
         blocking=True,
     )
-    assert tecomat_sim.get("plcData.varUsint") == 12
+    assert tecomat_ha_sim.get("plcData.varUsint") == 12
     assert hass.states.get("switch.fx2_cp2080_pump").state == STATE_ON
     await hass.services.async_call(
         SWITCH_DOMAIN,
@@ -92,7 +91,7 @@ async def test_tecomat_thermostat_and_pump(
         {ATTR_ENTITY_ID: "switch.fx2_cp2080_pump"},
         blocking=True,
     )
-    assert tecomat_sim.get("Main.pump.value") is False
-    reads = tecomat_sim.calls["GetObject"]
+    assert tecomat_ha_sim.get("Main.pump.value") is False
+    reads = tecomat_ha_sim.calls["GetObject"]
     await entry.runtime_data.coordinator.async_refresh()
-    assert tecomat_sim.calls["GetObject"] - reads == 1
+    assert tecomat_ha_sim.calls["GetObject"] - reads == 1

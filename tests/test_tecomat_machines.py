@@ -12,9 +12,8 @@ from homeassistant.core import HomeAssistant
 from pytest_homeassistant_custom_component.common import async_fire_time_changed
 
 from simulators.tecomat import TecomatSimulator
-
-from .ha_fixtures import point
-from .tecomat_ha_fixtures import make_tecomat_entry
+from tests.entries import point
+from tests.harness import make_tecomat_entry
 
 POINTS = [
     point("mode", "Mode", "select", "plcData.varUsint", "USINT", value_map="0=Off;11=Auto;12=Hand"),
@@ -24,10 +23,10 @@ POINTS = [
 
 
 async def test_tecomat_machines(
-    hass: HomeAssistant, freezer: FrozenDateTimeFactory, tecomat_sim: TecomatSimulator
+    hass: HomeAssistant, freezer: FrozenDateTimeFactory, tecomat_ha_sim: TecomatSimulator
 ) -> None:
     """Shown from one GetObject per poll; the select and the pulse write through PutObject."""
-    entry = make_tecomat_entry(hass, tecomat_sim, POINTS)
+    entry = make_tecomat_entry(hass, tecomat_ha_sim, POINTS)
     assert await hass.config_entries.async_setup(entry.entry_id)
     await hass.async_block_till_done()
     assert hass.states.get("select.fx2_cp2080_mode").state == "Auto"
@@ -40,17 +39,17 @@ async def test_tecomat_machines(
         {ATTR_ENTITY_ID: "select.fx2_cp2080_mode", ATTR_OPTION: "Hand"},
         blocking=True,
     )
-    assert tecomat_sim.get("plcData.varUsint") == 12
+    assert tecomat_ha_sim.get("plcData.varUsint") == 12
 
     await hass.services.async_call(
         BUTTON_DOMAIN, SERVICE_PRESS, {ATTR_ENTITY_ID: "button.fx2_cp2080_start"}, blocking=True
     )
-    assert tecomat_sim.get("plcData.varBool0") is True
+    assert tecomat_ha_sim.get("plcData.varBool0") is True
     freezer.tick(timedelta(seconds=1.5))
     async_fire_time_changed(hass)
     await hass.async_block_till_done(wait_background_tasks=True)
-    assert tecomat_sim.get("plcData.varBool0") is False
+    assert tecomat_ha_sim.get("plcData.varBool0") is False
 
-    reads = tecomat_sim.calls["GetObject"]
+    reads = tecomat_ha_sim.calls["GetObject"]
     await entry.runtime_data.coordinator.async_refresh()
-    assert tecomat_sim.calls["GetObject"] - reads == 1
+    assert tecomat_ha_sim.calls["GetObject"] - reads == 1

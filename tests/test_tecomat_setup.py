@@ -16,8 +16,8 @@ from pytest_homeassistant_custom_component.typing import ClientSessionGenerator
 
 from custom_components.plc_bridge.const import DOMAIN
 from simulators.tecomat import DEFAULT_PASSWORD, DEFAULT_USER, TecomatSimulator
-from tests.ha_fixtures import edit_point, point, poll, read_edits, remove_point
-from tests.tecomat_ha_fixtures import TECOMAT_SERIAL, make_tecomat_entry
+from tests.entries import edit_point, point, poll, read_edits, remove_point
+from tests.harness import TECOMAT_SERIAL, make_tecomat_entry
 
 INSIDE = "sensor.fx2_cp2080_inside_temperature"
 STRINGS_ISSUE = "unknown_address"
@@ -58,13 +58,13 @@ async def test_live_values(hass: HomeAssistant, tecomat_entry: MockConfigEntry) 
 
 async def test_stale_nonce_keeps_entities(
     hass: HomeAssistant,
-    tecomat_sim: TecomatSimulator,
+    tecomat_ha_sim: TecomatSimulator,
     tecomat_entry: MockConfigEntry,
     freezer: FrozenDateTimeFactory,
 ) -> None:
     """A renewed digest nonce mid-poll is answered again at once: nothing goes unavailable."""
-    tecomat_sim.set("Main.myObject2.value", 19.5)
-    tecomat_sim.stale_nonce()
+    tecomat_ha_sim.set("Main.myObject2.value", 19.5)
+    tecomat_ha_sim.stale_nonce()
     await poll(hass, freezer)
     assert tecomat_entry.runtime_data.coordinator.last_update_success
     assert hass.states.get(INSIDE).state == "19.5"
@@ -74,14 +74,14 @@ async def test_stale_nonce_keeps_entities(
 
 async def test_renamed_variable_raises_an_issue(
     hass: HomeAssistant,
-    tecomat_sim: TecomatSimulator,
+    tecomat_ha_sim: TecomatSimulator,
     tecomat_entry: MockConfigEntry,
     freezer: FrozenDateTimeFactory,
     issue_registry: ir.IssueRegistry,
 ) -> None:
     """Only the renamed variable's entity goes; its issue names it and leaves when it is back."""
-    tecomat_sim.rename("plcData.varInt", "varInteger")
-    tecomat_sim.set("Main.myObject2.value", 19.5)
+    tecomat_ha_sim.rename("plcData.varInt", "varInteger")
+    tecomat_ha_sim.set("Main.myObject2.value", 19.5)
     await poll(hass, freezer)
     unavailable = [s.entity_id for s in hass.states.async_all() if s.state == STATE_UNAVAILABLE]
     assert unavailable == ["sensor.fx2_cp2080_int"]
@@ -100,7 +100,7 @@ async def test_renamed_variable_raises_an_issue(
     await poll(hass, freezer)  # still failing: still one issue
     assert len(issue_registry.issues) == 1
 
-    tecomat_sim.rename("plcData.varInteger", "varInt")
+    tecomat_ha_sim.rename("plcData.varInteger", "varInt")
     await poll(hass, freezer, 6)  # an unknown variable is asked for again once a minute
     assert hass.states.get("sensor.fx2_cp2080_int").state == "-2222"
     assert not issue_registry.issues
@@ -108,13 +108,13 @@ async def test_renamed_variable_raises_an_issue(
 
 async def test_removing_the_point_clears_its_issue(
     hass: HomeAssistant,
-    tecomat_sim: TecomatSimulator,
+    tecomat_ha_sim: TecomatSimulator,
     tecomat_entry: MockConfigEntry,
     freezer: FrozenDateTimeFactory,
     issue_registry: ir.IssueRegistry,
 ) -> None:
     """A point whose variable is gone for good: removing its subentry removes its issue."""
-    tecomat_sim.rename("plcData.varInt", "varInteger")
+    tecomat_ha_sim.rename("plcData.varInt", "varInteger")
     await poll(hass, freezer)
     assert issue_registry.async_get_issue(DOMAIN, issue_of(tecomat_entry, "int")) is not None
     remove_point(hass, tecomat_entry, "int")
@@ -126,13 +126,13 @@ async def test_removing_the_point_clears_its_issue(
 
 async def test_fixing_the_address_clears_the_issue(
     hass: HomeAssistant,
-    tecomat_sim: TecomatSimulator,
+    tecomat_ha_sim: TecomatSimulator,
     tecomat_entry: MockConfigEntry,
     freezer: FrozenDateTimeFactory,
     issue_registry: ir.IssueRegistry,
 ) -> None:
     """The repair the issue asks for: the point's subentry gets the new name, the issue goes."""
-    tecomat_sim.rename("plcData.varInt", "varInteger")
+    tecomat_ha_sim.rename("plcData.varInt", "varInteger")
     await poll(hass, freezer)
     assert issue_registry.async_get_issue(DOMAIN, issue_of(tecomat_entry, "int")) is not None
     edit_point(hass, tecomat_entry, "int", address="plcData.varInteger")
@@ -143,12 +143,12 @@ async def test_fixing_the_address_clears_the_issue(
 
 
 async def test_unknown_variable_from_the_start(
-    hass: HomeAssistant, tecomat_sim: TecomatSimulator, issue_registry: ir.IssueRegistry
+    hass: HomeAssistant, tecomat_ha_sim: TecomatSimulator, issue_registry: ir.IssueRegistry
 ) -> None:
     """A variable that never existed raises its issue at setup; removing the entry clears it."""
     entry = make_tecomat_entry(
         hass,
-        tecomat_sim,
+        tecomat_ha_sim,
         [
             point("typo", "Typo", "sensor", "plcData.varInz", "INT"),
             point("int", "Int", "sensor", "plcData.varInt", "INT"),
@@ -165,10 +165,10 @@ async def test_unknown_variable_from_the_start(
 
 @pytest.mark.usefixtures("entity_registry_enabled_by_default")
 async def test_clock_read_only_without_clock_variable(
-    hass: HomeAssistant, tecomat_sim: TecomatSimulator, entity_registry: er.EntityRegistry
+    hass: HomeAssistant, tecomat_ha_sim: TecomatSimulator, entity_registry: er.EntityRegistry
 ) -> None:
     """No clock variable: a timestamp sensor; once one is named, a datetime replaces it."""
-    entry = make_tecomat_entry(hass, tecomat_sim, vendor_options={"auth": "digest"})
+    entry = make_tecomat_entry(hass, tecomat_ha_sim, vendor_options={"auth": "digest"})
     assert await hass.config_entries.async_setup(entry.entry_id)
     await hass.async_block_till_done()
     assert hass.states.get("datetime.fx2_cp2080_plc_clock") is None
@@ -197,7 +197,7 @@ async def test_clock_entities_off_by_default(
 
 async def test_operating_mode(
     hass: HomeAssistant,
-    tecomat_sim: TecomatSimulator,
+    tecomat_ha_sim: TecomatSimulator,
     tecomat_entry: MockConfigEntry,
     freezer: FrozenDateTimeFactory,
     entity_registry: er.EntityRegistry,
@@ -208,7 +208,7 @@ async def test_operating_mode(
     registered = entity_registry.async_get(mode)
     assert registered is not None
     assert registered.entity_category is er.EntityCategory.DIAGNOSTIC
-    tecomat_sim.mode = "HALT"
+    tecomat_ha_sim.mode = "HALT"
     await poll(hass, freezer, 6)
     assert hass.states.get(mode).state == "halt"
     assert hass.states.get(INSIDE).state == "22.1"
@@ -217,7 +217,7 @@ async def test_operating_mode(
 async def test_diagnostics(
     hass: HomeAssistant,
     hass_client: ClientSessionGenerator,
-    tecomat_sim: TecomatSimulator,
+    tecomat_ha_sim: TecomatSimulator,
     tecomat_entry: MockConfigEntry,
 ) -> None:
     """Diagnostics of a Tecomat PLC: settings, device, status, results; no credentials."""

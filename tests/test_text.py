@@ -18,8 +18,8 @@ import pytest
 
 from simulators.s7_smart import S7SmartSimulator
 from simulators.tecomat import TecomatSimulator
-from tests.ha_fixtures import DEVICE_ID, make_entry, point
-from tests.tecomat_ha_fixtures import TECOMAT_SERIAL, make_tecomat_entry
+from tests.entries import DEVICE_ID, make_entry, point
+from tests.harness import TECOMAT_SERIAL, make_tecomat_entry
 
 pytestmark = pytest.mark.no_pacing
 
@@ -45,12 +45,12 @@ async def set_text(hass: HomeAssistant, entity_id: str, value: str) -> None:
 
 
 @pytest.fixture
-async def text_sim(hass: HomeAssistant, tecomat_sim: TecomatSimulator) -> TecomatSimulator:
+async def text_sim(hass: HomeAssistant, tecomat_ha_sim: TecomatSimulator) -> TecomatSimulator:
     """The Tecomat simulator with an entry of three text points, set up."""
-    entry = make_tecomat_entry(hass, tecomat_sim, POINTS)
+    entry = make_tecomat_entry(hass, tecomat_ha_sim, POINTS)
     assert await hass.config_entries.async_setup(entry.entry_id)
     await hass.async_block_till_done()
-    return tecomat_sim
+    return tecomat_ha_sim
 
 
 async def test_text_entities(
@@ -131,13 +131,13 @@ async def test_unavailable_while_its_variable_is_missing(
     assert hass.states.get(LABEL).state == "myFoxtrot"
 
 
-async def test_s7_smart_text(hass: HomeAssistant, s7_smart_sim: S7SmartSimulator) -> None:
+async def test_s7_smart_text(hass: HomeAssistant, s7_smart_ha_sim: S7SmartSimulator) -> None:
     """The platform is vendor-neutral: an S7-200 SMART string in V memory."""
-    entry = make_entry(hass, s7_smart_sim, [point("name", "Name", "text", "VB200", "string")])
+    entry = make_entry(hass, s7_smart_ha_sim, [point("name", "Name", "text", "VB200", "string")])
     assert await hass.config_entries.async_setup(entry.entry_id)
     await hass.async_block_till_done()
     entity_id = "text.s7_200_smart_name"
     assert hass.states.get(entity_id).state == "Line 1"
     await set_text(hass, entity_id, "Line 2")
-    assert s7_smart_sim.get("VB200", "string") == "Line 2"
+    assert s7_smart_ha_sim.get("VB200", "string") == "Line 2"
     assert hass.states.get(entity_id).state == "Line 2"

@@ -13,9 +13,8 @@ from custom_components.plc_bridge.model.conversion import spelled_as_states
 from custom_components.plc_bridge.model.point_table import parse_points
 from custom_components.plc_bridge.plc.vendors import client_class
 from simulators.s7_smart import S7SmartSimulator
-
-from .ha_fixtures import make_entry, point, poll
-from .test_composite import TABLE
+from tests.entries import make_entry, point, poll
+from tests.model.test_composite import TABLE
 
 pytestmark = pytest.mark.no_pacing
 
@@ -85,7 +84,7 @@ def test_table_takes_any_case() -> None:
 
 
 async def test_climate_of_a_map_typed_in_capitals(
-    hass: HomeAssistant, s7_smart_sim: S7SmartSimulator, freezer: FrozenDateTimeFactory
+    hass: HomeAssistant, s7_smart_ha_sim: S7SmartSimulator, freezer: FrozenDateTimeFactory
 ) -> None:
     """A climate whose mode map was typed `0=Off;1=HEAT` shows and sets Home Assistant's modes."""
     typed = {
@@ -99,8 +98,8 @@ async def test_climate_of_a_map_typed_in_capitals(
     data, errors, _ = part_data(SMART, typed)
     assert errors == {}
     current = point("c1", "Boiler", "climate", "VD100", "float", role="current_temperature")
-    entry = make_entry(hass, s7_smart_sim, [current, ("c2", data)])
-    s7_smart_sim.set("VW50", 1)
+    entry = make_entry(hass, s7_smart_ha_sim, [current, ("c2", data)])
+    s7_smart_ha_sim.set("VW50", 1)
     assert await hass.config_entries.async_setup(entry.entry_id)
     await poll(hass, freezer)
     state = hass.states.get("climate.s7_200_smart_boiler")

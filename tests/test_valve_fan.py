@@ -33,8 +33,7 @@ import pytest
 from pytest_homeassistant_custom_component.common import MockConfigEntry
 
 from simulators.s7_smart import S7SmartSimulator
-
-from .ha_fixtures import make_entry, point, poll
+from tests.entries import make_entry, point, poll
 
 pytestmark = pytest.mark.no_pacing
 
@@ -53,13 +52,13 @@ POINTS = [
 
 
 @pytest.fixture
-async def entry(hass: HomeAssistant, s7_smart_sim: S7SmartSimulator) -> MockConfigEntry:
+async def valves_and_fan(hass: HomeAssistant, s7_smart_ha_sim: S7SmartSimulator) -> MockConfigEntry:
     """The simulator's entry with two valves and a fan, set up."""
-    s7_smart_sim.set("VW80", 6912)
-    s7_smart_sim.set("I1.0", True)
-    s7_smart_sim.set("VW84", 30)
-    s7_smart_sim.set("VW86", 1)
-    entry = make_entry(hass, s7_smart_sim, POINTS)
+    s7_smart_ha_sim.set("VW80", 6912)
+    s7_smart_ha_sim.set("I1.0", True)
+    s7_smart_ha_sim.set("VW84", 30)
+    s7_smart_ha_sim.set("VW86", 1)
+    entry = make_entry(hass, s7_smart_ha_sim, POINTS)
     assert await hass.config_entries.async_setup(entry.entry_id)
     await hass.async_block_till_done()
     return entry
@@ -75,20 +74,20 @@ async def act(hass: HomeAssistant, domain: str, service: str, name: str, **data:
 async def test_valves(
     hass: HomeAssistant,
     freezer: FrozenDateTimeFactory,
-    s7_smart_sim: S7SmartSimulator,
-    entry: MockConfigEntry,
+    s7_smart_ha_sim: S7SmartSimulator,
+    valves_and_fan: MockConfigEntry,
 ) -> None:
     """A valve with a position; a valve with open and close commands and a closed limit."""
     mixer = hass.states.get("valve.s7_200_smart_mixer")
     assert (mixer.state, mixer.attributes[ATTR_CURRENT_POSITION]) == ("open", 25)
     await act(hass, VALVE_DOMAIN, SERVICE_SET_VALVE_POSITION, "mixer", **{ATTR_POSITION: 50})
-    assert s7_smart_sim.get("VW82") == 13824
+    assert s7_smart_ha_sim.get("VW82") == 13824
     assert hass.states.get("valve.s7_200_smart_inlet").state == "closed"
     await act(hass, VALVE_DOMAIN, SERVICE_OPEN_VALVE, "inlet")
-    assert s7_smart_sim.get("Q1.0") is True
+    assert s7_smart_ha_sim.get("Q1.0") is True
     await act(hass, VALVE_DOMAIN, SERVICE_CLOSE_VALVE, "inlet")
-    assert s7_smart_sim.get("Q1.1") is True
-    s7_smart_sim.set("I1.0", False)
+    assert s7_smart_ha_sim.get("Q1.1") is True
+    s7_smart_ha_sim.set("I1.0", False)
     await poll(hass, freezer)
     assert hass.states.get("valve.s7_200_smart_inlet").state == "open"
 
@@ -96,8 +95,8 @@ async def test_valves(
 async def test_fan(
     hass: HomeAssistant,
     freezer: FrozenDateTimeFactory,
-    s7_smart_sim: S7SmartSimulator,
-    entry: MockConfigEntry,
+    s7_smart_ha_sim: S7SmartSimulator,
+    valves_and_fan: MockConfigEntry,
 ) -> None:
     """On and off by command, state read back, speed and presets written."""
     vent = hass.states.get("fan.s7_200_smart_vent")
@@ -105,12 +104,12 @@ async def test_fan(
     assert (vent.attributes[ATTR_PERCENTAGE], vent.attributes[ATTR_PRESET_MODE]) == (30, "High")
     assert vent.attributes[ATTR_PRESET_MODES] == ["Low", "High"]
     await act(hass, FAN_DOMAIN, SERVICE_TURN_ON, "vent", **{ATTR_PERCENTAGE: 60})
-    assert (s7_smart_sim.get("M3.0"), s7_smart_sim.get("VW84")) == (True, 60)
+    assert (s7_smart_ha_sim.get("M3.0"), s7_smart_ha_sim.get("VW84")) == (True, 60)
     await act(hass, FAN_DOMAIN, SERVICE_SET_PRESET_MODE, "vent", **{ATTR_PRESET_MODE: "Low"})
-    assert s7_smart_sim.get("VW86") == 0
+    assert s7_smart_ha_sim.get("VW86") == 0
     await act(hass, FAN_DOMAIN, SERVICE_SET_PERCENTAGE, "vent", **{ATTR_PERCENTAGE: 0})
-    assert s7_smart_sim.get("M3.0") is False
-    s7_smart_sim.set("I1.1", True)
+    assert s7_smart_ha_sim.get("M3.0") is False
+    s7_smart_ha_sim.set("I1.1", True)
     await poll(hass, freezer)
     assert hass.states.get("fan.s7_200_smart_vent").state == STATE_ON
     with pytest.raises(ServiceValidationError):

@@ -43,10 +43,7 @@ from custom_components.plc_bridge.const import CONF_OPTIONS, CONF_POINTS, SUBENT
 from custom_components.plc_bridge.plc.vendors.logo.options import DEFAULT_TSAPS
 from simulators.logo import LogoSimulator
 from simulators.s7_smart import DEFAULT_PASSWORD as SMART_PASSWORD
-from tests.loopback import running
-
-from .flow_fixtures import step
-from .ha_fixtures import (
+from tests.entries import (
     DEVICE_ID,
     add_entry,
     entry_data,
@@ -56,11 +53,16 @@ from .ha_fixtures import (
     set_up as set_up_entry,
     unload_all,
 )
-from .plcnext_ha_fixtures import make_plcnext_entry
-from .s7_ha_fixtures import SNAP7_THREADS, make_s7_entry
-from .softplc_ha_fixtures import make_softplc_entry
-from .tecomat_ha_fixtures import make_tecomat_entry
-from .test_config_file import confirm, export, paste
+from tests.flows.forms import step
+from tests.harness import (
+    SNAP7_THREADS,
+    make_plcnext_entry,
+    make_s7_entry,
+    make_softplc_entry,
+    make_tecomat_entry,
+)
+from tests.loopback import running
+from tests.test_config_file import confirm, export, paste
 
 pytestmark = pytest.mark.no_pacing
 
@@ -160,7 +162,7 @@ def _logo(hass: HomeAssistant, sim: LogoSimulator) -> MockConfigEntry:
 MAIN = "Arp.Plc.Eclr/MainInstance."
 RIGS = {
     "s7_smart": Rig(
-        "s7_smart_sim",
+        "s7_smart_ha_sim",
         _s7_smart,
         {
             "current_temperature": ("VW50", "signed", _named("VW50")),
@@ -170,7 +172,7 @@ RIGS = {
         },
     ),
     "tecomat": Rig(
-        "tecomat_sim",
+        "tecomat_ha_sim",
         lambda hass, sim: make_tecomat_entry(hass, sim, []),
         {
             "current_temperature": ("plcData.varInt", "INT", _named("plcData.varInt")),
@@ -180,7 +182,7 @@ RIGS = {
         },
     ),
     "plcnext": Rig(
-        "plcnext_sim",
+        "plcnext_ha_sim",
         lambda hass, sim: make_plcnext_entry(hass, sim, []),
         {
             "current_temperature": (MAIN + "Speed", "INT", _named("MainInstance.Speed")),
@@ -190,7 +192,7 @@ RIGS = {
         },
     ),
     "softplc": Rig(
-        "softplc_sim",
+        "softplc_ha_sim",
         _softplc_entry,
         {
             "current_temperature": ("N7:1", "INT", _softplc("N", 7, 1)),
@@ -367,13 +369,13 @@ Tank,Q0.7,,water_heater,1,,,,no,,on_off
 
 
 async def test_imported_as_a_table(
-    hass: HomeAssistant, freezer: FrozenDateTimeFactory, s7_smart_sim: Any
+    hass: HomeAssistant, freezer: FrozenDateTimeFactory, s7_smart_ha_sim: Any
 ) -> None:
     """The same water heater pasted as table rows: one row per part, each naming its role."""
     rig = RIGS["s7_smart"]
-    heating(rig, s7_smart_sim)
+    heating(rig, s7_smart_ha_sim)
     entry = await set_up_entry(
-        hass, make_entry(hass, s7_smart_sim, [point("x", "X", "sensor", "VW0", "signed")])
+        hass, make_entry(hass, s7_smart_ha_sim, [point("x", "X", "sensor", "VW0", "signed")])
     )
     menu = await hass.config_entries.subentries.async_init(
         (entry.entry_id, SUBENTRY_DEVICE),
@@ -384,7 +386,7 @@ async def test_imported_as_a_table(
     assert result["type"] is FlowResultType.MENU, result.get("description_placeholders")
     result = await step(hass, result, {"next_step_id": "save"})
     await read_edits(hass, freezer)
-    await drive(hass, heater_id(hass, entry), rig, s7_smart_sim)
+    await drive(hass, heater_id(hass, entry), rig, s7_smart_ha_sim)
 
 
 TANK = [
@@ -415,11 +417,11 @@ TANK = [
 ]
 
 
-async def test_pasted_file(hass: HomeAssistant, s7_smart_sim: Any) -> None:
+async def test_pasted_file(hass: HomeAssistant, s7_smart_ha_sim: Any) -> None:
     """Exported, removed and pasted back: the same water heater, driven the same way."""
     rig = RIGS["s7_smart"]
-    heating(rig, s7_smart_sim)
-    entry = await set_up_entry(hass, make_entry(hass, s7_smart_sim, TANK))
+    heating(rig, s7_smart_ha_sim)
+    entry = await set_up_entry(hass, make_entry(hass, s7_smart_ha_sim, TANK))
     before = heater_id(hass, entry)
     text = await export(hass, entry)
     assert "water_heater" in text
@@ -430,4 +432,4 @@ async def test_pasted_file(hass: HomeAssistant, s7_smart_sim: Any) -> None:
     await hass.async_block_till_done()
     new = result["result"]
     assert heater_id(hass, new) == before
-    await drive(hass, before, rig, s7_smart_sim)
+    await drive(hass, before, rig, s7_smart_ha_sim)

@@ -1,9 +1,9 @@
 """Protocol-layer fixtures: simulators on loopback and clients connected to them.
 
 Each vendor's live in one module, tests/plc/<vendor>_fixtures.py, started and stopped through
-tests/loopback.py. Imported into this conftest, they override the Home Assistant tests' fixtures
-of the same names (which set up entries) here and nowhere else. (`pytest_plugins` in a test
-module would register them for the whole run, where the last module collected would win.)
+tests/loopback.py, and are imported into this conftest so they exist here and nowhere else.
+(`pytest_plugins` in a test module would register them for the whole run.) The Home Assistant
+tests' simulators have names of their own (`<family>_ha_sim`, tests/harness.py).
 """
 
 from __future__ import annotations

@@ -13,7 +13,13 @@ from typing import Any
 
 from homeassistant.components.sensor import CONF_STATE_CLASS
 from homeassistant.config_entries import ConfigEntry, ConfigSubentry
-from homeassistant.const import CONF_DEVICE_CLASS, CONF_NAME, CONF_UNIT_OF_MEASUREMENT
+from homeassistant.const import (
+    CONF_DEVICE_CLASS,
+    CONF_HOST,
+    CONF_NAME,
+    CONF_PORT,
+    CONF_UNIT_OF_MEASUREMENT,
+)
 from homeassistant.core import HomeAssistant, callback
 from homeassistant.helpers import device_registry as dr, entity_registry as er
 
@@ -28,6 +34,7 @@ from ..const import (
     CONF_SCALE,
     CONF_VALUE_MAP,
     CONF_VENDOR,
+    DOMAIN,
     LOGGER,
     SUBENTRY_DEVICE,
     SUBENTRY_POINT,
@@ -88,6 +95,29 @@ def async_migrate_points(hass: HomeAssistant, entry: ConfigEntry[Any]) -> None:
             hass.config_entries.async_remove_subentry(entry, subentry_id)
         LOGGER.info("%s: %d points moved into the machine %s", entry.title, len(old), device.title)
     hass.config_entries.async_update_entry(entry, version=2)
+
+
+@callback
+def async_migrate_address_keys(hass: HomeAssistant, entry: ConfigEntry[Any]) -> None:
+    """Key a version 1 PLC's device and entities by its entry where the first builds used host:port.
+
+    The first 0.1.0 builds keyed a PLC without serial or MAC (its unique id is then host:port)
+    by that unique id; later ones by the entry id, which a move with Reconfigure leaves alone.
+    Left as they were, such entities would be registered anew beside the old ones: new entity
+    ids, history lost. Re-keyed, each keeps its registry entry and entity id.
+    """
+    address = f"{entry.data.get(CONF_HOST)}:{entry.data.get(CONF_PORT)}"
+    if entry.unique_id != address:
+        return
+    entities = er.async_get(hass)
+    for entity in er.async_entries_for_config_entry(entities, entry.entry_id):
+        key = entity.unique_id.removeprefix(f"{address}_")
+        if key != entity.unique_id:
+            entities.async_update_entity(entity.entity_id, new_unique_id=f"{entry.entry_id}_{key}")
+    devices = dr.async_get(hass)
+    for device in dr.async_entries_for_config_entry(devices, entry.entry_id):
+        if (DOMAIN, address) in device.identifiers:
+            devices.async_update_device(device.id, new_identifiers={(DOMAIN, entry.entry_id)})
 
 
 @callback
@@ -161,6 +191,7 @@ async def async_migrate_entry(
     if entry.version > 2:
         return False
     if entry.version == 1:
+        async_migrate_address_keys(hass, entry)
         async_migrate_points(hass, entry)
     if entry.minor_version < 2:
         async_migrate_durations(hass, entry, times_in_seconds)

@@ -82,7 +82,7 @@ class PollingCoordinator(DataUpdateCoordinator[ReadResult]):
 
     The cadence needs one override of DataUpdateCoordinator's private scheduler,
     `_schedule_refresh`, and with it the base's members of that contract (BASE_MEMBERS,
-    checked on both supported Home Assistant releases by tests/test_polling_contract.py):
+    checked on both supported Home Assistant releases by tests/runtime/test_polling_contract.py):
     the handle `_unsub_refresh` the base cancels at shutdown, the `_retry_after` an
     UpdateFailed asks for, and `_listeners`, the base's listeners with their contexts.
     """

@@ -1,0 +1,1 @@
+"""Runtime tests: what a loaded entry runs (polls, writes and their guard, exposes, pulses)."""
