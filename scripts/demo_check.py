@@ -7,7 +7,8 @@ first and the integrations page, then takes each simulator through a new user's 
 (scripts/demo_plcs.py: add the PLC, add a device with a point, read it, write it; import the
 machines and drive each entity, seeing the PLC change), and fails on
 any of those steps, on any integration onboarding set up that did not load, and on any missing
-module or failed setup in the log. Always stops what it started, within a bounded time.
+module, failed setup or deprecated use by PLC Bridge in the log. Always stops what it started,
+within a bounded time.
 Standard library only: it runs with the machine's own python3.
 
     python3 scripts/demo_check.py
@@ -149,8 +150,19 @@ def check(hass: Hass) -> list[str]:
     return problems + [
         line
         for line in log.splitlines()
-        if "ModuleNotFoundError" in line or "Setup failed for" in line
+        if "ModuleNotFoundError" in line or "Setup failed for" in line or deprecated_use(line)
     ]
+
+
+def deprecated_use(line: str) -> bool:
+    """True for a log line where Home Assistant reports that PLC Bridge uses a deprecated API.
+
+    Home Assistant words it two ways: "Detected that custom integration 'plc_bridge' ..."
+    (helpers/frame.py) and "custom_components.plc_bridge.climate::PlcClimate provides the
+    deprecated ..., this will stop working in Home Assistant ..." (helpers/deprecation.py).
+    """
+    ours = "'plc_bridge'" in line or "custom_components.plc_bridge" in line
+    return ours and ("deprecated" in line or "stop working" in line)
 
 
 def leftovers() -> list[int]:
