@@ -15,7 +15,7 @@ import sys
 
 import pytest
 
-from custom_components.plc_bridge.const import PLATFORMS
+from custom_components.plc_bridge.model.kinds import PLATFORMS
 
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT / "scripts"))

@@ -26,6 +26,8 @@ from .model.composite import Composite
 from .plc import Value
 
 PARALLEL_UPDATES = 1
+NATIVE_TEMPERATURES = hasattr(WaterHeaterEntity, "native_current_temperature")
+"""Home Assistant 2026.11 reads temperatures as `native_*` (the old names go in 2027.11)."""
 
 
 async def async_setup_entry(
@@ -46,7 +48,10 @@ class PlcWaterHeater(PlcCompositeEntity, WaterHeaterEntity):
         """Work out the modes, limits and features from the parts."""
         super().__init__(entry, group, parts)
         self._attr_supported_features = WaterHeaterEntityFeature(self.features())
-        self._attr_temperature_unit = temperature_unit(parts.values())
+        if NATIVE_TEMPERATURES:
+            self._attr_native_temperature_unit = temperature_unit(parts.values())
+        else:
+            self._attr_temperature_unit = temperature_unit(parts.values())
         mode = parts.get("operation_mode")
         modes = [label for _, label in mode.conversion.value_map] if mode else []
         if modes and "on_off" in parts and STATE_OFF not in modes:
@@ -61,14 +66,26 @@ class PlcWaterHeater(PlcCompositeEntity, WaterHeaterEntity):
             self._attr_target_temperature_step = step
 
     @property
-    def current_temperature(self) -> float | None:
-        """The temperature read."""
+    def native_current_temperature(self) -> float | None:
+        """The temperature read, in its part's unit."""
         return self.number("current_temperature")
 
     @property
-    def target_temperature(self) -> float | None:
-        """The set temperature read back."""
+    def native_target_temperature(self) -> float | None:
+        """The set temperature read back, in its part's unit."""
         return self.number("target_temperature")
+
+    if not NATIVE_TEMPERATURES:
+
+        @property
+        def current_temperature(self) -> float | None:
+            """The temperature read (what Home Assistant before 2026.11 reads)."""
+            return self.native_current_temperature
+
+        @property
+        def target_temperature(self) -> float | None:
+            """The set temperature read back (what Home Assistant before 2026.11 reads)."""
+            return self.native_target_temperature
 
     @property
     def current_operation(self) -> str | None:
