@@ -169,6 +169,8 @@ def add_plc(hass: Hass, sim: dict[str, Any]) -> str:
     """Add a simulator through the config flow as the dialog would; return the entry id."""
     flow = hass.call("POST", FLOW, {"handler": "plc_bridge"})
     step = f"{FLOW}/{flow['flow_id']}"
+    if flow.get("type") == "menu":  # connect to a PLC, or paste a configuration
+        flow = hass.call("POST", step, {"next_step_id": "vendor"})
     flow = hass.call("POST", step, {"vendor": sim["vendor"]})
     values: dict[str, Any] = {"host": sim["host"], "port": sim["port"]}
     names = {field["name"] for field in flow.get("data_schema", [])}
