@@ -1,4 +1,4 @@
-"""Every translation parses as the ICU message format the frontend reads it in.
+"""Every text of every language parses as the ICU message format the frontend reads it in.
 
 The frontend formats each string with intl-messageformat: a literal `{` (a JSON example) is taken
 for a placeholder and the form shows "Translation error: MALFORMED_ARGUMENT". A literal brace is
@@ -28,7 +28,14 @@ def leaves(value: Any, path: str = "") -> list[tuple[str, str]]:
     return [(path, value)] if isinstance(value, str) else []
 
 
-TEXTS = leaves(STRINGS)
+TRANSLATIONS = sorted((INTEGRATION / "translations").glob("*.json"))
+TEXTS = leaves(STRINGS) + [
+    (f"{path.stem}{leaf}", text)
+    for path in TRANSLATIONS
+    if path.stem != "en"  # the same as strings.json (test_meta.py)
+    for leaf, text in leaves(json.loads(path.read_text(encoding="utf-8")))
+]
+"""strings.json's texts, then every translation's, each path led by its language."""
 
 
 def render(nodes: list[Any]) -> str:
