@@ -177,6 +177,20 @@ STOP_ONLY = dump_config(plc([point("stop", "Shutter", "cover", "Q0.1", "signed",
 """Points every form and table refuses, each written into an otherwise exported file."""
 
 
+async def pasted(hass: HomeAssistant, text: str) -> Any:
+    """Paste a text on the config flow's paste page; return the result, its texts translated."""
+    result = await hass.config_entries.flow.async_init(DOMAIN, context={"source": SOURCE_USER})
+    result = await hass.config_entries.flow.async_configure(
+        result["flow_id"], {"next_step_id": PASTE}
+    )
+    return translated(
+        await hass.config_entries.flow.async_configure(
+            result["flow_id"], {CONF_CONFIGURATION: text}
+        ),
+        "config",
+    )
+
+
 @pytest.mark.parametrize(
     ("text", "on_line", "message"),
     [
@@ -191,16 +205,7 @@ async def test_refused_as_the_forms_refuse(
     hass: HomeAssistant, text: str, on_line: str, message: str
 ) -> None:
     """A point a form or table would refuse is refused in the file too, on its line."""
-    result = await hass.config_entries.flow.async_init(DOMAIN, context={"source": SOURCE_USER})
-    result = await hass.config_entries.flow.async_configure(
-        result["flow_id"], {"next_step_id": PASTE}
-    )
-    result = translated(
-        await hass.config_entries.flow.async_configure(
-            result["flow_id"], {CONF_CONFIGURATION: text}
-        ),
-        "config",
-    )
+    result = await pasted(hass, text)
     assert result["type"] is FlowResultType.FORM
     shown = error_message(result, CONF_CONFIGURATION, "config")
     assert message in shown
@@ -250,16 +255,7 @@ async def test_refused_as_the_forms_refuse(
 )
 async def test_refused_on_the_field(hass: HomeAssistant, text: str, key: str, message: str) -> None:
     """A text that cannot become a PLC is refused on its field, said why; nothing is created."""
-    result = await hass.config_entries.flow.async_init(DOMAIN, context={"source": SOURCE_USER})
-    result = await hass.config_entries.flow.async_configure(
-        result["flow_id"], {"next_step_id": PASTE}
-    )
-    result = translated(
-        await hass.config_entries.flow.async_configure(
-            result["flow_id"], {CONF_CONFIGURATION: text}
-        ),
-        "config",
-    )
+    result = await pasted(hass, text)
     assert result["type"] is FlowResultType.FORM
     assert (result["step_id"], result["errors"]) == (PASTE, {CONF_CONFIGURATION: key})
     assert message in error_message(result, CONF_CONFIGURATION, "config")

@@ -6,16 +6,13 @@ from __future__ import annotations
 from typing import Any
 
 from homeassistant.config_entries import ConfigSubentryData
-from homeassistant.const import CONF_HOST, CONF_PASSWORD, CONF_PORT, CONF_USERNAME
+from homeassistant.const import CONF_HOST, CONF_PASSWORD, CONF_PORT
 import pytest
 from pytest_homeassistant_custom_component.common import MockConfigEntry
 
 from custom_components.plc_bridge.const import (
-    CONF_FINGERPRINT,
     CONF_MAC,
-    CONF_OPTIONS,
     CONF_TLS,
-    CONF_VENDOR,
     DOMAIN,
     SUBENTRY_EXPOSE,
 )
@@ -23,18 +20,9 @@ from custom_components.plc_bridge.model.config_file import dump_config, load_con
 from custom_components.plc_bridge.model.plc_config import Connection, PlcConfig, PollOptions
 from custom_components.plc_bridge.plc.vendors import client_class
 from tests.entries import POINTS, device, legacy_point, point
+from tests.model.test_config_file_text import DATA
 
 SMART = client_class("s7_smart")
-DATA = {
-    CONF_VENDOR: "s7_smart",
-    CONF_HOST: "192.0.2.10",
-    CONF_PORT: 443,
-    CONF_TLS: "pin",
-    CONF_FINGERPRINT: "ab" * 32,
-    CONF_USERNAME: "admin",
-    CONF_PASSWORD: "Secret-Password-1",
-    CONF_OPTIONS: {},
-}
 EXPOSE = ConfigSubentryData(
     data={
         "entity_id": "sensor.outside",

@@ -230,20 +230,20 @@ _ON_OFF_ROLES = (
     _role("state", "binary_sensor", "on_off"),
     _role("command", "button", "on_off", shows=True),
 )
+_TEMPERATURES = (
+    _role("current_temperature", "sensor", "temperatures", shows=True),
+    _role(
+        "target_temperature", "number", "temperatures", shows=True, features=("TARGET_TEMPERATURE",)
+    ),
+)
+"""The temperatures of a climate entity and of a water heater (their feature flags share names)."""
 CLIMATE = Kind(
     key="climate",
     parts_only=True,
     entity_time=CONF_SUPERVISION,
     feature=ClimateEntityFeature,
     roles=(
-        _role("current_temperature", "sensor", "temperatures", shows=True),
-        _role(
-            "target_temperature",
-            "number",
-            "temperatures",
-            shows=True,
-            features=("TARGET_TEMPERATURE",),
-        ),
+        *_TEMPERATURES,
         _role("hvac_mode", "select", "modes", shows=True, labels=tuple(map(str, HVACMode))),
         _role("hvac_action", "sensor", "action", labels=tuple(map(str, HVACAction))),
         _role("on_off", "switch", "on_off", shows=True, features=("TURN_ON", "TURN_OFF")),
@@ -361,14 +361,7 @@ KINDS_IN_ORDER: tuple[Kind, ...] = (
         parts_only=True,
         feature=WaterHeaterEntityFeature,
         roles=(
-            _role("current_temperature", "sensor", "temperatures", shows=True),
-            _role(
-                "target_temperature",
-                "number",
-                "temperatures",
-                shows=True,
-                features=("TARGET_TEMPERATURE",),
-            ),
+            *_TEMPERATURES,
             _role(
                 "operation_mode",
                 "select",
