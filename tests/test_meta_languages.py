@@ -18,6 +18,9 @@ INTEGRATION = Path(__file__).resolve().parent.parent / "custom_components" / "pl
 STRINGS: dict[str, Any] = json.loads((INTEGRATION / "strings.json").read_text(encoding="utf-8"))
 FILES = sorted((INTEGRATION / "translations").glob("*.json"))
 PLACEHOLDER = re.compile(r"(?<!')\{(\w+)\}")
+LANGUAGES = {"en", "cs", "de", "es", "fr", "it", "nl", "pl", "zh-Hans"}
+"""English, and the languages of the families' users (issue 25): Czech (Tecomat), German
+(Siemens, Phoenix Contact), Chinese (S7-200 SMART), and those ha-s7plc's users read."""
 
 
 def leaves(value: dict[str, Any], path: tuple[str, ...] = ()) -> dict[tuple[str, ...], Any]:
@@ -50,3 +53,8 @@ def test_every_text_translated(path: Path) -> None:
             assert "`" not in words, key
             assert "**" not in words, key
     assert text == json.dumps(json.loads(text), indent=2, ensure_ascii=False) + "\n"
+
+
+def test_every_language_there() -> None:
+    """Each language PLC Bridge is translated into has its file, and no other file is there."""
+    assert {path.stem for path in FILES} == LANGUAGES
