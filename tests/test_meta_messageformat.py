@@ -29,13 +29,12 @@ def leaves(value: Any, path: str = "") -> list[tuple[str, str]]:
 
 
 TRANSLATIONS = sorted((INTEGRATION / "translations").glob("*.json"))
-TEXTS = leaves(STRINGS) + [
-    (f"{path.stem}{leaf}", text)
+LANGUAGES = {"strings.json": leaves(STRINGS)} | {
+    path.name: leaves(json.loads(path.read_text(encoding="utf-8")))
     for path in TRANSLATIONS
     if path.stem != "en"  # the same as strings.json (test_meta.py)
-    for leaf, text in leaves(json.loads(path.read_text(encoding="utf-8")))
-]
-"""strings.json's texts, then every translation's, each path led by its language."""
+}
+"""Every text of strings.json and of each translation, by file."""
 
 
 def render(nodes: list[Any]) -> str:
@@ -43,18 +42,32 @@ def render(nodes: list[Any]) -> str:
     return "".join(node if isinstance(node, str) else f"{{{node['name']}}}" for node in nodes)
 
 
-@pytest.mark.parametrize("mode", PARSERS)
-@pytest.mark.parametrize(("path", "text"), TEXTS, ids=[path for path, _ in TEXTS])
-def test_string_is_a_message(path: str, text: str, mode: str) -> None:
-    """The string parses; its placeholders are plain names; no text is quoted by accident."""
+def problem(text: str, mode: str) -> str | None:
+    """Return why a text is no message the frontend shows as written, None when it is one."""
     try:
         nodes = PARSERS[mode].parse(text)
     except SyntaxError as err:
-        pytest.fail(f"{path}: {err}")
+        return str(err)
     placeholders = [node for node in nodes if not isinstance(node, str)]
-    assert all(set(node) == {"name"} for node in placeholders), placeholders
-    assert all(re.fullmatch(r"[a-z_][a-z0-9_]*", node["name"]) for node in placeholders)
-    assert render(nodes) == QUOTED.sub(r"\1", text).replace("''", "'")
+    if not all(set(node) == {"name"} for node in placeholders):
+        return f"a formatted argument: {placeholders}"
+    if not all(re.fullmatch(r"[a-z_][a-z0-9_]*", node["name"]) for node in placeholders):
+        return f"a placeholder that is not a plain name: {placeholders}"
+    if render(nodes) != QUOTED.sub(r"\1", text).replace("''", "'"):
+        return "text quoted by accident (an apostrophe before a brace?)"
+    return None
+
+
+@pytest.mark.parametrize("mode", PARSERS)
+@pytest.mark.parametrize("name", LANGUAGES)
+def test_every_text_is_a_message(name: str, mode: str) -> None:
+    """Each text parses; its placeholders are plain names; no text is quoted by accident."""
+    found = [
+        f"{path}: {why}"
+        for path, text in LANGUAGES[name]
+        if (why := problem(text, mode)) is not None
+    ]
+    assert not found, "\n".join(found)
 
 
 @pytest.mark.parametrize(
