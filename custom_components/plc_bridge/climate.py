@@ -15,22 +15,18 @@ from homeassistant.components.climate import ClimateEntity
 from homeassistant.components.climate.const import ClimateEntityFeature, HVACAction, HVACMode
 from homeassistant.const import (
     ATTR_TEMPERATURE,
-    CONF_UNIT_OF_MEASUREMENT,
-    UnitOfTemperature,
 )
 from homeassistant.core import HomeAssistant
 from homeassistant.exceptions import ServiceValidationError
 from homeassistant.helpers.entity_platform import AddConfigEntryEntitiesCallback
 
-from .composite_entity import Part, PlcCompositeEntity, async_setup_composites
-from .const import CONF_MAX, CONF_MIN, CONF_STEP, DOMAIN
+from .composite_entity import Part, PlcTemperatureEntity, async_setup_composites
+from .const import DOMAIN
 from .coordinator import PlcBridgeConfigEntry
 from .model.composite import Composite
 from .plc import Value, ValueKind
 
 PARALLEL_UPDATES = 1
-NATIVE_TEMPERATURES = hasattr(ClimateEntity, "native_current_temperature")
-"""Home Assistant 2026.11 reads temperatures as `native_*` (the old names go in 2027.11)."""
 
 
 async def async_setup_entry(
@@ -42,7 +38,7 @@ async def async_setup_entry(
     async_setup_composites(entry, "climate", PlcClimate, async_add_entities)
 
 
-class PlcClimate(PlcCompositeEntity, ClimateEntity):
+class PlcClimate(PlcTemperatureEntity, ClimateEntity):
     """A thermostat whose parts are points of one machine."""
 
     def __init__(
@@ -60,53 +56,10 @@ class PlcClimate(PlcCompositeEntity, ClimateEntity):
         features = ClimateEntityFeature(self.features())
         if HVACMode.OFF in modes:
             features |= ClimateEntityFeature.TURN_OFF | ClimateEntityFeature.TURN_ON
-        unit = UnitOfTemperature.CELSIUS
-        target = parts.get("target_temperature")
-        if target is not None:
-            data = target.config.data
-            bounds = target.conversion.bounds
-            if data.get(CONF_MIN) is not None:
-                self._attr_min_temp = float(data[CONF_MIN])
-            elif bounds:
-                self._attr_min_temp = bounds[0]
-            if data.get(CONF_MAX) is not None:
-                self._attr_max_temp = float(data[CONF_MAX])
-            elif bounds:
-                self._attr_max_temp = bounds[1]
-            if data.get(CONF_STEP):
-                self._attr_target_temperature_step = float(data[CONF_STEP])
+        self.set_temperature_limits(parts)
         if (preset := parts.get("preset")) is not None:
             self._attr_preset_modes = [label for _, label in preset.conversion.value_map]
         self._attr_supported_features = features
-        for part in parts.values():
-            if part.config.data.get(CONF_UNIT_OF_MEASUREMENT) == UnitOfTemperature.FAHRENHEIT:
-                unit = UnitOfTemperature.FAHRENHEIT
-        if NATIVE_TEMPERATURES:
-            self._attr_native_temperature_unit = unit
-        else:
-            self._attr_temperature_unit = unit
-
-    @property
-    def native_current_temperature(self) -> float | None:
-        """The temperature read, in its part's unit."""
-        return self.number("current_temperature")
-
-    @property
-    def native_target_temperature(self) -> float | None:
-        """The set temperature read back, in its part's unit."""
-        return self.number("target_temperature")
-
-    if not NATIVE_TEMPERATURES:
-
-        @property
-        def current_temperature(self) -> float | None:
-            """The temperature read (what Home Assistant before 2026.11 reads)."""
-            return self.native_current_temperature
-
-        @property
-        def target_temperature(self) -> float | None:
-            """The set temperature read back (what Home Assistant before 2026.11 reads)."""
-            return self.native_target_temperature
 
     @property
     def hvac_mode(self) -> HVACMode | None:

@@ -13,6 +13,7 @@ from collections.abc import Callable, Collection, Iterable
 from dataclasses import dataclass
 from typing import Any
 
+from homeassistant.components.climate import ClimateEntity
 from homeassistant.const import CONF_UNIT_OF_MEASUREMENT, UnitOfTemperature
 from homeassistant.core import callback
 from homeassistant.exceptions import HomeAssistantError, ServiceValidationError
@@ -330,3 +331,59 @@ class PlcCompositeEntity(PlcEntity):
         for output in self.outputs.values():
             await output.async_end()
         await super().async_will_remove_from_hass()
+
+
+NATIVE_TEMPERATURES = hasattr(ClimateEntity, "native_current_temperature")
+"""Home Assistant 2026.11 reads climate and water heater temperatures as `native_*`; the old
+names go in 2027.11. Both took the new names in the same release."""
+
+
+class PlcTemperatureEntity(PlcCompositeEntity):
+    """A climate entity or water heater: its temperature parts, limits and unit.
+
+    Under the names the running Home Assistant reads (`native_*` from 2026.11).
+    """
+
+    _attr_min_temp: float
+    _attr_max_temp: float
+    _attr_target_temperature_step: float | None
+    _attr_native_temperature_unit: str
+    _attr_temperature_unit: str
+
+    def set_temperature_limits(self, parts: dict[str, Part]) -> None:
+        """Take the unit from the parts and the target's limits and step from its point."""
+        unit = temperature_unit(parts.values())
+        if NATIVE_TEMPERATURES:
+            self._attr_native_temperature_unit = unit
+        else:
+            self._attr_temperature_unit = unit
+        if (target := parts.get("target_temperature")) is not None:
+            low, high, step = target.limits
+            if low is not None:
+                self._attr_min_temp = low
+            if high is not None:
+                self._attr_max_temp = high
+            if step is not None:
+                self._attr_target_temperature_step = step
+
+    @property
+    def native_current_temperature(self) -> float | None:
+        """The temperature read, in its part's unit."""
+        return self.number("current_temperature")
+
+    @property
+    def native_target_temperature(self) -> float | None:
+        """The set temperature read back, in its part's unit."""
+        return self.number("target_temperature")
+
+    if not NATIVE_TEMPERATURES:
+
+        @property
+        def current_temperature(self) -> float | None:
+            """The temperature read (what Home Assistant before 2026.11 reads)."""
+            return self.native_current_temperature
+
+        @property
+        def target_temperature(self) -> float | None:
+            """The set temperature read back (what Home Assistant before 2026.11 reads)."""
+            return self.native_target_temperature

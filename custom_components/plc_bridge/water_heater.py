@@ -20,14 +20,12 @@ from homeassistant.const import ATTR_TEMPERATURE, STATE_OFF, STATE_ON
 from homeassistant.core import HomeAssistant
 from homeassistant.helpers.entity_platform import AddConfigEntryEntitiesCallback
 
-from .composite_entity import Part, PlcCompositeEntity, async_setup_composites, temperature_unit
+from .composite_entity import Part, PlcTemperatureEntity, async_setup_composites
 from .coordinator import PlcBridgeConfigEntry
 from .model.composite import Composite
 from .plc import Value
 
 PARALLEL_UPDATES = 1
-NATIVE_TEMPERATURES = hasattr(WaterHeaterEntity, "native_current_temperature")
-"""Home Assistant 2026.11 reads temperatures as `native_*` (the old names go in 2027.11)."""
 
 
 async def async_setup_entry(
@@ -39,7 +37,7 @@ async def async_setup_entry(
     async_setup_composites(entry, "water_heater", PlcWaterHeater, async_add_entities)
 
 
-class PlcWaterHeater(PlcCompositeEntity, WaterHeaterEntity):
+class PlcWaterHeater(PlcTemperatureEntity, WaterHeaterEntity):
     """A water heater whose parts are points of one machine."""
 
     def __init__(
@@ -48,44 +46,12 @@ class PlcWaterHeater(PlcCompositeEntity, WaterHeaterEntity):
         """Work out the modes, limits and features from the parts."""
         super().__init__(entry, group, parts)
         self._attr_supported_features = WaterHeaterEntityFeature(self.features())
-        if NATIVE_TEMPERATURES:
-            self._attr_native_temperature_unit = temperature_unit(parts.values())
-        else:
-            self._attr_temperature_unit = temperature_unit(parts.values())
+        self.set_temperature_limits(parts)
         mode = parts.get("operation_mode")
         modes = [label for _, label in mode.conversion.value_map] if mode else []
         if modes and "on_off" in parts and STATE_OFF not in modes:
             modes.append(STATE_OFF)
         self._attr_operation_list = modes or None
-        if (target := parts.get("target_temperature")) is not None:
-            low, high, step = target.limits
-            if low is not None:
-                self._attr_min_temp = low
-            if high is not None:
-                self._attr_max_temp = high
-            self._attr_target_temperature_step = step
-
-    @property
-    def native_current_temperature(self) -> float | None:
-        """The temperature read, in its part's unit."""
-        return self.number("current_temperature")
-
-    @property
-    def native_target_temperature(self) -> float | None:
-        """The set temperature read back, in its part's unit."""
-        return self.number("target_temperature")
-
-    if not NATIVE_TEMPERATURES:
-
-        @property
-        def current_temperature(self) -> float | None:
-            """The temperature read (what Home Assistant before 2026.11 reads)."""
-            return self.native_current_temperature
-
-        @property
-        def target_temperature(self) -> float | None:
-            """The set temperature read back (what Home Assistant before 2026.11 reads)."""
-            return self.native_target_temperature
 
     @property
     def current_operation(self) -> str | None:
