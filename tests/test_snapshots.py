@@ -23,6 +23,7 @@ from custom_components.plc_bridge.model.kinds import PLATFORMS
 from simulators.s7_smart import S7SmartSimulator
 from tests.conftest import current_release_only
 from tests.entries import ENTRY_ID, UNIQUE_ID, add_entry, device, point, sim_data, unload_all
+from tests.test_climate import BOILER
 
 pytestmark = [
     pytest.mark.no_pacing,
@@ -31,7 +32,6 @@ pytestmark = [
 ]
 
 RANGE = {"raw_min": 0, "raw_max": 27648, "shown_min": 0, "shown_max": 100}
-MODES = "0=off;1=heat;2=cool;3=auto"
 STATES = "0=Off;1=Auto;2=Manual"
 
 EVERY_KIND = [
@@ -74,39 +74,7 @@ EVERY_KIND = [
     point("s5", "Shutter", "cover", "Q0.6", "signed", role="stop", pulse=1.0),
     point("s6", "Shutter", "cover", "I0.1", "signed", role="open_limit", read_only=True),
     point("s7", "Shutter", "cover", "I0.2", "signed", role="closed_limit", read_only=True),
-    point(
-        "c1",
-        "Boiler",
-        "climate",
-        "VW50",
-        "signed",
-        role="current_temperature",
-        scale=0.1,
-        read_only=True,
-    ),
-    point(
-        "c2",
-        "Boiler",
-        "climate",
-        "VW52",
-        "signed",
-        role="target_temperature",
-        scale=0.1,
-        min=5.0,
-        max=30.0,
-        step=0.5,
-    ),
-    point("c3", "Boiler", "climate", "VW54", "signed", role="hvac_mode", value_map=MODES),
-    point(
-        "c4",
-        "Boiler",
-        "climate",
-        "VW56",
-        "signed",
-        role="hvac_action",
-        value_map="0=idle;1=heating",
-        read_only=True,
-    ),
+    *BOILER,
     point("v1", "Mixer", "valve", "VW80", "signed", role="position", read_only=True, **RANGE),
     point("v2", "Mixer", "valve", "VW82", "signed", role="set_position", **RANGE),
     point("w1", "Inlet", "valve", "Q1.0", "signed", role="open"),
