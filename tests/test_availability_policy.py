@@ -13,7 +13,7 @@ from typing import Any
 from freezegun.api import FrozenDateTimeFactory
 from homeassistant.const import STATE_OFF, STATE_ON, STATE_UNAVAILABLE
 from homeassistant.core import HomeAssistant
-from homeassistant.data_entry_flow import InvalidData
+from homeassistant.data_entry_flow import InvalidData, section
 from homeassistant.util import dt as dt_util
 import pytest
 from pytest_homeassistant_custom_component.common import MockConfigEntry
@@ -28,7 +28,7 @@ from custom_components.plc_bridge.model.config_file import dump_config
 from custom_components.plc_bridge.model.point_table import export_points, parse_points
 from simulators.s7_smart import S7SmartSimulator
 from tests.entries import add_entry, device, make_entry, point, poll, sim_data
-from tests.flows.forms import step, strings_at
+from tests.flows.forms import entity_page, on_page, step, strings_at
 from tests.flows.test_command_layouts import SMART, key_only, machines
 from tests.test_config_file import CONFIG, paste
 
@@ -234,7 +234,11 @@ async def machine_menu(
 
 def offered(result: Any) -> list[str]:
     """Return the options of a form's availability field."""
-    for marker, selector in result["data_schema"].schema.items():
+    fields = dict(result["data_schema"].schema)
+    for shown in list(fields.values()):
+        if isinstance(shown, section):  # the entity page's folded options
+            fields |= shown.schema.schema
+    for marker, selector in fields.items():
         if str(marker) == "availability":
             return list(selector.config["options"])
     raise AssertionError("no availability field")
@@ -268,18 +272,12 @@ async def test_point_form(
 async def test_composite_form_stores_it_on_every_part(
     hass: HomeAssistant, smart_entry: MockConfigEntry
 ) -> None:
-    """An entity of several points: one field on its first form, stored on every part."""
-    result = await step(
-        hass, await machine_menu(hass, smart_entry, data_valid=False), {"next_step_id": "composite"}
-    )
+    """An entity of several points: one field on its page, stored on every part."""
+    menu = await machine_menu(hass, smart_entry, data_valid=False)
+    result = await entity_page(hass, menu, "switch")
     assert offered(result) == ["plc", "keep"]
-    result = await step(
-        hass, result, {"platform": "switch", "name": "Pump", "availability": "keep"}
-    )
-    parts = {"state": "I0.1", "command": "Q0.4"}
-    result = await step(hass, result, parts)
-    for part in parts:
-        result = await step(hass, result, {"read_only": part == "state"})
+    values = {"name": "Pump", "availability": "keep", "state": "I0.1", "command": "Q0.4"}
+    result = await step(hass, result, on_page("switch", values))
     await step(hass, result, {"next_step_id": "save"})
     assert [data.get("availability") for data in machines(smart_entry)] == ["keep", "keep"]
 
@@ -347,16 +345,10 @@ async def test_composite_edit_changes_every_part(
     hass: HomeAssistant, smart_entry: MockConfigEntry
 ) -> None:
     """Editing one part's address form sets the availability of the whole entity."""
-    result = await step(
-        hass,
-        await machine_menu(hass, smart_entry, data_valid=False),
-        {"next_step_id": "composite"},
-    )
-    result = await step(hass, result, {"platform": "switch", "name": "Pump"})
-    parts = {"state": "I0.1", "command": "Q0.4"}
-    result = await step(hass, result, parts)
-    for part in parts:
-        result = await step(hass, result, {"read_only": part == "state"})
+    menu = await machine_menu(hass, smart_entry, data_valid=False)
+    result = await entity_page(hass, menu, "switch")
+    values = {"name": "Pump", "state": "I0.1", "command": "Q0.4"}
+    result = await step(hass, result, on_page("switch", values))
     result = await step(hass, result, {"next_step_id": "edit"})
     (marker,) = result["data_schema"].schema
     first = result["data_schema"].schema[marker].config["options"][0]

@@ -53,7 +53,7 @@ from tests.entries import (
     set_up as set_up_entry,
     unload_all,
 )
-from tests.flows.forms import step
+from tests.flows.forms import entity_page, on_page, step
 from tests.harness import (
     SNAP7_THREADS,
     make_plcnext_entry,
@@ -224,13 +224,15 @@ RIGS = {
 }
 """Every simulator that can hold a water heater: two words, a small integer and a bit."""
 
-PART_SETTINGS = {
-    "current_temperature": {"scale": 0.1, "offset": 0, "read_only": True},
-    "target_temperature": {"scale": 0.1, "offset": 0, "min": 30, "max": 70, "step": 0.5},
-    "operation_mode": {"value_map": MODES},
-    "on_off": {},
+PAGE_SETTINGS = {
+    "scale": 0.1,
+    "offset": 0,
+    "min": 30,
+    "max": 70,
+    "step": 0.5,
+    "operation_mode_value_map": MODES,
 }
-"""What the user fills in on each part's page (temperatures in tenths)."""
+"""What the user fills in on the page besides addresses (temperatures in tenths, asked once)."""
 
 
 @pytest.fixture
@@ -277,20 +279,14 @@ async def build(hass: HomeAssistant, entry: MockConfigEntry, rig: Rig) -> None:
         (entry.entry_id, SUBENTRY_DEVICE), context={"source": SOURCE_USER}
     )
     menu = await step(hass, menu, {"name": "Boiler room"})
-    result = await step(hass, menu, {"next_step_id": "composite"})
-    result = await step(hass, result, {"platform": "water_heater", "name": "Tank"})
-    assert result["step_id"] == "composite_parts"
-    assert {str(marker) for marker in result["data_schema"].schema} >= set(ROLES)
-    given: dict[str, str] = {}
+    result = await entity_page(hass, menu, "water_heater")
+    assert result["step_id"] == "composite_entity"
+    given: dict[str, Any] = {"name": "Tank", **PAGE_SETTINGS}
     for role, (address, data_type, _) in rig.parts.items():
         given[role] = address
         if data_type:
             given[f"{role}_data_type"] = data_type
-    result = await step(hass, result, given)
-    for _ in ROLES:
-        assert result["step_id"] == "composite_part", result.get("errors")
-        role = result["description_placeholders"]["role"]
-        result = await step(hass, result, PART_SETTINGS[role])
+    result = await step(hass, result, on_page("water_heater", given))
     assert result["type"] is FlowResultType.MENU, result.get("errors")
     result = await step(hass, result, {"next_step_id": "save"})
     assert result["type"] is FlowResultType.CREATE_ENTRY

@@ -15,7 +15,7 @@ from unittest.mock import AsyncMock, patch
 
 from homeassistant.config_entries import SOURCE_USER
 from homeassistant.core import HomeAssistant
-from homeassistant.data_entry_flow import FlowResultType
+from homeassistant.data_entry_flow import FlowResultType, section as form_section
 import pytest
 from pytest_homeassistant_custom_component.common import MockConfigEntry
 
@@ -23,6 +23,7 @@ from custom_components.plc_bridge.config_flow import PlcBridgeConfigFlow
 from custom_components.plc_bridge.const import (
     SUBENTRY_DEVICE,
 )
+from custom_components.plc_bridge.model.kinds import KINDS
 from custom_components.plc_bridge.plc import (
     BrowseItem,
     DeviceInfo,
@@ -136,9 +137,23 @@ def translated(result: Any, *section: str) -> Any:
     if result["type"] is FlowResultType.FORM:
         step = base["step"][result["step_id"]]
         assert step["title"]
-        for marker in result["data_schema"].schema if result["data_schema"] else ():
-            assert str(marker) in step["data"], f"{marker} has no label"
-            assert str(marker) in step["data_description"], f"{marker} has no help text"
+        schema = result["data_schema"].schema if result["data_schema"] else {}
+        for marker, field in schema.items():
+            texts = step
+            if isinstance(field, form_section):  # its fields' texts are the section's
+                texts = step["sections"][str(marker)]
+                assert texts["name"], f"section {marker} has no name"
+                markers = list(field.schema.schema)
+            else:
+                markers = [marker]
+            for inner in markers:
+                assert str(inner) in texts["data"], f"{inner} has no label"
+                assert str(inner) in texts["data_description"], f"{inner} has no help text"
+    if result["type"] is FlowResultType.MENU:
+        step = base["step"][result["step_id"]]
+        for option in result["menu_options"]:
+            assert option in step["menu_options"], f"{option} has no label"
+    if result["type"] is FlowResultType.FORM:
         for key in (result["errors"] or {}).values():
             assert key in base["error"]
     return result
@@ -196,3 +211,27 @@ async def polling_form(hass: HomeAssistant, entry: MockConfigEntry) -> Any:
     return await hass.config_entries.options.async_configure(
         result["flow_id"], {"next_step_id": "polling"}
     )
+
+
+async def entity_page(hass: HomeAssistant, menu: Any, platform: str) -> Any:
+    """From a machine's menu, open the page of a new entity of several addresses of this kind."""
+    kinds = await step(hass, menu, {"next_step_id": "composite"})
+    return await step(hass, kinds, {"next_step_id": f"entity_{platform}"})
+
+
+def on_page(platform: str, values: Mapping[str, Any]) -> dict[str, Any]:
+    """Return flat values as the entity's page takes them: each field in its section."""
+    kind = KINDS[platform]
+    where: dict[str, str] = {"poll": "entity_options", "availability": "entity_options"}
+    for name, roles in kind.sections.items():
+        for role in roles:
+            keys = (role.key, f"{role.key}_data_type", *(f"{role.key}_{s}" for s in role.asks))
+            where |= dict.fromkeys(keys, name)
+        where |= {setting: name for setting in kind.shared(name) if setting not in where}
+    page: dict[str, Any] = {}
+    for key, value in values.items():
+        if key in where:
+            page.setdefault(where[key], {})[key] = value
+        else:
+            page[key] = value
+    return page

@@ -25,7 +25,7 @@ from custom_components.plc_bridge.plc import Point
 from custom_components.plc_bridge.plc.vendors import client_class
 from simulators.softplc import SoftplcSimulator
 from tests.entries import PointData, call, point
-from tests.flows.forms import MACHINE, error_message, step, strings_at
+from tests.flows.forms import MACHINE, entity_page, error_message, on_page, step, strings_at
 from tests.harness import make_softplc_entry, softplc_data
 from tests.test_config_file import CONFIG, paste
 
@@ -72,36 +72,38 @@ async def menu_of(hass: HomeAssistant, entry: MockConfigEntry) -> Any:
 
 
 async def composite(hass: HomeAssistant, entry: MockConfigEntry, platform: str) -> Any:
-    """Open a new machine's form for an entity of several addresses; return its parts form."""
-    result = await step(hass, await menu_of(hass, entry), {"next_step_id": "composite"})
-    return await step(hass, result, {"platform": platform, "name": "Door"})
+    """Open a new machine's page for an entity of several addresses of this kind."""
+    return await entity_page(hass, await menu_of(hass, entry), platform)
 
 
-async def test_command_part_never_read_only(
+async def fill(hass: HomeAssistant, result: Any, platform: str, **values: Any) -> Any:
+    """Submit the entity's page with these fields (name: Door), each put in its section."""
+    return await step(hass, result, on_page(platform, {"name": "Door", **values}))
+
+
+def page_fields(result: Any) -> set[str]:
+    """Return every field of an entity's page, those inside its sections included."""
+    names: set[str] = set()
+    for marker, shown in result["data_schema"].schema.items():
+        inner = getattr(getattr(shown, "schema", None), "schema", None)
+        names |= {str(key) for key in inner} if isinstance(inner, dict) else {str(marker)}
+    return names
+
+
+async def test_written_parts_never_read_only(
     hass: HomeAssistant, flow_entry: MockConfigEntry
 ) -> None:
-    """Ticking "Read only" on a cover's open command is refused on that field; nothing stored."""
+    """The entity's page offers no "Read only": a cover's commands and a climate's set point
+    are stored writable, what is only read is stored read only."""
     result = await composite(hass, flow_entry, "cover")
-    result = await step(hass, result, {"open": "Q0.4", "closed_limit": "I0.1"})
-    assert result["description_placeholders"]["role"] == "open"
-    result = await step(hass, result, {"read_only": True})
-    assert result["step_id"] == "composite_part"
-    assert result["errors"] == {"read_only": "command_read_only"}
-    result = await step(hass, result, {"read_only": False})
-    assert result["description_placeholders"]["role"] == "closed_limit"
-    result = await step(hass, result, {"read_only": True})
-    assert result["type"] is FlowResultType.MENU
-    assert machines(flow_entry) == []
-
-
-async def test_set_point_part_never_read_only(
-    hass: HomeAssistant, flow_entry: MockConfigEntry
-) -> None:
-    """A climate's target temperature is written to command an output: never read only."""
-    result = await composite(hass, flow_entry, "climate")
-    result = await step(hass, result, {"target_temperature": "VW40"})
-    result = await step(hass, result, {"scale": 1, "offset": 0, "read_only": True})
-    assert result["errors"] == {"read_only": "command_read_only"}
+    assert "read_only" not in page_fields(result)
+    menu = await fill(hass, result, "cover", open="Q0.4", closed_limit="I0.1")
+    assert menu["type"] is FlowResultType.MENU, menu.get("errors")
+    result = await entity_page(hass, menu, "climate")
+    menu = await fill(hass, result, "climate", target_temperature="VW40")
+    await step(hass, menu, {"next_step_id": "save"})
+    by_role = {data["role"]: data["read_only"] for data in machines(flow_entry)}
+    assert by_role == {"open": False, "closed_limit": True, "target_temperature": False}
 
 
 async def test_button_never_read_only_and_without_poll_class(
@@ -147,11 +149,9 @@ async def test_travel_time_on_the_cover_form(
     result = await composite(hass, flow_entry, "cover")
     assert "travel_time" in fields(result)
     parts = {"open": "Q0.4", "close": "Q0.5", "closed_limit": "I0.1"}
-    result = await step(hass, result, {**parts, "travel_time": 700})
+    result = await fill(hass, result, "cover", **parts, travel_time=700)
     assert result["errors"] == {"travel_time": "travel_time_out_of_range"}
-    result = await step(hass, result, {**parts, "travel_time": 25})
-    for _part in parts:
-        result = await step(hass, result, {"read_only": _part == "closed_limit"})
+    result = await fill(hass, result, "cover", **parts, travel_time=25)
     await step(hass, result, {"next_step_id": "save"})
     stored = machines(flow_entry)
     assert {data["travel_time"] for data in stored} == {25.0}
@@ -165,7 +165,7 @@ async def test_travel_time_on_the_cover_form(
 async def test_travel_time_asked_of_covers_and_valves_only(
     hass: HomeAssistant, flow_entry: MockConfigEntry
 ) -> None:
-    """A fan's parts form has no travel time; a valve's has."""
+    """A fan's page has no travel time; a valve's has."""
     assert "travel_time" not in fields(await composite(hass, flow_entry, "fan"))
     assert "travel_time" in fields(await composite(hass, flow_entry, "valve"))
 
@@ -225,16 +225,17 @@ async def test_softplc_switch_form_refuses_the_shared_word(
 ) -> None:
     """A switch of a state and a command in one word: refused on the command, with the reason."""
     result = await composite(hass, softplc_entry, "switch")
-    result = await step(hass, result, {"state": "B3:4/1", "command": "B3:3/0"})
-    assert result["errors"] == {"command": "writes_read_only"}
-    assert error_message(result, "command", *MACHINE).startswith(
+    result = await fill(hass, result, "switch", state="B3:4/1", command="B3:3/0")
+    assert result["errors"] == {"on_off": "writes_read_only"}
+    assert result["description_placeholders"]["role"] == "command"
+    assert error_message(result, "on_off", *MACHINE).startswith(
         "The PLC writes whole words: B3:3/0 shares its word with the read-only point B3:3/1"
     )
-    result = await step(hass, result, {"state": "B3:4/1", "command": "B3:4/0"})
-    assert result["errors"] == {"command": "writes_read_only"}
-    assert "B3:4/1" in error_message(result, "command", *MACHINE)
-    result = await step(hass, result, {"state": "B3:4/1", "command": "B3:5/0"})
-    assert result["step_id"] == "composite_part"
+    result = await fill(hass, result, "switch", state="B3:4/1", command="B3:4/0")
+    assert result["errors"] == {"on_off": "writes_read_only"}
+    assert "B3:4/1" in error_message(result, "on_off", *MACHINE)
+    menu = await fill(hass, result, "switch", state="B3:4/1", command="B3:5/0")
+    assert menu["type"] is FlowResultType.MENU, menu.get("errors")
     assert len(machines(softplc_entry)) == 1
 
 
@@ -320,8 +321,7 @@ async def test_edited_part_sets_the_whole_entitys_travel_time(
 ) -> None:
     """Editing one part's travel time changes every part's; out of bounds is refused on it."""
     result = await composite(hass, flow_entry, "valve")
-    result = await step(hass, result, {"open": "Q0.4", "close": "Q0.5", "travel_time": 20})
-    result = await step(hass, await step(hass, result, {"read_only": False}), {"read_only": False})
+    result = await fill(hass, result, "valve", open="Q0.4", close="Q0.5", travel_time=20)
     await step(hass, result, {"next_step_id": "save"})
     subentry_id = next(iter(flow_entry.subentries))
     menu = await hass.config_entries.subentries.async_init(

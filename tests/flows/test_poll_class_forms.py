@@ -20,7 +20,8 @@ from custom_components.plc_bridge.plc.vendors import client_class
 from custom_components.plc_bridge.plc.vendors.s7_smart import S7SmartClient
 from simulators.s7_smart import S7SmartSimulator
 from tests.entries import PointData, device, point, sim_data
-from tests.flows.forms import MACHINE, error_message, polling_form, translated
+from tests.flows.forms import MACHINE, entity_page, error_message, on_page, polling_form, translated
+from tests.flows.test_command_layouts import page_fields
 
 pytestmark = pytest.mark.no_pacing
 
@@ -165,13 +166,10 @@ async def test_composite_form_sets_every_part(
         (entry.entry_id, SUBENTRY_DEVICE), context={"source": SOURCE_USER}
     )
     menu = await step(hass, menu, {"name": "Garage"})
-    result = await step(hass, menu, {"next_step_id": "composite"})
-    assert "poll" in fields(result)
-    result = await step(hass, result, {"platform": "cover", "name": "Door", "poll": "fast"})
-    result = await step(hass, result, {"position": "VW40", "open": "Q0.4"})
-    assert "poll" not in fields(result)  # set once, for the whole entity
-    result = await step(hass, result, {"scale": 1, "offset": 0, "read_only": True})
-    menu = await step(hass, result, {"read_only": False})
+    result = await entity_page(hass, menu, "cover")
+    assert "poll" in page_fields(result)  # once, for the whole entity
+    values = {"name": "Door", "poll": "fast", "position": "VW40", "open": "Q0.4"}
+    menu = await step(hass, result, on_page("cover", values))
     points = await saved(hass, entry, menu)
     assert {data["poll"] for data in points.values()} == {"fast"}
     menu = await hass.config_entries.subentries.async_init(

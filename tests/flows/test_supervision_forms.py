@@ -12,7 +12,14 @@ from custom_components.plc_bridge.model.point_table import export_points, parse_
 from simulators.s7_smart import S7SmartSimulator
 from tests.entries import make_entry, point
 from tests.flows.forms import step, strings_at
-from tests.flows.test_command_layouts import SMART, composite, fields, key_only, machines
+from tests.flows.test_command_layouts import (
+    SMART,
+    composite,
+    fields,
+    fill,
+    key_only,
+    machines,
+)
 from tests.test_config_file import CONFIG, paste
 
 pytestmark = pytest.mark.no_pacing
@@ -25,11 +32,9 @@ async def test_supervision_on_the_switch_form(
     result = await composite(hass, flow_entry, "switch")
     assert "supervision" in fields(result)
     parts = {"state": "I0.1", "command": "Q0.4"}
-    result = await step(hass, result, {**parts, "supervision": 700})
+    result = await fill(hass, result, "switch", **parts, supervision=700)
     assert result["errors"] == {"supervision": "supervision_out_of_range"}
-    result = await step(hass, result, {**parts, "supervision": 10})
-    for part in parts:
-        result = await step(hass, result, {"read_only": part == "state"})
+    result = await fill(hass, result, "switch", **parts, supervision=10)
     await step(hass, result, {"next_step_id": "save"})
     stored = machines(flow_entry)
     assert {data["supervision"] for data in stored} == {10.0}

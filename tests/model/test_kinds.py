@@ -33,7 +33,8 @@ from custom_components.plc_bridge.plc.vendors import client_class
 
 PACKAGE = Path(__file__).resolve().parents[2] / "custom_components" / "plc_bridge"
 STRINGS = json.loads((PACKAGE / "strings.json").read_text(encoding="utf-8"))
-PARTS = STRINGS["config_subentries"]["device"]["step"]["composite_parts"]
+PAGE = STRINGS["config_subentries"]["device"]["step"]["composite_entity"]
+MENU = STRINGS["config_subentries"]["device"]["step"]["composite"]["menu_options"]
 REMOVED = frozenset(
     {
         "ROLES",
@@ -73,15 +74,25 @@ def test_the_platforms_are_the_kinds() -> None:
 
 
 def test_every_kind_and_role_has_its_strings() -> None:
-    """Each kind is named where it is chosen; each role's address field has a label and help."""
+    """Each kind is named where it is chosen; each field of its page has a label and help in
+    its section, and each section a name; its own device classes are named."""
     options = STRINGS["selector"]
     assert set(options["platform"]["options"]) == set(POINT_PLATFORMS)
     assert set(options["composite_platform"]["options"]) == set(COMPOSITE_PLATFORMS)
+    assert set(MENU) == {f"entity_{kind}" for kind in COMPOSITE_PLATFORMS}
     for kind in KINDS_IN_ORDER:
-        for role in kind.roles:
-            for field in (role.translation_key, f"{role.translation_key}_data_type"):
-                assert field in PARTS["data"], (kind.key, field)
-                assert field in PARTS["data_description"], (kind.key, field)
+        if kind.device_class is not None and not kind.single:
+            named = options[f"{kind.key}_device_class"]["options"]
+            assert set(named) == set(kind.device_class), kind.key
+        for name, roles in kind.sections.items():
+            texts = PAGE["sections"][name]
+            assert texts["name"], name
+            fields = [*(f"{role.key}_{s}" for role in roles for s in role.asks)]
+            fields += [role.translation_key for role in roles]
+            fields += [f"{role.translation_key}_data_type" for role in roles]
+            for field in (*fields, *kind.shared(name)):
+                assert field in texts["data"], (kind.key, field)
+                assert field in texts["data_description"], (kind.key, field)
 
 
 def test_orders_the_forms_list() -> None:

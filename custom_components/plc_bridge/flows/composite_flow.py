@@ -1,21 +1,26 @@
 """The device flow's steps that add an entity from several addresses (composite.py).
 
-The kind and the name first; then an address (and a data type) for each part the kind
-has, every one optional; then, part by part, the settings of the single-address kind the
-part resembles (a command's pulse, a position's range, a mode's map). The parts join the
-machine's points only when every part and the whole entity pass the checks of the import.
+The kind is picked from a menu; then one page, built from the kind's description
+(model/kinds.py), asks everything: the name and the kind's own device class and time first,
+then a section per function (a cover's commands, position, limits, tilt) with, for each role,
+its address, its data type and the settings of its own (a limit switch's invert, a mode's
+map), and once for the section what its roles share (the commands' pulse, the temperatures'
+unit and scale, a position's raw range); the poll class and availability fold away at the end.
+The parts join the machine's points only when every part and the whole entity pass the checks
+of the import (each part is checked as the single-address kind it resembles).
 Editing a part asks its address and data type again, checked the same way, then its settings;
 it keeps its point id and its entity's key, so the entity keeps its unique id and entity id.
 """
 
 from __future__ import annotations
 
-from collections.abc import Iterable, Mapping
+from collections.abc import Awaitable, Callable, Iterable, Mapping
 import secrets
 from typing import Any
 
 from homeassistant.config_entries import SubentryFlowResult
-from homeassistant.const import CONF_NAME
+from homeassistant.const import CONF_DEVICE_CLASS, CONF_NAME, CONF_UNIT_OF_MEASUREMENT
+from homeassistant.data_entry_flow import section
 from homeassistant.helpers.selector import (
     BooleanSelector,
     NumberSelector,
@@ -23,7 +28,9 @@ from homeassistant.helpers.selector import (
     NumberSelectorMode,
     SelectSelector,
     SelectSelectorConfig,
+    SelectSelectorMode,
     TextSelector,
+    TextSelectorConfig,
 )
 import voluptuous as vol
 
@@ -32,9 +39,22 @@ from ..const import (
     CONF_DATA_TYPE,
     CONF_ENTITY,
     CONF_INVERT,
+    CONF_MAX,
+    CONF_MIN,
+    CONF_OFFSET,
     CONF_PLATFORM,
+    CONF_PULSE,
+    CONF_RAW_MAX,
+    CONF_RAW_MIN,
     CONF_READ_ONLY,
     CONF_ROLE,
+    CONF_SCALE,
+    CONF_SHOWN_MAX,
+    CONF_SHOWN_MIN,
+    CONF_STEP,
+    CONF_VALUE_MAP,
+    PULSE_MAX,
+    PULSE_MIN,
 )
 from ..model.availability import (
     CONF_AVAILABILITY_POLICY,
@@ -51,12 +71,15 @@ from ..model.composite import (
     supervision_data,
     travel_data,
 )
+from ..model.device_classes import unit_selector
 from ..model.kinds import (
     COMPOSITE_PLATFORMS,
     CONF_SUPERVISION,
     CONF_TRAVEL_TIME,
     CONTROLS,
     KINDS,
+    Kind,
+    Role,
 )
 from ..model.point_table import first_type
 from ..model.points import check_point, data_type_selector, point_key
@@ -64,6 +87,7 @@ from ..model.poll_classes import CONF_POLL, NORMAL, poll_field
 from ..model.write_rules import layout_conflicts
 from ..plc import PlcAddressError, PlcClient, Point
 from .base import DeviceFlowBase
+from .flow_lists import PointWords, async_point_words
 from .point_form import BASE_FIELDS, details_schema
 
 SHARED = (CONF_POLL, CONF_TRAVEL_TIME, CONF_SUPERVISION, CONF_AVAILABILITY_POLICY)
@@ -75,6 +99,35 @@ _SECONDS = NumberSelector(NumberSelectorConfig(mode=NumberSelectorMode.BOX, step
 
 TYPE_SUFFIX = "_data_type"
 """A part's data type field: its role's name and this."""
+OPTIONS = "entity_options"
+"""The folded section of the entity's page: its poll class and availability."""
+PERCENT = {CONF_SHOWN_MIN: 0.0, CONF_SHOWN_MAX: 100.0}
+"""What a raw range maps onto for a role read or set in percent."""
+_NUMBER = NumberSelector(NumberSelectorConfig(mode=NumberSelectorMode.BOX, step="any"))
+SETTINGS: dict[str, Any] = {
+    CONF_PULSE: NumberSelector(
+        NumberSelectorConfig(
+            min=PULSE_MIN,
+            max=PULSE_MAX,
+            step=0.1,
+            mode=NumberSelectorMode.BOX,
+            unit_of_measurement="s",
+        )
+    ),
+    CONF_INVERT: BooleanSelector(),
+    CONF_VALUE_MAP: TextSelector(TextSelectorConfig(multiline=True)),
+    CONF_UNIT_OF_MEASUREMENT: unit_selector("sensor", "temperature"),
+    **dict.fromkeys(
+        (CONF_SCALE, CONF_OFFSET, CONF_MIN, CONF_MAX, CONF_RAW_MIN, CONF_RAW_MAX), _NUMBER
+    ),
+    CONF_STEP: NumberSelector(NumberSelectorConfig(min=0, mode=NumberSelectorMode.BOX, step="any")),
+}
+"""The field of each setting a role asks or its section shares (model/kinds.py names them)."""
+PLACEHOLDERS = (
+    "error", "name", "role", "address", "data_type", "roles", "point", "written", "pair",
+    "units", "labels", "seconds", "platform", "kind", "needs",
+)  # fmt: skip
+"""What the entity page's texts and errors may name; each is given, empty when unused."""
 
 
 class CompositeSteps(DeviceFlowBase):
@@ -88,85 +141,139 @@ class CompositeSteps(DeviceFlowBase):
     async def async_step_composite(
         self, user_input: dict[str, Any] | None = None
     ) -> SubentryFlowResult:
-        """The kind of entity and its name."""
-        errors: dict[str, str] = {}
-        if user_input is not None:
-            name = str(user_input.get(CONF_NAME, "")).strip()
-            platform = str(user_input[CONF_PLATFORM])
-            taken = any(
-                (data[CONF_NAME], data[CONF_PLATFORM]) == (name, platform)
-                for data in self._points.values()
-            )
-            if not name:
-                errors[CONF_NAME] = "name_required"
-            elif taken:
-                errors[CONF_NAME] = "composite_name_taken"
-            else:
-                self._composite = {CONF_NAME: name, CONF_PLATFORM: platform}
-                self._composite[CONF_POLL] = user_input.get(CONF_POLL, NORMAL)
-                policy, wrong = check_policy(user_input, data_valid=self._data_valid)
-                self._composite |= policy
-                if wrong:
-                    errors[CONF_AVAILABILITY_POLICY] = wrong
-                else:
-                    return await self.async_step_composite_parts()
-        schema = vol.Schema(
-            {
-                vol.Required(CONF_PLATFORM, default="cover"): SelectSelector(
-                    SelectSelectorConfig(
-                        options=list(COMPOSITE_PLATFORMS), translation_key="composite_platform"
-                    )
-                ),
-                vol.Required(CONF_NAME): TextSelector(),
-                **poll_field(),
-                **policy_field(data_valid=self._data_valid),
-            }
-        )
-        return self.async_show_form(
+        """The kind of entity: a menu, its page follows."""
+        return self.async_show_menu(
             step_id="composite",
-            data_schema=self.add_suggested_values_to_schema(schema, user_input or {}),
-            errors=errors,
+            menu_options=[f"entity_{platform}" for platform in COMPOSITE_PLATFORMS],
         )
 
-    async def async_step_composite_parts(
+    async def async_add_entity(self, platform: str) -> SubentryFlowResult:
+        """Open the page of a new entity of this kind."""
+        self._composite = {CONF_PLATFORM: platform}
+        return await self.async_step_composite_entity()
+
+    async def async_step_composite_entity(
         self, user_input: dict[str, Any] | None = None
     ) -> SubentryFlowResult:
-        """An address (and its data type) for each part of the kind; leave out those it lacks."""
-        platform = self._composite[CONF_PLATFORM]
+        """The entity's one page: its name, then each section's roles and settings."""
+        kind = KINDS[self._composite[CONF_PLATFORM]]
+        words = await async_point_words(self.hass)
         errors: dict[str, str] = {}
-        placeholders = {"error": "", "name": self._composite[CONF_NAME], "role": ""}
-        placeholders |= {CONF_ADDRESS: "", CONF_DATA_TYPE: ""}
-        placeholders["roles"] = ", ".join(KINDS[platform].role_keys)
-        placeholders |= {"point": "", "written": ""}
+        placeholders = dict.fromkeys(PLACEHOLDERS, "")
+        placeholders["kind"] = words.kinds.get(kind.key, kind.key)
+        placeholders["needs"] = ", ".join(words.roles.get(r, r) for r in kind.needs_one_of)
         if user_input is not None:
-            travel, errors = travel_data(platform, user_input)
-            supervision, wrong = supervision_data(platform, user_input)
-            errors |= wrong
-            self._composite = {k: v for k, v in self._composite.items() if k not in TIMES}
-            self._composite |= travel | supervision
-            parts = self._given(platform, user_input, errors, placeholders)
-            problems = group_errors(parts)
-            if not errors and problems:
-                errors["base"] = problems[0][1]
-                placeholders |= problems[0][2]
-            for part, key, found in self._layout_errors(parts, []) if not errors else []:
-                errors.setdefault(part[CONF_ROLE], key)
-                placeholders |= found
+            values = flattened(user_input)
+            parts = self._entity_parts(kind, values, errors, placeholders, words)
             if not errors:
-                self._parts, self._made = parts, []
-                return await self.async_step_composite_part()
-        fields: dict[vol.Marker, Any] = {}
-        for role in KINDS[platform].role_keys:
-            fields[vol.Optional(role)] = TextSelector()
-            fields[vol.Optional(f"{role}{TYPE_SUFFIX}")] = data_types(self._client)
-        if time := entity_time(platform):
-            fields[vol.Optional(time)] = _SECONDS
+                self._points |= {secrets.token_hex(6): part for part in parts}
+                self._composite = {}
+                return await self.async_step_menu()
         return self.async_show_form(
-            step_id="composite_parts",
-            data_schema=self.add_suggested_values_to_schema(vol.Schema(fields), user_input or {}),
+            step_id="composite_entity",
+            data_schema=self.add_suggested_values_to_schema(
+                self._entity_schema(kind, errors), user_input or {}
+            ),
             errors=errors,
             description_placeholders=placeholders,
         )
+
+    def _entity_schema(self, kind: Kind, errors: Mapping[str, str]) -> vol.Schema:
+        """Return the entity's page: name, own class and time, a section per function."""
+        fields: dict[vol.Marker, Any] = {vol.Required(CONF_NAME): TextSelector()}
+        if kind.device_class is not None:
+            fields[vol.Optional(CONF_DEVICE_CLASS)] = SelectSelector(
+                SelectSelectorConfig(
+                    options=list(kind.device_class),
+                    translation_key=f"{kind.key}_device_class",
+                    mode=SelectSelectorMode.DROPDOWN,
+                )
+            )
+        if kind.entity_time:
+            fields[vol.Optional(kind.entity_time)] = _SECONDS
+        for name, roles in kind.sections.items():
+            inner: dict[vol.Marker, Any] = {}
+            for role in roles:
+                inner[vol.Optional(role.key)] = TextSelector()
+                inner[vol.Optional(f"{role.key}{TYPE_SUFFIX}")] = data_types(self._client)
+                for setting in role.asks:
+                    inner[_setting_marker(f"{role.key}_{setting}", setting)] = SETTINGS[setting]
+            for setting in kind.shared(name):
+                inner[_setting_marker(setting, setting)] = SETTINGS[setting]
+            folded = name not in kind.open_sections and name not in errors
+            fields[vol.Optional(name, default={})] = section(vol.Schema(inner), {"collapsed": folded})
+        options = {**poll_field(), **policy_field(data_valid=self._data_valid)}
+        folded = OPTIONS not in errors
+        fields[vol.Optional(OPTIONS, default={})] = section(vol.Schema(options), {"collapsed": folded})
+        return vol.Schema(fields)
+
+    def _entity_parts(
+        self,
+        kind: Kind,
+        values: Mapping[str, Any],
+        errors: dict[str, str],
+        placeholders: dict[str, str],
+        words: PointWords,
+    ) -> list[dict[str, Any]]:
+        """Check the page's values as the import checks them; return the parts, or errors.
+
+        Home Assistant's frontend shows a section's errors at the section, not at its fields:
+        an error of a role or setting is the section's, and names its role.
+        """
+        name = str(values.get(CONF_NAME) or "").strip()
+        taken = any(
+            (data[CONF_NAME], data[CONF_PLATFORM]) == (name, kind.key)
+            for data in self._points.values()
+        )
+        if not name:
+            errors[CONF_NAME] = "name_required"
+        elif taken:
+            errors[CONF_NAME] = "composite_name_taken"
+        entity: dict[str, Any] = {CONF_NAME: name, CONF_PLATFORM: kind.key}
+        entity[CONF_POLL] = values.get(CONF_POLL, NORMAL)
+        policy, wrong = check_policy(values, data_valid=self._data_valid)
+        entity |= policy
+        if wrong:
+            errors[OPTIONS] = wrong
+        if values.get(CONF_DEVICE_CLASS):
+            entity[CONF_DEVICE_CLASS] = values[CONF_DEVICE_CLASS]
+        for seconds, wrong_time in (
+            travel_data(kind.key, values),
+            supervision_data(kind.key, values),
+        ):
+            entity |= seconds
+            errors |= wrong_time
+        self._composite = {**entity, CONF_NAME: name or "-"}
+        parts: list[dict[str, Any]] = []
+        taken_points = self._taken()
+        for role in kind.roles:
+            address = str(values.get(role.key) or "").strip()
+            if not address or errors.get(role.section):
+                continue
+            data_type = str(values.get(f"{role.key}{TYPE_SUFFIX}") or "")
+            given = taken_points | {point_key(part) for part in parts}
+            at, found, details = self._part_at(role.key, address, data_type, given)
+            if at is not None:
+                settings = {CONF_READ_ONLY: not role.written} | _settings(role, values)
+                made, found, details = part_data(self._client, at | settings)
+                made |= policy  # the point checks leave it out: it is the entity's
+            if found or at is None:
+                errors[role.section] = next(iter(found.values()))
+                placeholders |= details | {"role": words.roles.get(role.key, role.key)}
+                continue
+            parts.append(made)
+        if errors:
+            return []
+        if problems := group_errors(parts):
+            errors["base"] = problems[0][1]
+            placeholders |= problems[0][2]
+            placeholders["roles"] = placeholders["needs"]
+            return []
+        for conflict, key, found_words in self._layout_errors(parts, []):
+            described = kind.role(str(conflict[CONF_ROLE]))
+            errors.setdefault(described.section if described else "base", key)
+            placeholders |= found_words | {"role": words.roles.get(conflict[CONF_ROLE], "")}
+        return [] if errors else parts
 
     def _given(
         self,
@@ -367,6 +474,45 @@ class CompositeSteps(DeviceFlowBase):
             for other, data in self._points.items()
             if other != point_id and entity_of(data) == entity
         ]
+
+
+def flattened(user_input: Mapping[str, Any]) -> dict[str, Any]:
+    """Return a page's values with its sections' fields at the top (their names are unique)."""
+    values: dict[str, Any] = {}
+    for key, value in user_input.items():
+        values |= dict(value) if isinstance(value, Mapping) else {key: value}
+    return values
+
+
+def _setting_marker(key: str, setting: str) -> vol.Marker:
+    """Return a setting's field: a switch defaults to off, the others may stay empty."""
+    if setting == CONF_INVERT:
+        return vol.Required(key, default=False)
+    return vol.Optional(key)
+
+
+def _settings(role: Role, values: Mapping[str, Any]) -> dict[str, Any]:
+    """Return what a role takes from the page: its own settings and its section's shared ones."""
+    taken = {s: values.get(f"{role.key}_{s}") for s in role.asks}
+    taken |= {s: values.get(s) for s in role.shares}
+    taken = {key: value for key, value in taken.items() if value not in (None, "")}
+    if role.percent and ({CONF_RAW_MIN, CONF_RAW_MAX} & set(taken)):
+        taken |= PERCENT
+    return taken
+
+
+def _entity_step(platform: str) -> Callable[[CompositeSteps, Any], Awaitable[SubentryFlowResult]]:
+    """Return the menu's step that opens a new entity of this kind."""
+
+    async def step(self: CompositeSteps, user_input: Any = None) -> SubentryFlowResult:
+        """Open the page of a new entity of the kind."""
+        return await self.async_add_entity(platform)
+
+    return step
+
+
+for _platform in COMPOSITE_PLATFORMS:
+    setattr(CompositeSteps, f"async_step_entity_{_platform}", _entity_step(_platform))
 
 
 def data_types(client: type[PlcClient]) -> SelectSelector:

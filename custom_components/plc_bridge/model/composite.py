@@ -22,12 +22,12 @@ from collections.abc import Collection, Iterable, Mapping
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
-from homeassistant.const import CONF_NAME
+from homeassistant.const import CONF_DEVICE_CLASS, CONF_NAME
 
 from ..const import CONF_ENTITY, CONF_INVERT, CONF_PLATFORM, CONF_ROLE, CONF_VALUE_MAP
 from ..plc import PlcClient, Point
 from .conversion import spelled_as_states, stored_pairs
-from .kinds import CONF_SUPERVISION, CONF_TRAVEL_TIME, CONTROLS, KINDS, Role
+from .kinds import CONF_SUPERVISION, CONF_TRAVEL_TIME, CONTROLS, KINDS, Kind, Role
 from .points import point_data
 from .poll_classes import POLL_CLASSES
 
@@ -177,6 +177,9 @@ def part_data(
         values = {**values, CONF_VALUE_MAP: value_map}
     errors = part_errors(platform, values)
     kind = KINDS.get(platform)
+    own_class = _own_class(kind, values)
+    if own_class:  # the entity's own device class, not one of the kind it is checked as
+        values = {key: value for key, value in values.items() if key != CONF_DEVICE_CLASS}
     wording = {"role": role, "platform": platform}
     wording["roles"] = ", ".join(kind.role_keys if kind else ())
     wording["labels"] = ", ".join(described.labels if described else ())
@@ -191,8 +194,17 @@ def part_data(
     travel, wrong = travel_data(platform, values)
     supervision, wrong_time = supervision_data(platform, values)
     data |= travel | supervision | {CONF_PLATFORM: platform, CONF_ROLE: role}
+    data |= {CONF_DEVICE_CLASS: own_class} if own_class else {}
     wrong |= wrong_time
     return data, errors | found | wrong, placeholders
+
+
+def _own_class(kind: Kind | None, values: Mapping[str, Any]) -> str:
+    """Return a part's device class where it is one of its entity's kind (a cover's shutter)."""
+    given = str(values.get(CONF_DEVICE_CLASS) or "")
+    if kind is None or kind.device_class is None or not given:
+        return ""
+    return given if given in set(kind.device_class) else ""
 
 
 def travel_data(platform: str, values: Mapping[str, Any]) -> tuple[dict[str, Any], dict[str, str]]:

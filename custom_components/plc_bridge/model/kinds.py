@@ -40,7 +40,7 @@ from homeassistant.components.water_heater import (  # type: ignore[attr-defined
     STATE_PERFORMANCE,
     WaterHeaterEntityFeature,
 )
-from homeassistant.const import STATE_OFF, Platform
+from homeassistant.const import CONF_UNIT_OF_MEASUREMENT, STATE_OFF, Platform
 
 from ..plc import ValueKind
 
@@ -84,6 +84,13 @@ class Role:
     """A position counted the other way may be inverted (a part on or off always may)."""
     features: tuple[str, ...] = ()
     """The entity features (flag names) the part enables while Home Assistant writes it."""
+    asks: tuple[str, ...] = ()
+    """The settings of its own the entity's page asks beside its address (`<role>_<setting>`)."""
+    shares: tuple[str, ...] = ()
+    """The settings it takes from fields its section asks once for all its roles (a pulse, a
+    temperature's unit and scale, a position's raw range)."""
+    percent: bool = False
+    """It reads or sets 0-100 %: a raw range given maps onto 0-100."""
 
     @property
     def translation_key(self) -> str:
@@ -152,6 +159,8 @@ class Kind:
     feature: type[IntFlag] | None = None
     always_features: tuple[str, ...] = ()
     """The entity's feature flags, and those it always has."""
+    open_sections: tuple[str, ...] = ()
+    """The sections of the entity's page shown open (the others start folded)."""
 
     @property
     def platform(self) -> Platform:
@@ -171,6 +180,18 @@ class Kind:
     def needs_one_of(self) -> tuple[str, ...]:
         """The roles of which an entity needs at least one to show anything."""
         return tuple(role.key for role in self.roles if role.shows)
+
+    @property
+    def sections(self) -> dict[str, tuple[Role, ...]]:
+        """Its roles by the section of its page they belong to, in form order."""
+        found: dict[str, tuple[Role, ...]] = {}
+        for role in self.roles:
+            found[role.section] = (*found.get(role.section, ()), role)
+        return found
+
+    def shared(self, section: str) -> tuple[str, ...]:
+        """The settings a section of its page asks once for all its roles, in form order."""
+        return tuple(dict.fromkeys(s for role in self.sections[section] for s in role.shares))
 
     def features(self, written: Iterable[str]) -> int:
         """Return the feature flags an entity has with these roles written (its enum's value)."""
@@ -192,30 +213,72 @@ def _role(key: str, checked_as: str, section: str, **more: Any) -> Role:
 
 
 _MOVES = ("OPEN", "CLOSE", "SET_POSITION")
+_PULSED = ("pulse",)
+"""What commands share on the page: one pulse length (empty: the command is held)."""
+_RANGED = ("invert", "raw_min", "raw_max")
+"""What the read and set 0-100 % values of one section share: the direction and raw range."""
+_MAPPED = ("value_map",)
+_INVERTED = ("invert",)
 COVER = Kind(
     key="cover",
     device_class=CoverDeviceClass,
     parts_only=True,
     entity_time=CONF_TRAVEL_TIME,
     feature=CoverEntityFeature,
+    open_sections=("commands", "limits"),
     roles=(
-        _role("position", "sensor", "position", shows=True, invertible=True, features=_MOVES),
-        _role("set_position", "number", "position", shows=True, invertible=True, features=_MOVES),
-        _role("open", "button", "commands", shows=True, features=("OPEN",)),
-        _role("close", "button", "commands", shows=True, features=("CLOSE",)),
-        _role("stop", "button", "commands", features=("STOP",)),
-        _role("open_limit", "binary_sensor", "limits", shows=True),
-        _role("closed_limit", "binary_sensor", "limits", shows=True),
-        _role("status", "sensor", "limits", shows=True, labels=COVER_STATES),
-        _role("tilt_position", "sensor", "tilt", invertible=True, features=("SET_TILT_POSITION",)),
+        _role(
+            "position",
+            "sensor",
+            "position",
+            shows=True,
+            invertible=True,
+            features=_MOVES,
+            shares=_RANGED,
+            percent=True,
+        ),
+        _role(
+            "set_position",
+            "number",
+            "position",
+            shows=True,
+            invertible=True,
+            features=_MOVES,
+            shares=_RANGED,
+            percent=True,
+        ),
+        _role("open", "button", "commands", shows=True, features=("OPEN",), shares=_PULSED),
+        _role("close", "button", "commands", shows=True, features=("CLOSE",), shares=_PULSED),
+        _role("stop", "button", "commands", features=("STOP",), shares=_PULSED),
+        _role("open_limit", "binary_sensor", "limits", shows=True, asks=_INVERTED),
+        _role("closed_limit", "binary_sensor", "limits", shows=True, asks=_INVERTED),
+        _role("status", "sensor", "limits", shows=True, labels=COVER_STATES, asks=_MAPPED),
+        _role(
+            "tilt_position",
+            "sensor",
+            "tilt",
+            invertible=True,
+            features=("SET_TILT_POSITION",),
+            shares=_RANGED,
+            percent=True,
+        ),
         _role(
             "set_tilt_position",
             "number",
             "tilt",
             invertible=True,
             features=("SET_TILT_POSITION",),
+            shares=_RANGED,
+            percent=True,
         ),
-        _role("step", "button", "commands", shows=True, features=("OPEN", "CLOSE", "STOP")),
+        _role(
+            "step",
+            "button",
+            "commands",
+            shows=True,
+            features=("OPEN", "CLOSE", "STOP"),
+            shares=_PULSED,
+        ),
     ),
 )
 VALVE = replace(
@@ -227,13 +290,20 @@ VALVE = replace(
 )
 """A valve is a cover without tilt and step relay."""
 _ON_OFF_ROLES = (
-    _role("state", "binary_sensor", "on_off"),
-    _role("command", "button", "on_off", shows=True),
+    _role("state", "binary_sensor", "on_off", asks=_INVERTED),
+    _role("command", "button", "on_off", shows=True, shares=_PULSED),
 )
+_TEMPERATURE = (CONF_UNIT_OF_MEASUREMENT, "scale", "offset")
+"""What a temperature read and one set share on the page: their unit and scaling."""
 _TEMPERATURES = (
-    _role("current_temperature", "sensor", "temperatures", shows=True),
+    _role("current_temperature", "sensor", "temperatures", shows=True, shares=_TEMPERATURE),
     _role(
-        "target_temperature", "number", "temperatures", shows=True, features=("TARGET_TEMPERATURE",)
+        "target_temperature",
+        "number",
+        "temperatures",
+        shows=True,
+        features=("TARGET_TEMPERATURE",),
+        shares=(*_TEMPERATURE, "min", "max", "step"),
     ),
 )
 """The temperatures of a climate entity and of a water heater (their feature flags share names)."""
@@ -242,12 +312,27 @@ CLIMATE = Kind(
     parts_only=True,
     entity_time=CONF_SUPERVISION,
     feature=ClimateEntityFeature,
+    open_sections=("temperatures", "modes"),
     roles=(
         *_TEMPERATURES,
-        _role("hvac_mode", "select", "modes", shows=True, labels=tuple(map(str, HVACMode))),
-        _role("hvac_action", "sensor", "action", labels=tuple(map(str, HVACAction))),
-        _role("on_off", "switch", "on_off", shows=True, features=("TURN_ON", "TURN_OFF")),
-        _role("preset", "select", "presets", features=("PRESET_MODE",)),
+        _role(
+            "hvac_mode",
+            "select",
+            "modes",
+            shows=True,
+            labels=tuple(map(str, HVACMode)),
+            asks=_MAPPED,
+        ),
+        _role("hvac_action", "sensor", "action", labels=tuple(map(str, HVACAction)), asks=_MAPPED),
+        _role(
+            "on_off",
+            "switch",
+            "on_off",
+            shows=True,
+            features=("TURN_ON", "TURN_OFF"),
+            asks=_INVERTED,
+        ),
+        _role("preset", "select", "presets", features=("PRESET_MODE",), asks=_MAPPED),
     ),
 )
 KINDS_IN_ORDER: tuple[Kind, ...] = (
@@ -282,6 +367,7 @@ KINDS_IN_ORDER: tuple[Kind, ...] = (
         codes=True,
         roles=_ON_OFF_ROLES,
         entity_time=CONF_SUPERVISION,
+        open_sections=("on_off",),
     ),
     Kind(
         key="number",
@@ -344,22 +430,43 @@ KINDS_IN_ORDER: tuple[Kind, ...] = (
         entity_time=CONF_SUPERVISION,
         feature=FanEntityFeature,
         always_features=("TURN_ON", "TURN_OFF"),
+        open_sections=("on_off", "speed"),
         roles=(
             *_ON_OFF_ROLES,
-            _role("percentage", "number", "speed", shows=True, features=("SET_SPEED",)),
-            _role("preset", "select", "presets", features=("PRESET_MODE",)),
+            _role(
+                "percentage",
+                "number",
+                "speed",
+                shows=True,
+                features=("SET_SPEED",),
+                shares=_RANGED[1:],
+                percent=True,
+            ),
+            _role("preset", "select", "presets", features=("PRESET_MODE",), asks=_MAPPED),
         ),
     ),
     Kind(
         key="light",
         parts_only=True,
         entity_time=CONF_SUPERVISION,
-        roles=(*_ON_OFF_ROLES, _role("brightness", "number", "brightness", shows=True)),
+        open_sections=("on_off", "brightness"),
+        roles=(
+            *_ON_OFF_ROLES,
+            _role(
+                "brightness",
+                "number",
+                "brightness",
+                shows=True,
+                shares=_RANGED[1:],
+                percent=True,
+            ),
+        ),
     ),
     Kind(
         key="water_heater",
         parts_only=True,
         feature=WaterHeaterEntityFeature,
+        open_sections=("temperatures", "modes"),
         roles=(
             *_TEMPERATURES,
             _role(
@@ -369,8 +476,9 @@ KINDS_IN_ORDER: tuple[Kind, ...] = (
                 shows=True,
                 labels=WATER_HEATER_STATES,
                 features=("OPERATION_MODE",),
+                asks=_MAPPED,
             ),
-            _role("on_off", "switch", "on_off", shows=True, features=("ON_OFF",)),
+            _role("on_off", "switch", "on_off", shows=True, features=("ON_OFF",), asks=_INVERTED),
         ),
     ),
 )
