@@ -201,10 +201,14 @@ class CompositeSteps(DeviceFlowBase):
             for setting in kind.shared(name):
                 inner[_setting_marker(setting, setting)] = SETTINGS[setting]
             folded = name not in kind.open_sections and name not in errors
-            fields[vol.Optional(name, default={})] = section(vol.Schema(inner), {"collapsed": folded})
+            fields[vol.Optional(name, default={})] = section(
+                vol.Schema(inner), {"collapsed": folded}
+            )
         options = {**poll_field(), **policy_field(data_valid=self._data_valid)}
         folded = OPTIONS not in errors
-        fields[vol.Optional(OPTIONS, default={})] = section(vol.Schema(options), {"collapsed": folded})
+        fields[vol.Optional(OPTIONS, default={})] = section(
+            vol.Schema(options), {"collapsed": folded}
+        )
         return vol.Schema(fields)
 
     def _entity_parts(
