@@ -357,6 +357,10 @@ async def test_reconfigure_suggests_the_stored_attribute(hass: HomeAssistant) ->
     assert suggested(result, "attribute") == "azimuth"
     values = {str(m): suggested(result, str(m)) for m in result["data_schema"].schema}
     values = {key: value for key, value in values.items() if value is not None}
+    cleared = {key: value for key, value in values.items() if key != "attribute"}
+    result = await submit(hass, result, cleared | {"address": "VX1"})
+    assert result["errors"] == {"address": "invalid_address"}
+    assert "attribute" in fields(result)  # still there to pick again
     result = await submit(hass, result, values | {"cooldown": 5.0})
     assert result["reason"] == "reconfigure_successful"
     assert entry.subentries[subentry_id].data["attribute"] == "azimuth"
