@@ -285,6 +285,9 @@ async def test_feedback_checked_when_sending_is_turned_on(
         (entry.entry_id, SUBENTRY_EXPOSE),
         context={"source": SOURCE_RECONFIGURE, "subentry_id": sent.subentry_id},
     )
+    result = await hass.config_entries.subentries.async_configure(
+        result["flow_id"], {"entity_id": suggested(result, "entity_id")}
+    )
     values = {str(m): suggested(result, str(m)) for m in result["data_schema"].schema}
     values = {key: value for key, value in values.items() if value is not None}
     result = await hass.config_entries.subentries.async_configure(

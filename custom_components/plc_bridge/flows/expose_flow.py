@@ -1,10 +1,11 @@
 """The expose subentry flow: a Home Assistant entity's state written to one PLC address.
 
-One form, for a new expose and for editing one: the entity (and optionally an attribute), the
-address and data type (checked by the vendor's parser, as a point's), the conversion, the
-cooldown, the periodic resend, send-on-start, the value written while the entity is
-unavailable, and whether it sends at all (turning on one pasted from a file runs the checks,
-feedback included, now that its entities exist). Every check is `check_expose`'s.
+Two pages, for a new expose and for editing one. The first picks the entity; the second offers
+its attributes to pick from (left out when it has none worth sending) beside the address and
+data type (checked by the vendor's parser, as a point's), the conversion, the cooldown, the
+periodic resend, send-on-start, the value written while the entity is unavailable, and whether
+it sends at all (turning on one pasted from a file runs the checks, feedback included, now that
+its entities exist). Every check is `check_expose`'s.
 """
 
 from __future__ import annotations
@@ -14,7 +15,10 @@ from typing import Any
 
 from homeassistant.config_entries import ConfigSubentryFlow, SubentryFlowResult
 from homeassistant.const import CONF_ATTRIBUTE, CONF_ENTITY_ID
+from homeassistant.core import State
 from homeassistant.helpers.selector import (
+    AttributeSelector,
+    AttributeSelectorConfig,
     BooleanSelector,
     EntitySelector,
     NumberSelector,
@@ -54,6 +58,20 @@ from ..plc.vendors import client_class
 _NUMBER = NumberSelector(NumberSelectorConfig(mode=NumberSelectorMode.BOX, step="any"))
 RESEND_MAX = 86400.0
 """The longest periodic resend, in seconds (a day)."""
+DESCRIPTIVE_ATTRIBUTES = (
+    "assumed_state",
+    "attribution",
+    "device_class",
+    "editable",
+    "entity_picture",
+    "friendly_name",
+    "icon",
+    "restored",
+    "state_class",
+    "supported_features",
+    "unit_of_measurement",
+)
+"""Attributes that describe the entity rather than measure anything: not offered to send."""
 
 
 def _seconds(high: float) -> NumberSelector:
@@ -65,12 +83,29 @@ def _seconds(high: float) -> NumberSelector:
     )
 
 
-def expose_schema(client: type[PlcClient]) -> vol.Schema:
-    """Return the expose form."""
+ENTITY_SCHEMA = vol.Schema({vol.Required(CONF_ENTITY_ID): EntitySelector()})
+"""The first page: the entity whose state (or one of its attributes) is sent."""
+
+
+def sendable_attributes(state: State | None) -> list[str]:
+    """Return the attributes of an entity's state offered to send, in their order."""
+    if state is None:
+        return []
+    return [name for name in state.attributes if name not in DESCRIPTIVE_ATTRIBUTES]
+
+
+def expose_schema(client: type[PlcClient], entity_id: str, *, attribute: bool) -> vol.Schema:
+    """Return the second page: the attribute of `entity_id` (when asked), address and the rest."""
+    fields: dict[vol.Marker, Any] = {}
+    if attribute:
+        fields[vol.Optional(CONF_ATTRIBUTE)] = AttributeSelector(
+            AttributeSelectorConfig(
+                entity_id=entity_id, hide_attributes=list(DESCRIPTIVE_ATTRIBUTES)
+            )
+        )
     return vol.Schema(
-        {
-            vol.Required(CONF_ENTITY_ID): EntitySelector(),
-            vol.Optional(CONF_ATTRIBUTE): TextSelector(),
+        fields
+        | {
             vol.Required(CONF_ADDRESS): TextSelector(),
             vol.Required(CONF_DATA_TYPE, default=client.data_types[0]): data_type_selector(client),
             vol.Required(CONF_SCALE, default=1.0): _NUMBER,
@@ -89,6 +124,7 @@ class ExposeSubentryFlowHandler(ConfigSubentryFlow):
     """Add or edit one expose of the PLC."""
 
     _asked: tuple[str, str] | None = None  # an attribute the entity lacked, told once
+    _entity_id: str = ""
 
     @property
     def _client(self) -> type[PlcClient]:
@@ -97,23 +133,35 @@ class ExposeSubentryFlowHandler(ConfigSubentryFlow):
         return client_class(data[CONF_VENDOR], data.get(CONF_OPTIONS, {}))
 
     async def async_step_user(self, user_input: dict[str, Any] | None = None) -> SubentryFlowResult:
-        """Show the empty form."""
-        return await self.async_step_expose(user_input)
+        """Ask the entity."""
+        return await self.async_step_entity(user_input)
 
     async def async_step_reconfigure(
         self, user_input: dict[str, Any] | None = None
     ) -> SubentryFlowResult:
-        """Show the form filled in with the expose's settings."""
-        return await self.async_step_expose(user_input)
+        """Ask the entity, the stored one suggested."""
+        return await self.async_step_entity(user_input)
+
+    async def async_step_entity(
+        self, user_input: dict[str, Any] | None = None
+    ) -> SubentryFlowResult:
+        """Take the entity; go on to its attribute, address and conversion."""
+        if user_input is not None:
+            self._entity_id = str(user_input[CONF_ENTITY_ID])
+            return await self.async_step_expose()
+        return self.async_show_form(
+            step_id="entity",
+            data_schema=self.add_suggested_values_to_schema(ENTITY_SCHEMA, self._stored()),
+        )
 
     async def async_step_expose(
         self, user_input: dict[str, Any] | None = None
     ) -> SubentryFlowResult:
-        """Check the form; store the expose, or show the errors on their fields."""
+        """Check the second page; store the expose, or show the errors on their fields."""
         errors: dict[str, str] = {}
         placeholders = {"error": "", CONF_ADDRESS: ""}
         if user_input is not None:
-            data, errors, placeholders = self._check(user_input)
+            data, errors, placeholders = self._check(user_input | {CONF_ENTITY_ID: self._entity_id})
             if not errors and (missing := self._missing_attribute(data)) is not None:
                 errors = {CONF_ATTRIBUTE: "expose_attribute_missing"}
                 placeholders |= missing
@@ -126,17 +174,29 @@ class ExposeSubentryFlowHandler(ConfigSubentryFlow):
                         data=data,
                     )
                 return self.async_create_entry(title=expose_title(data), data=data)
-        suggested = user_input
-        if suggested is None and self.source == "reconfigure":
-            suggested = dict(self._get_reconfigure_subentry().data)
+        stored = self._stored()
+        if stored.get(CONF_ENTITY_ID) != self._entity_id:
+            stored.pop(CONF_ATTRIBUTE, None)
+        suggested = stored if user_input is None else user_input
+        attribute = bool(
+            sendable_attributes(self.hass.states.get(self._entity_id))
+            or stored.get(CONF_ATTRIBUTE)
+            or suggested.get(CONF_ATTRIBUTE)
+        )
         return self.async_show_form(
             step_id="expose",
             data_schema=self.add_suggested_values_to_schema(
-                expose_schema(self._client), suggested or {}
+                expose_schema(self._client, self._entity_id, attribute=attribute), suggested
             ),
             errors=errors,
             description_placeholders=placeholders,
         )
+
+    def _stored(self) -> dict[str, Any]:
+        """Return the settings of the expose being edited; none for a new one."""
+        if self.source != "reconfigure":
+            return {}
+        return dict(self._get_reconfigure_subentry().data)
 
     def _check(self, values: dict[str, Any]) -> Checked:
         """Check the form through the one validation of an expose; its errors by field."""
