@@ -226,13 +226,13 @@ async def test_softplc_switch_form_refuses_the_shared_word(
     """A switch of a state and a command in one word: refused on the command, with the reason."""
     result = await composite(hass, softplc_entry, "switch")
     result = await fill(hass, result, "switch", state="B3:4/1", command="B3:3/0")
-    assert result["errors"] == {"on_off": "writes_read_only"}
-    assert result["description_placeholders"]["role"] == "command"
+    assert result["errors"] == {"on_off": "in_on_off"}
     assert error_message(result, "on_off", *MACHINE).startswith(
-        "The PLC writes whole words: B3:3/0 shares its word with the read-only point B3:3/1"
+        "Command: The PLC writes whole words: B3:3/0 shares its word with the read-only point "
+        "B3:3/1"
     )
     result = await fill(hass, result, "switch", state="B3:4/1", command="B3:4/0")
-    assert result["errors"] == {"on_off": "writes_read_only"}
+    assert result["errors"] == {"on_off": "in_on_off"}
     assert "B3:4/1" in error_message(result, "on_off", *MACHINE)
     menu = await fill(hass, result, "switch", state="B3:4/1", command="B3:5/0")
     assert menu["type"] is FlowResultType.MENU, menu.get("errors")

@@ -21,8 +21,9 @@ import pytest
 from pytest_homeassistant_custom_component.common import MockConfigEntry
 
 from custom_components.plc_bridge.const import CONF_POINTS, SUBENTRY_DEVICE
+from custom_components.plc_bridge.flows.composite_flow import filled
 from custom_components.plc_bridge.model.kinds import COMPOSITE_PLATFORMS, KINDS
-from tests.flows.forms import step
+from tests.flows.forms import MACHINE, step, strings_at
 
 pytestmark = pytest.mark.no_pacing
 
@@ -104,6 +105,17 @@ def sections_of(result: Any) -> dict[str, section]:
 def inner_fields(result: Any, name: str) -> set[str]:
     """Return the fields of one section of the page."""
     return {str(marker) for marker in sections_of(result)[name].schema.schema}
+
+
+def problem(result: Any, name: str) -> str:
+    """Return the error key behind a section's message; check the message names its role."""
+    assert result["errors"][name] == f"in_{name}"
+    placeholders = result["description_placeholders"]
+    message = placeholders[f"{name}_problem"]
+    errors = strings_at(*MACHINE, "error")
+    found = [key for key, text in errors.items() if filled(text, placeholders) == message]
+    assert found, message
+    return found[0]
 
 
 def stored(entry: MockConfigEntry) -> dict[str, dict[str, Any]]:
@@ -251,6 +263,7 @@ async def test_every_kind_through_its_page(
                 given[f"{role.key}_value_map"] = "0=Comfort;1=Eco"
     menu = await walk.fill(values)
     assert menu["step_id"] == "menu", menu.get("errors")
+    assert walk.pages == 3  # the menu, the kind, the page
     await step(hass, menu, {"next_step_id": "save"})
     parts = stored(flow_entry)
     assert set(parts) == set(kind.role_keys)
@@ -266,12 +279,15 @@ async def test_errors_on_their_field_or_section(
     result = await walk.fill({**COVER, "name": " "})
     assert result["errors"] == {"name": "name_required"}
     result = await walk.fill({**COVER, "commands": {"open": "IW0"}})
-    assert result["errors"] == {"commands": "address_not_writable"}
-    assert result["description_placeholders"]["role"] == "open command"
+    assert list(result["errors"]) == ["commands"]
+    assert problem(result, "commands") == "address_not_writable"
+    assert result["description_placeholders"]["commands_role"] == "Open command"
+    assert result["description_placeholders"]["commands_problem"].startswith("IW0 can never")
     result = await walk.fill({**COVER, "limits": {"status": "VW50"}})
-    assert result["errors"] == {"limits": "map_empty"}
+    assert list(result["errors"]) == ["limits"]
+    assert problem(result, "limits") == "map_empty"
     result = await walk.fill({**COVER, "position": {"position": "VW40", "raw_min": 0}})
-    assert result["errors"] == {"position": "linear_incomplete"}
+    assert problem(result, "position") == "linear_incomplete"
     assert not sections_of(result)["position"].options["collapsed"]
     result = await walk.fill({**COVER, "travel_time": 5000})
     assert result["errors"] == {"travel_time": "travel_time_out_of_range"}
@@ -279,7 +295,8 @@ async def test_errors_on_their_field_or_section(
     assert result["errors"] == {"base": "role_missing"}
     assert "open command" in result["description_placeholders"]["roles"]
     result = await walk.fill({**COVER, "commands": {"open": "Q0.4", "close": "Q0.4"}})
-    assert result["errors"] == {"commands": "already_configured"}
+    assert problem(result, "commands") == "already_configured"
+    assert result["description_placeholders"]["commands_role"] == "Close command"
     position = {"position": "VW40", "raw_min": 0, "raw_max": 27648}
     menu = await walk.fill({**COVER, "position": position})
     assert menu["step_id"] == "menu", menu.get("errors")
@@ -294,13 +311,16 @@ async def test_climate_map_and_needs(hass: HomeAssistant, flow_entry: MockConfig
     nothing and the page says which parts it needs."""
     walk = await entity_page(hass, flow_entry, "climate")
     result = await walk.fill({"name": "Boiler", "action": {"hvac_action": "VW56"}})
-    assert result["errors"] == {"action": "map_empty"}
+    assert problem(result, "action") == "map_empty"
     action = {"hvac_action": "VW56", "hvac_action_value_map": "0=idle;1=heating"}
     result = await walk.fill({"name": "Boiler", "action": action})
     assert result["errors"] == {"base": "role_missing"}
     modes = {"hvac_mode": "VW54", "hvac_mode_value_map": "0=off;1=warm"}
     result = await walk.fill({"name": "Boiler", "modes": modes})
-    assert result["errors"] == {"modes": "role_labels"}
+    assert problem(result, "modes") == "role_labels"
+    labels = result["description_placeholders"]["labels"].split(", ")
+    assert "heat" in labels
+    assert "opening" not in labels  # a climate's modes, not a cover's states
     modes["hvac_mode_value_map"] = "0=Off;1=HEAT"  # any case
     menu = await walk.fill({"name": "Boiler", "modes": modes})
     assert menu["step_id"] == "menu", menu.get("errors")

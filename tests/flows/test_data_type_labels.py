@@ -35,7 +35,7 @@ def selectors(vendor: str) -> list[SelectSelector]:
     return [
         field(base_schema(client), CONF_DATA_TYPE),
         data_types(client),
-        field(expose_schema(client), CONF_DATA_TYPE),
+        field(expose_schema(client, "sensor.outdoor", attribute=True), CONF_DATA_TYPE),
         field(availability_fields(client), CONF_AVAILABILITY_DATA_TYPE),
     ]
 

@@ -89,13 +89,13 @@ async def test_feedback_at_any_depth(hass: HomeAssistant, depth: int) -> None:
     Two exposes feeding each other ran a word from 3 to 12,288 when only one hop was looked at.
     """
     entry, ids = loop_entry(hass, depth)
-    closing = {"entity_id": ids[0], "address": "VW32", "data_type": "signed"}
-    result = await submit(hass, await start(hass, entry), closing)
+    closing = {"address": "VW32", "data_type": "signed"}
+    result = await submit(hass, await start(hass, entry, ids[0]), closing)
     assert result["errors"] == {"address": "expose_feeds_back"}
     assert "VW32" in error_message(result, "address", *EXPOSE)
     assert len(exposes(entry)) == depth - 1
     elsewhere = closing | {"address": "VW60"}
-    result = await submit(hass, await start(hass, entry), elsewhere)
+    result = await submit(hass, await start(hass, entry, ids[0]), elsewhere)
     assert result["type"] is FlowResultType.CREATE_ENTRY
 
 

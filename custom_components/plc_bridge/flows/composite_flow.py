@@ -15,6 +15,7 @@ it keeps its point id and its entity's key, so the entity keeps its unique id an
 from __future__ import annotations
 
 from collections.abc import Awaitable, Callable, Iterable, Mapping
+import re
 import secrets
 from typing import Any
 
@@ -32,6 +33,7 @@ from homeassistant.helpers.selector import (
     TextSelector,
     TextSelectorConfig,
 )
+from homeassistant.helpers.translation import async_get_translations
 import voluptuous as vol
 
 from ..const import (
@@ -53,8 +55,10 @@ from ..const import (
     CONF_SHOWN_MIN,
     CONF_STEP,
     CONF_VALUE_MAP,
+    DOMAIN,
     PULSE_MAX,
     PULSE_MIN,
+    SUBENTRY_DEVICE,
 )
 from ..model.availability import (
     CONF_AVAILABILITY_POLICY,
@@ -123,9 +127,12 @@ SETTINGS: dict[str, Any] = {
     CONF_STEP: NumberSelector(NumberSelectorConfig(min=0, mode=NumberSelectorMode.BOX, step="any")),
 }
 """The field of each setting a role asks or its section shares (model/kinds.py names them)."""
+SECTIONS = tuple(dict.fromkeys(role.section for kind in KINDS.values() for role in kind.roles))
+"""Every section an entity's page may have."""
 PLACEHOLDERS = (
     "error", "name", "role", "address", "data_type", "roles", "point", "written", "pair",
     "units", "labels", "seconds", "platform", "kind", "needs",
+    *(f"{name}_{what}" for name in (*SECTIONS, OPTIONS) for what in ("role", "problem")),
 )  # fmt: skip
 """What the entity page's texts and errors may name; each is given, empty when unused."""
 
@@ -164,11 +171,13 @@ class CompositeSteps(DeviceFlowBase):
         placeholders["needs"] = ", ".join(words.roles.get(r, r) for r in kind.needs_one_of)
         if user_input is not None:
             values = flattened(user_input)
-            parts = self._entity_parts(kind, values, errors, placeholders, words)
+            roles: dict[str, str] = {}
+            parts = self._entity_parts(kind, values, errors, placeholders, roles)
             if not errors:
                 self._points |= {secrets.token_hex(6): part for part in parts}
                 self._composite = {}
                 return await self.async_step_menu()
+            await self._word_sections(errors, placeholders, roles, words)
         return self.async_show_form(
             step_id="composite_entity",
             data_schema=self.add_suggested_values_to_schema(
@@ -217,12 +226,12 @@ class CompositeSteps(DeviceFlowBase):
         values: Mapping[str, Any],
         errors: dict[str, str],
         placeholders: dict[str, str],
-        words: PointWords,
+        roles: dict[str, str],
     ) -> list[dict[str, Any]]:
         """Check the page's values as the import checks them; return the parts, or errors.
 
         Home Assistant's frontend shows a section's errors at the section, not at its fields:
-        an error of a role or setting is the section's, and names its role.
+        an error of a role or setting is the section's; `roles` gets the role at fault.
         """
         name = str(values.get(CONF_NAME) or "").strip()
         taken = any(
@@ -263,7 +272,8 @@ class CompositeSteps(DeviceFlowBase):
                 made |= policy  # the point checks leave it out: it is the entity's
             if found or at is None:
                 errors[role.section] = next(iter(found.values()))
-                placeholders |= details | {"role": words.roles.get(role.key, role.key)}
+                placeholders |= details
+                roles[role.section] = role.key
                 continue
             parts.append(made)
         if errors:
@@ -275,9 +285,35 @@ class CompositeSteps(DeviceFlowBase):
             return []
         for conflict, key, found_words in self._layout_errors(parts, []):
             described = kind.role(str(conflict[CONF_ROLE]))
-            errors.setdefault(described.section if described else "base", key)
-            placeholders |= found_words | {"role": words.roles.get(conflict[CONF_ROLE], "")}
+            name = described.section if described else "base"
+            errors.setdefault(name, key)
+            roles.setdefault(name, str(conflict[CONF_ROLE]))
+            placeholders |= found_words
         return [] if errors else parts
+
+    async def _word_sections(
+        self,
+        errors: dict[str, str],
+        placeholders: dict[str, str],
+        roles: Mapping[str, str],
+        words: PointWords,
+    ) -> None:
+        """Give each section's error the words of its message, named by its role.
+
+        A section's error is shown at the section's top: `in_<section>` reads "Open command:"
+        and the message the field would have had, in Home Assistant's language.
+        """
+        language = self.hass.config.language
+        texts = await async_get_translations(self.hass, language, "config_subentries", [DOMAIN])
+        prefix = f"component.{DOMAIN}.config_subentries.{SUBENTRY_DEVICE}.error."
+        for name in (*SECTIONS, OPTIONS):
+            if name not in errors:
+                continue
+            message = texts.get(prefix + errors[name], errors[name])
+            role = words.roles.get(roles.get(name, ""), "")
+            placeholders[f"{name}_role"] = role[:1].upper() + role[1:]
+            placeholders[f"{name}_problem"] = filled(message, placeholders)
+            errors[name] = f"in_{name}"
 
     def _given(
         self,
@@ -478,6 +514,12 @@ class CompositeSteps(DeviceFlowBase):
             for other, data in self._points.items()
             if other != point_id and entity_of(data) == entity
         ]
+
+
+def filled(message: str, placeholders: Mapping[str, str]) -> str:
+    """Return a message with its placeholders filled in, as the frontend would show it."""
+    text = re.sub(r"\{(\w+)\}", lambda found: placeholders.get(found[1], found[0]), message)
+    return text.replace("''", "'")
 
 
 def flattened(user_input: Mapping[str, Any]) -> dict[str, Any]:
