@@ -292,7 +292,6 @@ class DeviceFlowBase(ConfigSubentryFlow):
 
     _composite: dict[str, Any]
     _parts: list[dict[str, Any]]
-    _made: list[dict[str, Any]]
     _part_ids: list[str]
 
     def __init__(self) -> None:
@@ -307,7 +306,7 @@ class DeviceFlowBase(ConfigSubentryFlow):
         self._items: list[BrowseItem] = []
         self._ticked: list[str] = []
         self._confirmed = ""  # a pasted table whose assumed data types were shown
-        self._composite, self._parts, self._made, self._part_ids = {}, [], [], []
+        self._composite, self._parts, self._part_ids = {}, [], []
 
     @property
     def _client(self) -> type[PlcClient]:

@@ -315,30 +315,6 @@ class CompositeSteps(DeviceFlowBase):
             placeholders[f"{name}_problem"] = filled(message, placeholders)
             errors[name] = f"in_{name}"
 
-    def _given(
-        self,
-        platform: str,
-        user_input: dict[str, Any],
-        errors: dict[str, str],
-        placeholders: dict[str, str],
-    ) -> list[dict[str, Any]]:
-        """Return the parts given an address, each checked as the kind it resembles."""
-        parts: list[dict[str, Any]] = []
-        taken = self._taken()
-        for role in KINDS[platform].role_keys:
-            address = str(user_input.get(role) or "").strip()
-            if not address:
-                continue
-            data_type = str(user_input.get(f"{role}{TYPE_SUFFIX}") or "")
-            given = taken | {point_key(part) for part in parts}
-            part, found, details = self._part_at(role, address, data_type, given)
-            if part is None:
-                errors[role] = next(iter(found.values()))
-                placeholders |= details
-                continue
-            parts.append(part)
-        return parts
-
     def _part_at(
         self, role: str, address: str, data_type: str, taken: set[Point]
     ) -> tuple[dict[str, Any] | None, dict[str, str], dict[str, str]]:
@@ -375,8 +351,8 @@ class CompositeSteps(DeviceFlowBase):
     async def async_step_composite_part(
         self, user_input: dict[str, Any] | None = None
     ) -> SubentryFlowResult:
-        """The settings of one part, as its resembling kind has them; then the next part."""
-        values = self._parts[len(self._made)]
+        """The settings of an edited part, as its resembling kind has them; then the menu."""
+        values = self._parts[0]
         role, platform = values[CONF_ROLE], values[CONF_PLATFORM]
         errors: dict[str, str] = {}
         placeholders = {"role": role, "units": "", "pair": "", "error": "", "platform": platform}
@@ -387,21 +363,15 @@ class CompositeSteps(DeviceFlowBase):
             data, errors, found = part_data(self._client, base | user_input)
             data |= {k: base[k] for k in (CONF_AVAILABILITY_POLICY,) if k in base}
             placeholders |= found
-            others = [*self._made, *self._parts[len(self._made) + 1 :]]
-            for _part, key, details in self._layout_errors([data], others) if not errors else []:
+            for _part, key, details in self._layout_errors([data], []) if not errors else []:
                 errors[CONF_READ_ONLY] = key
                 placeholders |= details
             if not errors:
                 if values.get(CONF_ENTITY):  # an edited part stays a part of its entity
                     data[CONF_ENTITY] = values[CONF_ENTITY]
-                self._made.append(data)
-                if len(self._made) < len(self._parts):
-                    return await self.async_step_composite_part()
-                ids = self._part_ids or [secrets.token_hex(6) for _ in self._made]
-                self._points |= dict(zip(ids, self._made, strict=True))
-                if self._part_ids:  # an edited part's class and travel are its entity's
-                    self._share(self._made[0])
-                self._parts, self._made, self._part_ids = [], [], []
+                self._points[self._part_ids[0]] = data
+                self._share(data)  # an edited part's class and travel are its entity's
+                self._parts, self._part_ids = [], []
                 self._editing = None
                 return await self.async_step_menu()
         shown = as_platform(platform, role)
@@ -411,8 +381,7 @@ class CompositeSteps(DeviceFlowBase):
             kind = None
         schema = details_schema(shown, kind)
         schema = vol.Schema({k: v for k, v in schema.schema.items() if k != CONF_POLL})
-        if self._part_ids:  # a new entity's parts take the class its first step set
-            schema = schema.extend(poll_field())
+        schema = schema.extend(poll_field())
         if (described := role_of(platform, role)) is not None and described.invertible:
             schema = schema.extend({vol.Required(CONF_INVERT, default=False): BooleanSelector()})
         return self.async_show_form(
@@ -434,7 +403,7 @@ class CompositeSteps(DeviceFlowBase):
         """Edit one part: its address and data type, then its settings; its entity stays."""
         data = self._points[point_id]
         self._composite = {CONF_NAME: data[CONF_NAME], CONF_PLATFORM: data[CONF_PLATFORM]}
-        self._parts, self._made, self._part_ids = [dict(data)], [], [point_id]
+        self._parts, self._part_ids = [dict(data)], [point_id]
         self._editing = point_id  # its own address is not taken
         return await self.async_step_composite_edit()
 
