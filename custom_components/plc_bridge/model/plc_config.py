@@ -9,7 +9,8 @@ values, every address by the vendor's parser, each point by the point forms' own
 of each entity together, the write layout of the whole PLC, the poll intervals against the
 vendor's pace, each expose by the expose form's check), each problem with the path of the stored
 value it concerns. The doors word it their way: the pasted file on that value's line, the options
-form on its field (`interval_problems`).
+form on its field (`interval_problems`), the config flow's connection and reconfigure pages on
+theirs (`Connection.problems`, and `file_problems` for certificate files).
 """
 
 from __future__ import annotations
