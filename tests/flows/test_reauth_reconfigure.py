@@ -131,6 +131,33 @@ async def test_reconfigure_errors(
 
 
 @flow_only
+@pytest.mark.parametrize(
+    ("changes", "errors"),
+    [
+        ({CONF_HOST: "https://127.0.0.1"}, {CONF_HOST: "invalid_host"}),
+        ({CONF_PORT: 0}, {CONF_PORT: "invalid_port"}),
+    ],
+    ids=["scheme", "port 0"],
+)
+async def test_reconfigure_checked_by_the_model(
+    hass: HomeAssistant,
+    flow_sim: S7SmartSimulator,
+    flow_entry: MockConfigEntry,
+    changes: dict[str, Any],
+    errors: dict[str, str],
+) -> None:
+    """The reconfigure page is checked as the connection page: the model's error on its field,
+    before anything is sent; the entry keeps its connection."""
+    stored = dict(flow_entry.data)
+    result = await flow_entry.start_reconfigure_flow(hass)
+    result = await submit(hass, result, reconfigure_input(flow_sim, **changes))
+    assert (result["step_id"], result["errors"]) == ("reconfigure_s7_smart", errors)
+    assert suggested(result, next(iter(changes))) == next(iter(changes.values()))
+    assert dict(flow_entry.data) == stored
+    assert sum(flow_sim.calls.values()) == 0
+
+
+@flow_only
 async def test_reconfigure_moves_an_address_only_device(
     hass: HomeAssistant, flow_sim: S7SmartSimulator
 ) -> None:

@@ -3,6 +3,7 @@ and one validation whose problems name the stored value they concern."""
 
 from __future__ import annotations
 
+from pathlib import Path
 from typing import Any
 
 from homeassistant.config_entries import ConfigSubentryData
@@ -12,12 +13,20 @@ from pytest_homeassistant_custom_component.common import MockConfigEntry
 
 from custom_components.plc_bridge.const import (
     CONF_MAC,
+    CONF_OPTIONS,
     CONF_TLS,
+    CONF_VENDOR,
     DOMAIN,
     SUBENTRY_EXPOSE,
 )
 from custom_components.plc_bridge.model.config_file import dump_config, load_config
-from custom_components.plc_bridge.model.plc_config import Connection, PlcConfig, PollOptions
+from custom_components.plc_bridge.model.plc_config import (
+    Connection,
+    PlcConfig,
+    PollOptions,
+    file_problems,
+    host_valid,
+)
 from custom_components.plc_bridge.plc.vendors import client_class
 from tests.entries import POINTS, device, legacy_point, point
 from tests.model.test_config_file_text import DATA
@@ -111,6 +120,85 @@ def test_connection_refused_on_its_value() -> None:
         (("connection", CONF_PORT), "config_bad_value", CONF_PORT),
         (("connection", CONF_TLS), "config_bad_value", CONF_TLS),
     ]
+
+
+@pytest.mark.parametrize(
+    "host",
+    [
+        "192.0.2.10",
+        "plc",
+        "plc-1.boiler.local",
+        "plc.local.",
+        "fe80::1",
+        "fe80::1%eth0",
+        "kotelna_2",
+    ],
+)
+def test_hosts_taken(host: str) -> None:
+    """A host name (any script, underscores) or an IPv4 or IPv6 address alone is taken."""
+    assert host_valid(host)
+
+
+@pytest.mark.parametrize(
+    "host",
+    [
+        "",
+        " plc",
+        "https://plc",
+        "plc/Web_api",
+        "plc:443",
+        "[fe80::1]",
+        "admin@plc",
+        "plc .local",
+        "plc..local",
+        "-plc",
+        "p" * 64,
+    ],
+)
+def test_hosts_refused(host: str) -> None:
+    """A scheme, a path, a port, a user, blanks or empty labels: not a host alone."""
+    assert not host_valid(host)
+    (problem,) = Connection.from_data(DATA | {CONF_HOST: host}).problems()
+    assert (problem.path, problem.key) == (("connection", CONF_HOST), "config_bad_value")
+    assert (problem.field, problem.field_key) == (CONF_HOST, "invalid_host")
+
+
+def test_tls_of_the_vendor() -> None:
+    """A TLS mode the vendor does not offer is refused; one left out (older entries) is not."""
+    s7 = {**DATA, CONF_VENDOR: "s7", CONF_PORT: 102}
+    (problem,) = Connection.from_data(s7).problems()
+    assert (problem.path, problem.field_key) == (("connection", CONF_TLS), "invalid_tls")
+    assert problem.placeholders["kind"] == "none"
+    assert (
+        list(Connection.from_data({k: v for k, v in s7.items() if k != CONF_TLS}).problems()) == []
+    )
+
+
+def test_vendor_options_checked_by_the_client() -> None:
+    """A vendor option its client refuses: on its own field and value, else on the form."""
+    tsap = {"connection": "tsap", "remote_tsap": "zz"}
+    s7 = {**DATA, CONF_VENDOR: "s7", CONF_PORT: 102, CONF_TLS: "none", CONF_OPTIONS: tsap}
+    (problem,) = Connection.from_data(s7).problems()
+    assert problem.path == ("connection", CONF_OPTIONS, "remote_tsap")
+    assert (problem.key, problem.field, problem.field_key) == (
+        "config_connection_option",
+        "remote_tsap",
+        "invalid_options",
+    )
+    clock = {**DATA, CONF_VENDOR: "tecomat", CONF_TLS: "none"}
+    (problem,) = Connection.from_data(clock | {CONF_OPTIONS: {"clock_variable": "a b"}}).problems()
+    assert (problem.path, problem.field) == (("connection", CONF_OPTIONS), "")
+    assert problem.placeholders["problem"].startswith("clock variable: 'a b'")
+
+
+def test_certificate_files_inside_the_config_folder(tmp_path: Path) -> None:
+    """A certificate path outside the configuration folder is refused on its option."""
+    outside = {"client_certificate": "/etc/ssl/private/plc.pem"}
+    resolved, (problem,) = file_problems("softplc", str(tmp_path), outside, {})
+    assert resolved == {}
+    assert problem.path == ("connection", CONF_OPTIONS, "client_certificate")
+    assert (problem.key, problem.field_key) == ("config_option", "pem_outside_config")
+    assert file_problems("s7_smart", str(tmp_path), outside, {}) == ({}, [])
 
 
 def test_point_problems_name_their_value() -> None:

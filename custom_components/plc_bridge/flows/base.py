@@ -6,7 +6,7 @@ modules beside it); config_flow.py joins them into the flow Home Assistant looks
 
 from __future__ import annotations
 
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from typing import Any
 
 from homeassistant.config_entries import (
@@ -30,6 +30,7 @@ from ..const import (
     CONF_VENDOR,
     LOGGER,
 )
+from ..model.plc_config import Connection, Problem, file_problems
 from ..model.points import point_key
 from ..model.vendor_fields import SECOND_PAGES, VENDOR_FIELDS
 from ..plc import (
@@ -37,8 +38,6 @@ from ..plc import (
     DeviceInfo,
     PlcClient,
     PlcError,
-    PlcOptionError,
-    PlcValueError,
     Point,
     TlsMode,
 )
@@ -53,7 +52,7 @@ from .connection_form import (
     fields_schema,
     form_values,
     on_form,
-    option_error,
+    problem_errors,
     refused_field,
     second_page,
     vendor_options,
@@ -127,23 +126,30 @@ class PlcFlowBase(ConfigFlow):
         """Take a vendor's connection page; go on to its second page, if it has one.
 
         Options that name files (SoftPLC's client certificate and key) are resolved in the
-        config folder first; one that cannot be used is refused on its field.
+        config folder first; then the model checks the connection the page describes
+        (`Connection.problems`), each problem on its field, before anything is sent.
         """
         if user_input is None:
             return self._connection_form({})
         self._enter(self._connection_schema(), user_input)
-        try:
-            files = await self._resolved(self._vendor, user_input, self._data.get(CONF_OPTIONS, {}))
-        except PlcOptionError as err:
-            self._problem = str(err)
-            return self._connection_form(option_error(err))
-        user_input = {**user_input, **files}
-        client = client_class(self._vendor)
         stored = self._data.get(CONF_OPTIONS)
-        self._data.update(connection_data(client, self._vendor, user_input, stored))
+        files, problems = await self.hass.async_add_executor_job(
+            file_problems, self._vendor, self.hass.config.config_dir, user_input, stored or {}
+        )
+        if problems:
+            return self._connection_form(self._errors_of(problems))
+        client = client_class(self._vendor)
+        self._data.update(connection_data(client, self._vendor, user_input | files, stored))
+        if problems := list(Connection.from_data(self._data).address_problems()):
+            return self._connection_form(self._errors_of(problems))
         if self._vendor in SECOND_PAGES:
             return self._second_form({})
         return await self._check_and_connect()
+
+    def _errors_of(self, problems: Sequence[Problem]) -> dict[str, str]:
+        """Return the form errors of the model's problems, each on its field; keep their words."""
+        self._problem = problems[0].placeholders.get("problem", "")
+        return problem_errors(problems)
 
     async def _second_page_step(self, user_input: Input = None) -> ConfigFlowResult:
         """Take the fields of the way chosen on the connection page, then connect."""
@@ -162,16 +168,15 @@ class PlcFlowBase(ConfigFlow):
         self._entered.update({k: v for k, v in user_input.items() if k not in secrets})
 
     async def _check_and_connect(self) -> ConfigFlowResult:
-        """Check the vendor options, fetch the certificate in pin mode, then connect."""
-        client = client_class(self._vendor)
-        try:
-            self._data[CONF_OPTIONS] = client.validate_options(self._data[CONF_OPTIONS])
-        except PlcValueError as err:
-            self._problem = str(err)
-            field = err.option if isinstance(err, PlcOptionError) else "base"
+        """Check the connection as the model does, fetch the certificate in pin mode, connect."""
+        if problems := list(Connection.from_data(self._data).problems()):
+            errors = self._errors_of(problems)
+            field = next(iter(errors))
             if self._vendor in SECOND_PAGES and (field == "base" or field in self._second_fields()):
-                return self._second_form({field: "invalid_options"})
-            return self._connection_form({field: "invalid_options"})
+                return self._second_form(errors)
+            return self._connection_form(errors)
+        client = client_class(self._vendor)
+        self._data[CONF_OPTIONS] = client.validate_options(self._data[CONF_OPTIONS])
         self._data[CONF_FINGERPRINT] = ""
         if self._data[CONF_TLS] == TlsMode.PIN:
             try:

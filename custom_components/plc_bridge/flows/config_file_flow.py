@@ -27,9 +27,10 @@ from ..model.config_file import (
     load_config,
 )
 from ..model.expose import expose_config
+from ..model.plc_config import file_problems
 from ..model.point_table import async_describe
 from ..model.yaml_text import YamlTextError, check_size
-from ..plc import PlcError, PlcOptionError
+from ..plc import PlcError
 from ..plc.vendors import client_class
 from .base import PlcFlowBase
 
@@ -87,16 +88,16 @@ class ConfigFileSteps(PlcFlowBase):
         except YamlTextError as err:
             raise ConfigFileError(err.key, **err.placeholders) from err
         pasted = await self.hass.async_add_executor_job(load_config, text, self.VERSION)
+        options = pasted.data[CONF_OPTIONS]
+        files, problems = await self.hass.async_add_executor_job(
+            file_problems, pasted.vendor, self.hass.config.config_dir, options, {}
+        )
+        for problem in problems[:1]:
+            line = pasted.line(problem.path)
+            raise ConfigFileError(problem.key, line=line, **problem.placeholders)
+        pasted = replace(pasted, data={**pasted.data, CONF_OPTIONS: options | files})
         client = client_class(pasted.vendor, pasted.data[CONF_OPTIONS])
         subentries = check_pasted(client, pasted, await async_describe(self.hass))
-        options = pasted.data[CONF_OPTIONS]
-        try:
-            await self._resolved(pasted.vendor, options, {})
-        except PlcOptionError as err:
-            line = pasted.line(("connection", CONF_OPTIONS, err.option))
-            raise ConfigFileError(
-                "config_option", line=line, name=err.option, problem=str(err)
-            ) from err
         return replace(pasted, subentries=subentries)
 
     async def async_step_paste_exposes(

@@ -6,7 +6,7 @@ so that strings.json words each form for its PLC family alone.
 
 from __future__ import annotations
 
-from collections.abc import Mapping, Sequence
+from collections.abc import Iterable, Mapping, Sequence
 from typing import Any
 
 from homeassistant.const import CONF_HOST, CONF_PASSWORD, CONF_PORT, CONF_USERNAME
@@ -24,6 +24,7 @@ from homeassistant.helpers.selector import (
 import voluptuous as vol
 
 from ..const import CONF_OPTIONS, CONF_TLS, CONF_VENDOR
+from ..model.plc_config import Problem
 from ..model.vendor_fields import SECOND_PAGES, VENDOR_FIELDS, VendorField, choice
 from ..plc import (
     PlcAuthenticationError,
@@ -34,7 +35,6 @@ from ..plc import (
     PlcSessionRefusedError,
     PlcTimeoutError,
     PlcTlsError,
-    TlsMode,
 )
 from ..plc.vendors import implemented
 
@@ -104,8 +104,9 @@ def connection_schema(client: type[PlcClient], vendor: str, *, credentials: bool
     """Return a vendor's connection page: address, TLS mode, credentials, vendor fields."""
     fields: dict[vol.Marker, Any] = {
         vol.Required(CONF_HOST): TextSelector(),
+        # Unbounded here: the model refuses a port out of range on its field (`Connection`).
         vol.Required(CONF_PORT, default=client.default_port): NumberSelector(
-            NumberSelectorConfig(min=1, max=65535, mode=NumberSelectorMode.BOX)
+            NumberSelectorConfig(mode=NumberSelectorMode.BOX)
         ),
     }
     if len(client.tls_modes) > 1:
@@ -132,7 +133,9 @@ def connection_data(
     user_input: Mapping[str, Any],
     stored: Mapping[str, Any] | None = None,
 ) -> dict[str, Any]:
-    """Return the entry data a submitted connection page sets (not the fingerprint).
+    """Return the entry data a submitted connection page sets (not the fingerprint), unchecked.
+
+    The model checks it (`Connection.problems`): a port that is not whole stays as given.
 
     Vendor fields that are secrets, left empty, keep their `stored` values (a reconfigured
     SoftPLC keeps its client certificate and key unless new ones are pasted).
@@ -144,8 +147,8 @@ def connection_data(
     }
     data: dict[str, Any] = {
         CONF_HOST: str(user_input[CONF_HOST]).strip(),
-        CONF_PORT: int(user_input[CONF_PORT]),
-        CONF_TLS: TlsMode(user_input.get(CONF_TLS, client.default_tls)).value,
+        CONF_PORT: _plain(user_input[CONF_PORT]),
+        CONF_TLS: str(user_input.get(CONF_TLS, client.default_tls.value)),
         CONF_OPTIONS: kept | vendor_options(VENDOR_FIELDS.get(vendor, ()), user_input),
     }
     if CONF_USERNAME in user_input or CONF_PASSWORD in user_input:
@@ -178,6 +181,14 @@ def on_form(errors: dict[str, str], schema: vol.Schema) -> dict[str, str]:
     """Move errors about fields the form does not show to the form's base error."""
     shown = {str(marker) for marker in schema.schema}
     return {(field if field in shown else "base"): key for field, key in errors.items()}
+
+
+def problem_errors(problems: Iterable[Problem]) -> dict[str, str]:
+    """Return the form errors of the model's problems: each on its field, else on the form."""
+    errors: dict[str, str] = {}
+    for problem in problems:
+        errors.setdefault(problem.field or "base", problem.field_key)
+    return errors
 
 
 def error_for(err: PlcError, client: type[PlcClient] | None = None) -> dict[str, str]:

@@ -7,13 +7,17 @@ pasted table, edit or remove a point, save. Reconfigure opens the same menu.
 
 from __future__ import annotations
 
+from collections import defaultdict
 from collections.abc import Mapping
+from dataclasses import replace
 import secrets
 from typing import Any
 
 from homeassistant.config_entries import ConfigEntryState, SubentryFlowResult
 from homeassistant.const import CONF_DEVICE_CLASS
+from homeassistant.core import HomeAssistant
 from homeassistant.helpers.selector import TextSelector, TextSelectorConfig
+from homeassistant.helpers.translation import async_get_translations
 import voluptuous as vol
 
 from ..const import (
@@ -24,6 +28,9 @@ from ..const import (
     CONF_POINTS,
     CONF_READ_ONLY,
     CONF_ROLE,
+    DOMAIN,
+    SUBENTRY_DEVICE,
+    SUBENTRY_EXPOSE,
 )
 from ..model.availability import (
     AVAILABILITY_FIELDS,
@@ -33,7 +40,8 @@ from ..model.availability import (
     policy_field,
 )
 from ..model.device_classes import device_classes
-from ..model.point_table import async_describe, parse_points
+from ..model.plc_config import PlcConfig, Problem, Subentry
+from ..model.point_table import async_describe, parse_points, plain
 from ..model.points import check_point, point_data
 from ..plc import PlcError
 from .composite_flow import CompositeSteps, defaulted, layout_errors
@@ -292,10 +300,79 @@ class DeviceSubentryFlowHandler(CompositeSteps, MachineStep):
         )
 
     async def async_step_save(self, user_input: dict[str, Any] | None = None) -> SubentryFlowResult:
-        """Store the device and its points."""
+        """Store the device and its points, unless the PLC with it has a problem it had not.
+
+        A menu choice cannot carry an error: a refusal is a form of its own naming the
+        problem, whose submission leads back to the menu.
+        """
+        if user_input is not None:
+            return await self.async_step_menu()
         data = self._machine_data()
+        if (problem := await self._new_problem(data)) is not None:
+            return self.async_show_form(
+                step_id="save",
+                errors={"base": "save_refused"},
+                description_placeholders={"problem": problem, "name": self._name},
+            )
         if self.source == "reconfigure":
             return self.async_update_and_abort(
                 self._get_entry(), self._get_reconfigure_subentry(), title=self._name, data=data
             )
         return self.async_create_entry(title=self._name, data=data)
+
+    async def _new_problem(self, data: dict[str, Any]) -> str | None:
+        """Return the first problem the PLC would have with the machine saved, worded; else None.
+
+        The one validation of a stored PLC (`PlcConfig.problems`) decides; problems the PLC
+        has already (stored before a rule existed) do not keep a machine from being saved.
+        """
+        stored = PlcConfig.from_entry(self._get_entry())
+        at = self._reconfigure_subentry_id if self.source == "reconfigure" else ""
+        machine = Subentry(
+            at=at, subentry_type=SUBENTRY_DEVICE, title=self._name, unique_id=None, data=data
+        )
+        subentries = [*stored.subentries, machine]
+        if at:
+            subentries = [machine if sub.at == at else sub for sub in stored.subentries]
+        saved = replace(stored, subentries=tuple(subentries))
+        describe = await async_describe(self.hass)
+        before = stored.problems(self._client, describe)
+        for problem in saved.problems(self._client, describe):
+            if problem not in before:
+                return problem_words(problem, await _error_texts(self.hass))
+        return None
+
+
+ERROR_TEXTS = (
+    f"component.{DOMAIN}.config_subentries.{SUBENTRY_DEVICE}.error.",
+    f"component.{DOMAIN}.config_subentries.{SUBENTRY_EXPOSE}.error.",
+    f"component.{DOMAIN}.options.error.",
+)
+"""Where the forms' errors are worded: a problem's form error is one of theirs."""
+
+
+async def _error_texts(hass: HomeAssistant) -> dict[str, str]:
+    """Return the forms' error texts, in Home Assistant's language."""
+    texts: dict[str, str] = {}
+    for category in ("config_subentries", "options"):
+        texts |= await async_get_translations(hass, hass.config.language, category, [DOMAIN])
+    return texts
+
+
+def problem_words(problem: Problem, texts: Mapping[str, str]) -> str:
+    """Return a problem worded as the form that refuses it words it, naming its point."""
+    words = problem.placeholders
+    point = words.get("point", "")
+    if "problem" in words:
+        text = words["problem"]
+    else:
+        key = problem.field_key
+        found = next((texts[prefix + key] for prefix in ERROR_TEXTS if prefix + key in texts), None)
+        filled = {
+            **words,
+            "written": words.get("address", ""),
+            "point": words.get("other") or point,
+            "fast_minimum": words.get("minimum", ""),
+        }
+        text = plain(key, words) if found is None else found.format_map(defaultdict(str, filled))
+    return f"{point}: {text}" if point and point not in text else text

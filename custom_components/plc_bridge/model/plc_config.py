@@ -9,13 +9,16 @@ values, every address by the vendor's parser, each point by the point forms' own
 of each entity together, the write layout of the whole PLC, the poll intervals against the
 vendor's pace, each expose by the expose form's check), each problem with the path of the stored
 value it concerns. The doors word it their way: the pasted file on that value's line, the options
-form on its field (`interval_problems`).
+form on its field (`interval_problems`), the config flow's connection and reconfigure pages on
+theirs (`Connection.problems`, and `file_problems` for certificate files).
 """
 
 from __future__ import annotations
 
 from collections.abc import Iterator, Mapping, Sequence
 from dataclasses import dataclass, field
+import ipaddress
+import re
 from types import MappingProxyType
 from typing import Any
 
@@ -44,7 +47,8 @@ from ..const import (
     SUBENTRY_EXPOSE,
     SUBENTRY_POINT,
 )
-from ..plc import PlcClient, PlcError, Point, TlsMode
+from ..plc import PlcClient, PlcError, PlcOptionError, PlcValueError, Point, TlsMode
+from ..plc.vendors import client_class, implemented
 from .availability import (
     CONF_AVAILABILITY_ADDRESS,
     CONF_AVAILABILITY_DATA_TYPE,
@@ -62,7 +66,6 @@ from .composite import (
     supervision_data,
     travel_data,
 )
-from .config_keys import TEXT
 from .expose import CONF_SEND, check_expose
 from .kinds import CONF_SUPERVISION, CONF_TRAVEL_TIME
 from .point_table import Describe, plain
@@ -165,24 +168,83 @@ class Connection:
         return data | dict(self.extra)
 
     def problems(self) -> Iterator[Problem]:
-        """Yield the values the connection page would not take."""
+        """Yield the values the connection pages would not take: address, then vendor options."""
+        found = list(self.address_problems())
+        yield from found
+        if not found:
+            yield from self.option_problems()
+
+    def address_problems(self) -> Iterator[Problem]:
+        """Yield the values of the first connection page it would not take: host, port, TLS."""
         where: Path = ("connection",)
-        if not self.host.strip():
-            yield _bad_value((*where, CONF_HOST), CONF_HOST, TEXT)
+        if self.vendor not in implemented():
+            yield _bad_value((*where, CONF_VENDOR), CONF_VENDOR, ", ".join(implemented()))
+            return
+        if not host_valid(self.host):
+            yield _bad_value((*where, CONF_HOST), CONF_HOST, HOST_KIND)
         if (
             isinstance(self.port, bool)
             or not isinstance(self.port, int)
             or not 1 <= self.port <= 65535
         ):
-            yield _bad_value((*where, CONF_PORT), CONF_PORT, "1 to 65535")
-        modes = [mode.value for mode in TlsMode]
-        if self.tls not in modes:
+            yield _bad_value((*where, CONF_PORT), CONF_PORT, "a whole number from 1 to 65535")
+        modes = [mode.value for mode in client_class(self.vendor).tls_modes]
+        if self.has_tls and self.tls not in modes:
             yield _bad_value((*where, CONF_TLS), CONF_TLS, ", ".join(modes))
+
+    def option_problems(self) -> Iterator[Problem]:
+        """Yield the vendor option the vendor's client refuses (`validate_options`), if any."""
+        try:
+            client_class(self.vendor).validate_options(self.vendor_options or {})
+        except PlcValueError as err:
+            option = err.option if isinstance(err, PlcOptionError) else ""
+            yield Problem(
+                ("connection", CONF_OPTIONS, *((option,) if option else ())),
+                "config_connection_option",
+                {"name": option or CONF_OPTIONS, "problem": str(err)},
+                option,
+                "invalid_options",
+            )
+
+
+HOST_KIND = "a host name or IP address alone (no http://, path or port)"
+_LABEL = re.compile(r"[^\W_][\w-]{0,62}")
+"""A label of a host name: letters (any script), digits, hyphens and underscores."""
+
+
+def host_valid(host: str) -> bool:
+    """True for a host name or an IP address alone: no scheme, path, port or user."""
+    if not host or host != host.strip() or len(host) > 253:
+        return False
+    try:
+        ipaddress.ip_address(host)
+    except ValueError:
+        pass
+    else:
+        return True
+    return all(_LABEL.fullmatch(label) for label in host.removesuffix(".").split("."))
+
+
+def file_problems(
+    vendor: str, folder: str, submitted: Mapping[str, Any], stored: Mapping[str, Any]
+) -> tuple[dict[str, str], list[Problem]]:
+    """Return the options naming files, resolved in the configuration folder, or their problem.
+
+    Blocking (an executor's work). A file outside the folder, missing or not a PEM pair is
+    refused on its option, in the pasted file and on the connection page alike.
+    """
+    try:
+        return client_class(vendor).resolve_options(folder, submitted, stored), []
+    except PlcOptionError as err:
+        key = "pem_outside_config" if err.outside else "invalid_pem"
+        placeholders = {"name": err.option, "problem": str(err)}
+        path: Path = ("connection", CONF_OPTIONS, err.option)
+        return {}, [Problem(path, "config_option", placeholders, err.option, key)]
 
 
 def _bad_value(path: Path, name: str, kind: str) -> Problem:
-    """Return the problem of a value that is not of its key's kind."""
-    return Problem(path, "config_bad_value", {"name": name, "kind": kind}, name, "invalid")
+    """Return the problem of a value that is not of its key's kind, on its form field."""
+    return Problem(path, "config_bad_value", {"name": name, "kind": kind}, name, f"invalid_{name}")
 
 
 @dataclass(frozen=True, slots=True, kw_only=True)
