@@ -22,7 +22,7 @@ from homeassistant.helpers.entity_platform import AddConfigEntryEntitiesCallback
 
 from .const import DOMAIN
 from .coordinator import PlcBridgeConfigEntry
-from .entity import PlcEntity, device_of, entity_name, entity_policy, point_fields
+from .entity import PlcEntity, device_of, entity_name, entity_policy, point_kind
 from .model.composite import Composite, composites, group_key
 from .model.conversion import Conversion
 from .model.kinds import KINDS
@@ -36,13 +36,25 @@ from .runtime.supervision import Supervisor, seconds_of
 
 @dataclass(frozen=True, slots=True)
 class Part:
-    """One point of a composite entity: its address, what it holds and how it converts."""
+    """One point of a composite entity: its configuration and the kind of value it holds."""
 
     config: PointConfig
-    point: Point
     kind: ValueKind | None
-    conversion: Conversion
-    pulse: float
+
+    @property
+    def point(self) -> Point:
+        """The part's address and data type."""
+        return self.config.point
+
+    @property
+    def conversion(self) -> Conversion:
+        """How the part's raw value converts to what is shown."""
+        return self.config.conversion
+
+    @property
+    def pulse(self) -> float:
+        """The part's pulse in seconds; 0 for a level or a single write."""
+        return self.config.pulse_seconds
 
     @property
     def read_only(self) -> bool:
@@ -74,8 +86,7 @@ def temperature_unit(parts: Iterable[Part]) -> str:
 
 def part_of(entry: PlcBridgeConfigEntry, config: PointConfig) -> Part:
     """Return a configured point as a part."""
-    fields = point_fields(entry, config)
-    return Part(config, fields["point"], fields["kind"], fields["conversion"], config.pulse_seconds)
+    return Part(config, point_kind(entry, config.point))
 
 
 type CompositeFactory = Callable[[PlcBridgeConfigEntry, Composite, dict[str, Part]], Entity]

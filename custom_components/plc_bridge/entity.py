@@ -76,19 +76,22 @@ def entity_name(entry: PlcBridgeConfigEntry, subentry_id: str, name: str) -> str
     return None if same else name
 
 
+def point_kind(entry: PlcBridgeConfigEntry, point: Point) -> ValueKind | None:
+    """Return what a point's value is; None where its address is not understood."""
+    try:
+        return entry.runtime_data.client.value_kind(point)
+    except PlcError:
+        return None  # the poll reports the address error on the entity
+
+
 def point_fields(entry: PlcBridgeConfigEntry, config: PointConfig) -> dict[str, Any]:
     """Return the PlcPointDescription fields of a configured point."""
-    point = config.point
-    try:
-        kind = entry.runtime_data.client.value_kind(point)
-    except PlcError:
-        kind = None  # the poll reports the address error on the entity
     conversion = config.conversion
     return {
         "key": config.point_id,
         "name": entity_name(entry, config.subentry_id, config.name),
-        "point": point,
-        "kind": kind,
+        "point": config.point,
+        "kind": point_kind(entry, config.point),
         "scale": conversion.scale,
         "offset": conversion.offset,
         "read_only": config.read_only,
