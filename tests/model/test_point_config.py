@@ -156,6 +156,9 @@ def test_parsed_values_are_read_once_and_shared() -> None:
     assert first.conversion == Conversion(value_map=((0, "Off"),))
     assert first.point is second.point
     assert first.keys is second.keys
+    scaled = PointConfig("c", "m", json.loads(json.dumps(data | {"scale": 2.0})))
+    assert scaled.conversion != first.conversion
+    assert scaled.conversion.value_map is first.conversion.value_map
 
 
 def test_every_key_comes_back() -> None:

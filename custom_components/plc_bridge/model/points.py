@@ -128,12 +128,6 @@ def _shape(keys: tuple[str, ...]) -> tuple[str, ...]:
     return keys
 
 
-@lru_cache(maxsize=4096)
-def _pairs(text: str) -> Pairs:
-    """Return a value map's or bit list's pairs, parsed once for all points that store the text."""
-    return stored_pairs({"pairs": text}, "pairs")
-
-
 @dataclass(frozen=True, slots=True, init=False, eq=False)
 class PointConfig:
     """One configured point: where it is stored and what the user set for it, typed.
@@ -204,7 +198,7 @@ class PointConfig:
                 extra[key] = raw
         extra |= {key: value for key, value in data.items() if key not in FIELDS}
         values["point"] = shared_point(values.pop("address"), values.pop("data_type"))
-        values["bit_pairs"] = _pairs(values["bits"]) if values["bits"] else ()
+        values["bit_pairs"] = stored_pairs(values, "bits")
         values["conversion"] = conversion_of(values)
         values["keys"] = _shape(tuple(data))
         values["extra"] = extra or None
