@@ -18,7 +18,7 @@ from homeassistant.helpers.entity_platform import AddConfigEntryEntitiesCallback
 
 from .coordinator import PlcBridgeConfigEntry
 from .entity import PlcPointDescription, PlcPointEntity, point_fields
-from .model.points import PointConfig, pulse_seconds
+from .model.points import PointConfig
 from .plc import ValueKind
 from .runtime.issues import PULSE_FAILED
 from .runtime.outputs import Output, async_send
@@ -35,8 +35,7 @@ class PlcButtonDescription(ButtonEntityDescription, PlcPointDescription):
 
 def point_button(entry: PlcBridgeConfigEntry, config: PointConfig) -> PlcButton:
     """Return the button of a point."""
-    pulse = pulse_seconds(config.data)
-    description = PlcButtonDescription(**point_fields(entry, config), pulse=pulse)
+    description = PlcButtonDescription(**point_fields(entry, config), pulse=config.pulse_seconds)
     return PlcButton(entry, config, description)
 
 

@@ -14,20 +14,19 @@ from dataclasses import dataclass
 from typing import Any
 
 from homeassistant.components.climate import ClimateEntity
-from homeassistant.const import CONF_UNIT_OF_MEASUREMENT, UnitOfTemperature
+from homeassistant.const import UnitOfTemperature
 from homeassistant.core import callback
 from homeassistant.exceptions import HomeAssistantError, ServiceValidationError
 from homeassistant.helpers.entity import Entity
 from homeassistant.helpers.entity_platform import AddConfigEntryEntitiesCallback
 
-from .const import CONF_MAX, CONF_MIN, CONF_STEP, DOMAIN
+from .const import DOMAIN
 from .coordinator import PlcBridgeConfigEntry
-from .entity import PlcEntity, device_of, entity_name, entity_policy, point_fields
-from .model.availability import CONF_AVAILABILITY_POLICY
+from .entity import PlcEntity, device_of, entity_name, entity_policy, point_kind
 from .model.composite import Composite, composites, group_key
 from .model.conversion import Conversion
 from .model.kinds import KINDS
-from .model.points import PointConfig, entry_points, pulse_seconds
+from .model.points import PointConfig
 from .plc import Point, PointResult, Value, ValueKind
 from .runtime.entities import PointFactory
 from .runtime.issues import COMMAND_NOT_RELEASED, PULSE_FAILED
@@ -37,13 +36,25 @@ from .runtime.supervision import Supervisor, seconds_of
 
 @dataclass(frozen=True, slots=True)
 class Part:
-    """One point of a composite entity: its address, what it holds and how it converts."""
+    """One point of a composite entity: its configuration and the kind of value it holds."""
 
     config: PointConfig
-    point: Point
     kind: ValueKind | None
-    conversion: Conversion
-    pulse: float
+
+    @property
+    def point(self) -> Point:
+        """The part's address and data type."""
+        return self.config.point
+
+    @property
+    def conversion(self) -> Conversion:
+        """How the part's raw value converts to what is shown."""
+        return self.config.conversion
+
+    @property
+    def pulse(self) -> float:
+        """The part's pulse in seconds; 0 for a level or a single write."""
+        return self.config.pulse_seconds
 
     @property
     def read_only(self) -> bool:
@@ -57,27 +68,25 @@ class Part:
     @property
     def limits(self) -> tuple[float | None, float | None, float | None]:
         """A set point's lowest and highest value and step: its min, max, step, else its range."""
-        data, bounds = self.config.data, self.conversion.bounds
-        low = float(data[CONF_MIN]) if data.get(CONF_MIN) is not None else None
-        high = float(data[CONF_MAX]) if data.get(CONF_MAX) is not None else None
+        config, bounds = self.config, self.conversion.bounds
+        low = None if config.min is None else float(config.min)
+        high = None if config.max is None else float(config.max)
         if bounds:
             low = bounds[0] if low is None else low
             high = bounds[1] if high is None else high
-        return low, high, float(data[CONF_STEP]) if data.get(CONF_STEP) else None
+        return low, high, float(config.step) if config.step else None
 
 
 def temperature_unit(parts: Iterable[Part]) -> str:
     """The unit of an entity's temperatures: Fahrenheit where a part says so, else Celsius."""
-    units = {part.config.data.get(CONF_UNIT_OF_MEASUREMENT) for part in parts}
+    units = {part.config.unit_of_measurement for part in parts}
     fahrenheit = UnitOfTemperature.FAHRENHEIT in units
     return UnitOfTemperature.FAHRENHEIT if fahrenheit else UnitOfTemperature.CELSIUS
 
 
 def part_of(entry: PlcBridgeConfigEntry, config: PointConfig) -> Part:
     """Return a configured point as a part."""
-    fields = point_fields(entry, config)
-    pulse = pulse_seconds(config.data)
-    return Part(config, fields["point"], fields["kind"], fields["conversion"], pulse)
+    return Part(config, point_kind(entry, config.point))
 
 
 type CompositeFactory = Callable[[PlcBridgeConfigEntry, Composite, dict[str, Part]], Entity]
@@ -99,7 +108,7 @@ def async_setup_composites(
         """Return the entity of the group this point leads; none for its other points."""
         if group_key(config) is None:
             return [] if single is None else single(entry, config)
-        group = composites(entry_points(entry)).get(config.point_id)
+        group = composites(entry.runtime_data.points.configs).get(config.point_id)
         if group is None:
             return []
         parts = {role: part_of(entry, member) for role, member in group.parts.items()}
@@ -120,16 +129,14 @@ class PlcCompositeEntity(PlcEntity):
         self._label = group.name  # what messages call it, whatever Home Assistant shows
         self._attr_device_info = device_of(group.subentry_id)
         self._machine = group.subentry_id
-        stated = [
-            p.config.data for p in parts.values() if CONF_AVAILABILITY_POLICY in p.config.data
-        ]
-        self._policy = entity_policy(entry, group.subentry_id, stated[0] if stated else {})
+        stated = [p.config.availability for p in parts.values() if p.config.availability]
+        self._policy = entity_policy(entry, group.subentry_id, stated[0] if stated else None)
         self.parts = parts
         self._key = group.key
         self._platform = group.platform
         self._writing = asyncio.Lock()  # one write of commands and releases at a time
         self.outputs = {role: self._output(role) for role, part in parts.items() if part.pulse > 0}
-        seconds = seconds_of(part.config.data for part in parts.values())
+        seconds = seconds_of(part.config.supervision for part in parts.values())
         self.supervisor = Supervisor(entry, self._key, self._label, seconds, self.follows)
 
     def features(self) -> int:

@@ -18,7 +18,6 @@ is released after STOP_HOLD. A position written releases the level commands stil
 
 from __future__ import annotations
 
-import math
 from typing import Any
 
 from homeassistant.components.cover import (
@@ -28,14 +27,12 @@ from homeassistant.components.cover import (
     CoverEntity,
     CoverEntityFeature,
 )
-from homeassistant.const import CONF_DEVICE_CLASS
 from homeassistant.core import HomeAssistant, callback
 from homeassistant.helpers.entity_platform import AddConfigEntryEntitiesCallback
 
 from .composite_entity import Part, PlcCompositeEntity, async_setup_composites
 from .coordinator import PlcBridgeConfigEntry
 from .model.composite import Composite
-from .model.kinds import CONF_TRAVEL_TIME
 from .plc import Point, Value, ValueKind
 from .runtime.outputs import async_send
 from .runtime.supervision import seconds_of
@@ -61,14 +58,8 @@ async def async_setup_entry(
 
 def travel_time(parts: dict[str, Part]) -> float:
     """Return the group's travel time in seconds: its parts' `travel_time`, else the default."""
-    for part in parts.values():
-        try:
-            seconds = float(part.config.data[CONF_TRAVEL_TIME])
-        except (KeyError, TypeError, ValueError):
-            continue
-        if math.isfinite(seconds) and seconds > 0:
-            return seconds
-    return DEFAULT_TRAVEL_TIME
+    seconds = seconds_of(part.config.travel_time for part in parts.values())
+    return DEFAULT_TRAVEL_TIME if seconds is None else seconds
 
 
 class Travel(PlcCompositeEntity):
@@ -83,9 +74,7 @@ class Travel(PlcCompositeEntity):
         for role in self._commands:
             self.outputs.setdefault(role, self._output(role))
         self._travel_time = travel_time(parts)
-        self.supervisor.seconds = seconds_of(
-            (p.config.data for p in parts.values()), CONF_TRAVEL_TIME
-        )
+        self.supervisor.seconds = seconds_of(p.config.travel_time for p in parts.values())
         self._moved: dict[str, float] = {}  # level open or close held: loop time of its command
         self._left: set[str] = set()  # of those, the ones read away from their end since
 
@@ -226,10 +215,12 @@ class PlcCover(Travel, CoverEntity):
         super().__init__(entry, group, parts)
         self._attr_supported_features = CoverEntityFeature(self.features())
         for part in parts.values():
+            if part.config.device_class is None:
+                continue
             try:
-                self._attr_device_class = CoverDeviceClass(part.config.data[CONF_DEVICE_CLASS])
+                self._attr_device_class = CoverDeviceClass(part.config.device_class)
                 break
-            except (KeyError, ValueError):
+            except ValueError:
                 continue
 
     @property

@@ -46,7 +46,7 @@ async def async_get_config_entry_diagnostics(
             TO_REDACT,
         ),
         "points": {
-            point_id: {"device": entry.subentries[config.subentry_id].title, **config.data}
+            point_id: {"device": entry.subentries[config.subentry_id].title, **config.stored()}
             for point_id, config in runtime.points.configs.items()
         },
         "machines": {

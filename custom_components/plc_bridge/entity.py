@@ -8,7 +8,7 @@ from enum import StrEnum
 from functools import lru_cache
 from typing import Any
 
-from homeassistant.const import CONF_DEVICE_CLASS, CONF_HOST, CONF_PORT
+from homeassistant.const import CONF_HOST, CONF_PORT
 from homeassistant.core import HomeAssistant, callback
 from homeassistant.helpers import device_registry as dr, entity_registry as er
 from homeassistant.helpers.device_registry import CONNECTION_NETWORK_MAC, DeviceInfo, format_mac
@@ -20,7 +20,7 @@ from yarl import URL
 from .const import CONF_MAC, CONF_TLS, DOMAIN
 from .coordinator import PlcBridgeConfigEntry, PlcCoordinator
 from .model.availability import POLICY_DATA_VALID, POLICY_KEEP, has_data_valid, policy_of
-from .model.conversion import Conversion, conversion_of
+from .model.conversion import Conversion
 from .model.points import PointConfig
 from .plc import PlcError, Point, PointResult, TlsMode, Value, ValueKind
 from .runtime.restore import extra_data, restored_result, stored_values
@@ -76,19 +76,22 @@ def entity_name(entry: PlcBridgeConfigEntry, subentry_id: str, name: str) -> str
     return None if same else name
 
 
+def point_kind(entry: PlcBridgeConfigEntry, point: Point) -> ValueKind | None:
+    """Return what a point's value is; None where its address is not understood."""
+    try:
+        return entry.runtime_data.client.value_kind(point)
+    except PlcError:
+        return None  # the poll reports the address error on the entity
+
+
 def point_fields(entry: PlcBridgeConfigEntry, config: PointConfig) -> dict[str, Any]:
     """Return the PlcPointDescription fields of a configured point."""
-    point = config.point
-    try:
-        kind = entry.runtime_data.client.value_kind(point)
-    except PlcError:
-        kind = None  # the poll reports the address error on the entity
-    conversion = conversion_of(config.data)
+    conversion = config.conversion
     return {
         "key": config.point_id,
         "name": entity_name(entry, config.subentry_id, config.name),
-        "point": point,
-        "kind": kind,
+        "point": config.point,
+        "kind": point_kind(entry, config.point),
         "scale": conversion.scale,
         "offset": conversion.offset,
         "read_only": config.read_only,
@@ -99,8 +102,8 @@ def point_fields(entry: PlcBridgeConfigEntry, config: PointConfig) -> dict[str, 
 def device_class[E: StrEnum](config: PointConfig, enum: type[E]) -> E | None:
     """Return the point's device class if the platform knows it."""
     try:
-        return enum(config.data[CONF_DEVICE_CLASS])
-    except (KeyError, ValueError):
+        return None if config.device_class is None else enum(config.device_class)
+    except ValueError:
         return None
 
 
@@ -175,10 +178,11 @@ def plc_device(hass: HomeAssistant, entry: PlcBridgeConfigEntry) -> str:
     return registry.async_get_or_create(config_entry_id=entry.entry_id, **device_info(entry)).id
 
 
-def entity_policy(entry: PlcBridgeConfigEntry, subentry_id: str, data: Mapping[str, Any]) -> str:
-    """Return the availability policy a point's data gives its entity on its machine."""
+def entity_policy(entry: PlcBridgeConfigEntry, subentry_id: str, policy: str | None) -> str:
+    """Return the availability policy a point stores (or None) gives its entity on its machine."""
     machine = entry.subentries.get(subentry_id)
-    return policy_of(data, data_valid=machine is not None and has_data_valid(machine.data))
+    data_valid = machine is not None and has_data_valid(machine.data)
+    return policy_of(policy, data_valid=data_valid)
 
 
 class PlcEntity(CoordinatorEntity[PlcCoordinator], RestoreEntity):
@@ -337,7 +341,7 @@ class PlcPointEntity(PlcEntity):
         super().__init__(entry, description.key, description.point)
         self._attr_device_info = device_of(config.subentry_id)
         self._machine = config.subentry_id
-        self._policy = entity_policy(entry, config.subentry_id, config.data)
+        self._policy = entity_policy(entry, config.subentry_id, config.availability)
         self.entity_description = description
 
     @property

@@ -11,11 +11,10 @@ from homeassistant.components.number import (
     NumberEntityDescription,
     NumberMode,
 )
-from homeassistant.const import CONF_UNIT_OF_MEASUREMENT, UnitOfTime
+from homeassistant.const import UnitOfTime
 from homeassistant.core import HomeAssistant
 from homeassistant.helpers.entity_platform import AddConfigEntryEntitiesCallback
 
-from .const import CONF_MAX, CONF_MIN, CONF_STEP
 from .coordinator import PlcBridgeConfigEntry
 from .entity import PlcPointDescription, PlcPointEntity, device_class, point_fields
 from .model.duration_units import UNITS, duration_unit, in_unit, of_unit
@@ -39,16 +38,15 @@ class PlcNumberDescription(NumberEntityDescription, PlcPointDescription):
 def point_number(entry: PlcBridgeConfigEntry, config: PointConfig) -> PlcNumber:
     """Return the number of a point; the step defaults to one raw count for integers."""
     fields = point_fields(entry, config)
-    data = config.data
     precision = fields["conversion"].precision
     duration = fields["kind"] is ValueKind.DURATION  # seconds or its time unit; the PLC checks
-    unit = duration_unit(data) if duration else data.get(CONF_UNIT_OF_MEASUREMENT)
-    step = data.get(CONF_STEP) or (
+    unit = duration_unit(config.unit_of_measurement) if duration else config.unit_of_measurement
+    step = config.step or (
         10.0**-precision
         if precision is not None
         else abs(fields["scale"])
         if fields["kind"] is ValueKind.INTEGER
-        else in_unit(MILLISECOND, duration_unit(data))
+        else in_unit(MILLISECOND, duration_unit(config.unit_of_measurement))
         if duration
         else 0.001
     )
@@ -59,8 +57,8 @@ def point_number(entry: PlcBridgeConfigEntry, config: PointConfig) -> PlcNumber:
         if duration
         else device_class(config, NumberDeviceClass),
         native_unit_of_measurement=unit,
-        native_min_value=float(data.get(CONF_MIN, low)),
-        native_max_value=float(data.get(CONF_MAX, high)),
+        native_min_value=float(low if config.min is None else config.min),
+        native_max_value=float(high if config.max is None else config.max),
         native_step=float(step),
         # A box, not a slider: dragging would write every value it passes to the machine.
         mode=NumberMode.BOX,

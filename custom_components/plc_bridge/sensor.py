@@ -8,13 +8,12 @@ from datetime import datetime, timedelta
 from typing import Any
 
 from homeassistant.components.sensor import (
-    CONF_STATE_CLASS,
     SensorDeviceClass,
     SensorEntity,
     SensorEntityDescription,
     SensorStateClass,
 )
-from homeassistant.const import CONF_UNIT_OF_MEASUREMENT, EntityCategory, UnitOfTime
+from homeassistant.const import EntityCategory, UnitOfTime
 from homeassistant.core import HomeAssistant
 from homeassistant.helpers.entity_platform import AddConfigEntryEntitiesCallback
 from homeassistant.util import dt as dt_util
@@ -31,7 +30,7 @@ from .entity import (
 )
 from .link import link_sensors
 from .model.conversion import check_unmapped, labels
-from .model.duration_units import as_text, duration_unit, in_unit
+from .model.duration_units import duration_unit, in_unit
 from .model.points import PointConfig
 from .plc import PlcStatus, ValueKind
 from .plc.durations import clock_text
@@ -161,20 +160,20 @@ def point_sensor(entry: PlcBridgeConfigEntry, config: PointConfig) -> PlcPointSe
         return PlcEnumSensor(entry, config, description)
     if fields["kind"] in NUMERIC or fields["kind"] is None:
         extra = {
-            "native_unit_of_measurement": config.data.get(CONF_UNIT_OF_MEASUREMENT),
+            "native_unit_of_measurement": config.unit_of_measurement,
             "device_class": device_class(config, SensorDeviceClass),
-            "state_class": config.data.get(CONF_STATE_CLASS),
+            "state_class": config.state_class,
             "suggested_display_precision": fields["conversion"].precision,
         }
         if extra["state_class"]:
             extra["state_class"] = SensorStateClass(extra["state_class"])
     elif fields["kind"] is ValueKind.DATETIME:
         extra = {"device_class": SensorDeviceClass.TIMESTAMP}
-    elif fields["kind"] is ValueKind.DURATION and not as_text(config.data):
+    elif fields["kind"] is ValueKind.DURATION and not config.as_text:
         extra = {  # seconds, or the time unit the point names; no unit: clock text
             "device_class": SensorDeviceClass.DURATION,
-            "native_unit_of_measurement": duration_unit(config.data),
-            "state_class": config.data.get(CONF_STATE_CLASS),
+            "native_unit_of_measurement": duration_unit(config.unit_of_measurement),
+            "state_class": config.state_class,
             "suggested_display_precision": fields["conversion"].precision,
         }
     return PlcPointSensor(entry, config, PlcSensorDescription(**fields, **extra))

@@ -173,12 +173,12 @@ async def async_export_points(call: ServiceCall) -> ServiceResponse:
     configs = entry_points(entry).values()
     devices: dict[str, Any] = {
         subentry.title: export_points(
-            config.data for config in configs if config.subentry_id == subentry_id
+            config.stored() for config in configs if config.subentry_id == subentry_id
         )
         for subentry_id, subentry in entry.subentries.items()
         if subentry.subentry_type == SUBENTRY_DEVICE  # not the exposes
     }
-    return {"points": export_points(config.data for config in configs), "devices": devices}
+    return {"points": export_points(config.stored() for config in configs), "devices": devices}
 
 
 async def async_export_config(call: ServiceCall) -> ServiceResponse:

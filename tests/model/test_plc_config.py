@@ -106,8 +106,8 @@ def test_file_and_entry_read_alike() -> None:
     assert from_file.connection == Connection.from_data(
         {key: value for key, value in DATA.items() if key != CONF_PASSWORD}
     )
-    assert {key: c.data for key, c in from_file.point_configs().items()} == {
-        key: c.data for key, c in from_entry.point_configs().items()
+    assert {key: c.stored() for key, c in from_file.point_configs().items()} == {
+        key: c.stored() for key, c in from_entry.point_configs().items()
     }
     assert from_entry.problems(SMART) == from_file.problems(SMART) == []
 

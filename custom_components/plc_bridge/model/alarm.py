@@ -7,15 +7,14 @@ device class problem unless the point names another. All read the one point of t
 
 from __future__ import annotations
 
-from ..const import CONF_BITS
 from ..plc import Value
-from .conversion import Pairs, stored_pairs
+from .conversion import Pairs
 from .points import PointConfig
 
 
 def word_bits(config: PointConfig) -> Pairs:
     """Return the named bits of an alarm word point."""
-    return stored_pairs(config.data, CONF_BITS)
+    return config.bit_pairs
 
 
 def bit_set(raw: Value | None, bit: int) -> bool | None:

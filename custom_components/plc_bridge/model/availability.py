@@ -136,9 +136,8 @@ def default_policy(*, data_valid: bool) -> str:
     return POLICY_DATA_VALID if data_valid else POLICY_PLC
 
 
-def policy_of(data: Mapping[str, Any], *, data_valid: bool) -> str:
-    """Return a stored point's policy; `data_valid` on a machine without the address: `plc`."""
-    policy = data.get(CONF_AVAILABILITY_POLICY)
+def policy_of(policy: str | None, *, data_valid: bool) -> str:
+    """Return the policy of a point storing `policy`; `data_valid` without the address: `plc`."""
     if policy not in POLICIES or (policy == POLICY_DATA_VALID and not data_valid):
         return default_policy(data_valid=data_valid)
     return str(policy)

@@ -79,7 +79,7 @@ class Composite:
 
 def group_key(config: PointConfig) -> tuple[str, str, str] | None:
     """Return what the points of one composite entity share, None for a point of its own."""
-    if not is_part(config.platform, config.data.get(CONF_ROLE)):
+    if not is_part(config.platform, config.role):
         return None
     return config.subentry_id, config.platform, config.name
 
@@ -101,9 +101,9 @@ def composites(configs: Mapping[str, PointConfig]) -> dict[str, Composite]:
     for (subentry_id, platform, name), members in groups.items():
         parts: dict[str, PointConfig] = {}
         for config in members.values():
-            parts.setdefault(str(config.data.get(CONF_ROLE, "")), config)
+            parts.setdefault(config.role or "", config)
         lead = next(iter(members))
-        stored = [str(c.data[CONF_ENTITY]) for c in members.values() if c.data.get(CONF_ENTITY)]
+        stored = [c.entity for c in members.values() if c.entity]
         entity = stored[0] if stored and stored[0] not in keys else lead
         keys.add(entity)
         found[lead] = Composite(entity, subentry_id, platform, name, parts)

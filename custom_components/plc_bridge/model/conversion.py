@@ -113,8 +113,14 @@ def spelled_as_states(text: str, states: Collection[str]) -> str:
 
 def stored_pairs(data: Mapping[str, Any], key: str) -> Pairs:
     """Return the pairs a point stores under a key, none when absent (the form checked them)."""
+    return _stored_text_pairs(str(data[key])) if data.get(key) else ()
+
+
+@lru_cache(maxsize=4096)
+def _stored_text_pairs(text: str) -> Pairs:
+    """Return a stored map's pairs, parsed once for every point storing the text (none if bad)."""
     try:
-        return parse_pairs(str(data[key])) if data.get(key) else ()
+        return parse_pairs(text)
     except InvalidPairs:
         return ()
 

@@ -7,13 +7,9 @@ A point with `as_text` (or on the text platform) shows hh:mm:ss.zzz instead.
 
 from __future__ import annotations
 
-from collections.abc import Mapping
 from datetime import timedelta
-from typing import Any
 
-from homeassistant.const import CONF_UNIT_OF_MEASUREMENT, UnitOfTime
-
-from ..const import CONF_AS_TEXT
+from homeassistant.const import UnitOfTime
 
 UNITS: dict[str, timedelta] = {
     UnitOfTime.MICROSECONDS: timedelta(microseconds=1),
@@ -28,15 +24,9 @@ COUNTED = (UnitOfTime.MICROSECONDS, UnitOfTime.MILLISECONDS)
 """Units below the second, whose whole counts show as integers (1500 ms, as a count did)."""
 
 
-def duration_unit(data: Mapping[str, Any]) -> UnitOfTime:
-    """Return the unit a duration point is shown in: its own time unit, else seconds."""
-    unit = data.get(CONF_UNIT_OF_MEASUREMENT)
+def duration_unit(unit: str | None) -> UnitOfTime:
+    """Return the unit a duration point with this stored unit is shown in: it, else seconds."""
     return UnitOfTime(unit) if unit in UNITS else UnitOfTime.SECONDS
-
-
-def as_text(data: Mapping[str, Any]) -> bool:
-    """True when a duration point is shown as clock text rather than a number."""
-    return bool(data.get(CONF_AS_TEXT))
 
 
 def in_unit(duration: timedelta, unit: str) -> int | float:

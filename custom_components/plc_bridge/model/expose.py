@@ -24,7 +24,6 @@ from ..const import (
     CONF_COOLDOWN,
     CONF_DATA_TYPE,
     CONF_DEFAULT,
-    CONF_ENTITY,
     CONF_OFFSET,
     CONF_RESEND,
     CONF_SCALE,
@@ -268,7 +267,7 @@ def _covers(client: type[PlcClient], points: Sequence[Point], point: Point) -> b
 
 def entity_key(config: PointConfig) -> str:
     """Return the end of the unique id of the entity that shows a point (its entity's key)."""
-    return str(config.data.get(CONF_ENTITY) or config.point_id)
+    return config.entity or config.point_id
 
 
 def readers(hass: HomeAssistant, entry: ConfigEntry[Any], point: Point) -> set[str]:

@@ -7,11 +7,11 @@ entities of those points: the others keep their state, and the entry is not relo
 
 from __future__ import annotations
 
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 from functools import lru_cache
 import sys
-from typing import Any
+from typing import Any, Final
 
 from homeassistant.components.sensor import CONF_STATE_CLASS
 from homeassistant.config_entries import ConfigEntry
@@ -30,7 +30,6 @@ from ..const import (
     CONF_OFFSET,
     CONF_PLATFORM,
     CONF_POINTS,
-    CONF_PULSE,
     CONF_READ_ONLY,
     CONF_ROLE,
     CONF_SCALE,
@@ -40,29 +39,206 @@ from ..const import (
     SUBENTRY_DEVICE,
 )
 from ..plc import PlcAddressError, PlcClient, Point, ValueKind
+from .conversion import Conversion, Pairs, conversion_of, stored_pairs
 from .device_classes import class_errors
 from .kinds import CONTROLS, KINDS, NUMERIC, POINT_PLATFORMS
 from .point_kinds import kind_data
-from .poll_classes import has_poll_class, point_class, poll_data
+from .poll_classes import NORMAL, POLL_CLASSES, has_poll_class, poll_data
+
+type Reader = Callable[[Any], Any]
+"""Reads one stored value as its attribute's type; raises TypeError or ValueError if it cannot."""
 
 
-@dataclass(frozen=True, slots=True)
+def _text(value: Any) -> str:
+    """Return a stored text."""
+    return value if isinstance(value, str) else str(value)
+
+
+def _text_or_none(value: Any) -> str | None:
+    """Return a stored text that may be null."""
+    return None if value is None else _text(value)
+
+
+def _number(value: Any) -> float:
+    """Return a stored number as stored (an int stays one: the round trip gives it back)."""
+    if isinstance(value, int | float) and not isinstance(value, bool):
+        return value
+    return float(value)
+
+
+def _number_or_none(value: Any) -> float | None:
+    """Return a stored number that may be null."""
+    return None if value is None else _number(value)
+
+
+def _whole_or_none(value: Any) -> int | None:
+    """Return a stored whole number that may be null."""
+    if value is None or (isinstance(value, int) and not isinstance(value, bool)):
+        return value
+    return int(value)
+
+
+def _poll(value: Any) -> str:
+    """Return a stored poll class (normal where it names none)."""
+    return value if value in POLL_CLASSES else NORMAL
+
+
+FIELDS: Final[dict[str, tuple[Reader, Any]]] = {
+    "name": (_text, ""),
+    "platform": (_text, ""),
+    "address": (_text, ""),
+    "data_type": (_text, ""),
+    "scale": (_number, 1.0),
+    "offset": (_number, 0.0),
+    "read_only": (bool, False),
+    "min": (_number_or_none, None),
+    "max": (_number_or_none, None),
+    "step": (_number_or_none, None),
+    "value_map": (_text_or_none, None),
+    "raw_min": (_number_or_none, None),
+    "raw_max": (_number_or_none, None),
+    "shown_min": (_number_or_none, None),
+    "shown_max": (_number_or_none, None),
+    "precision": (_whole_or_none, None),
+    "invert": (bool, False),
+    "on_value": (_number_or_none, None),
+    "off_value": (_number_or_none, None),
+    "pulse": (_number_or_none, None),
+    "bits": (_text_or_none, None),
+    "role": (_text_or_none, None),
+    "as_text": (bool, False),
+    "entity": (_text_or_none, None),
+    "poll": (_poll, NORMAL),
+    "travel_time": (_number_or_none, None),
+    "supervision": (_number_or_none, None),
+    "availability": (_text_or_none, None),
+    "device_class": (_text_or_none, None),
+    "unit_of_measurement": (_text_or_none, None),
+    "state_class": (_text_or_none, None),
+}
+"""Every key a stored point may have (each an attribute of PointConfig), its reader and the
+value of a point that stores none."""
+_IN_POINT: Final = ("address", "data_type")
+"""Keys kept in the shared Point, not as attributes of their own."""
+
+
+@lru_cache(maxsize=1024)
+def _shape(keys: tuple[str, ...]) -> tuple[str, ...]:
+    """Return one tuple for the stored keys of every point of the same shape."""
+    return keys
+
+
+@dataclass(frozen=True, slots=True, init=False, eq=False)
 class PointConfig:
-    """One configured point: where it is stored and what the user set for it."""
+    """One configured point: where it is stored and what the user set for it, typed.
+
+    Read once from its stored mapping; `stored()` gives that mapping back as it was: the keys
+    it had in their order, and a value its attribute cannot hold as stored (a text where a
+    number belongs, a key no point knows) from `extra`. A key the point does not store reads as
+    its default in FIELDS. Equal stored mappings give equal points.
+    """
 
     point_id: str
     subentry_id: str
-    data: Mapping[str, Any]
+    point: Point
+    """The PLC address and data type the point reads (one object for equal points)."""
+    name: str
+    platform: str
+    scale: float
+    offset: float
+    read_only: bool
+    """True when Home Assistant must never write the point."""
+    min: float | None
+    max: float | None
+    step: float | None
+    value_map: str | None
+    raw_min: float | None
+    raw_max: float | None
+    shown_min: float | None
+    shown_max: float | None
+    precision: int | None
+    invert: bool
+    on_value: float | None
+    off_value: float | None
+    pulse: float | None
+    bits: str | None
+    role: str | None
+    as_text: bool
+    entity: str | None
+    poll: str
+    """The point's poll class: fast, normal or slow (normal where it names none)."""
+    travel_time: float | None
+    supervision: float | None
+    availability: str | None
+    """The availability policy it stores (model/availability.py), None for its machine's."""
+    device_class: str | None
+    unit_of_measurement: str | None
+    state_class: str | None
+    bit_pairs: Pairs
+    """The named bits of an alarm word, parsed once (one tuple for equal lists)."""
+    conversion: Conversion
+    """Its conversions (one object for equal ones); `conversion.value_map` the parsed map."""
+    keys: tuple[str, ...]
+    extra: Mapping[str, Any] | None
+
+    def __init__(self, point_id: str, subentry_id: str, data: Mapping[str, Any]) -> None:
+        """Read a stored point (the data of a point id of a machine subentry)."""
+        values: dict[str, Any] = {"point_id": point_id, "subentry_id": subentry_id}
+        extra: dict[str, Any] = {}
+        for key, (reader, default) in FIELDS.items():
+            if key not in data:
+                values[key] = default
+                continue
+            raw = data[key]
+            try:
+                values[key] = reader(raw)
+            except (TypeError, ValueError):
+                values[key] = default
+            if type(values[key]) is not type(raw) or values[key] != raw:
+                extra[key] = raw
+        extra |= {key: value for key, value in data.items() if key not in FIELDS}
+        values["point"] = shared_point(values.pop("address"), values.pop("data_type"))
+        values["bit_pairs"] = stored_pairs(values, "bits")
+        values["conversion"] = conversion_of(values)
+        values["keys"] = _shape(tuple(data))
+        values["extra"] = extra or None
+        for key, value in values.items():
+            object.__setattr__(self, key, value)
+
+    def stored(self) -> dict[str, Any]:
+        """Return the point as it was stored (what Home Assistant keeps, exports show)."""
+        extra = self.extra or {}
+        return {key: extra[key] if key in extra else self._value(key) for key in self.keys}
+
+    def _value(self, key: str) -> Any:
+        """Return the stored value of one key the point knows."""
+        if key in _IN_POINT:
+            return getattr(self.point, key)
+        return getattr(self, key)
+
+    def __eq__(self, other: object) -> bool:
+        """Equal where stored at the same place with equal data."""
+        if not isinstance(other, PointConfig):
+            return NotImplemented
+        return (self.point_id, self.subentry_id, self.stored()) == (
+            other.point_id,
+            other.subentry_id,
+            other.stored(),
+        )
+
+    def __hash__(self) -> int:
+        """Hash by where the point is stored."""
+        return hash((self.point_id, self.subentry_id))
 
     @property
-    def point(self) -> Point:
-        """The PLC address and data type the point reads (one object for equal points)."""
-        return shared_point(str(self.data[CONF_ADDRESS]), str(self.data[CONF_DATA_TYPE]))
+    def address(self) -> str:
+        """The PLC address the point reads."""
+        return self.point.address
 
     @property
-    def platform(self) -> str:
-        """The entity platform that shows the point."""
-        return str(self.data[CONF_PLATFORM])
+    def data_type(self) -> str:
+        """The vendor's data type the point reads."""
+        return self.point.data_type
 
     @property
     def platforms(self) -> tuple[str, ...]:
@@ -71,19 +247,10 @@ class PointConfig:
         return (self.platform, *(kind.also_shown_on if kind else ()))
 
     @property
-    def name(self) -> str:
-        """The point's (entity's) name."""
-        return str(self.data[CONF_NAME])
-
-    @property
-    def poll(self) -> str:
-        """The point's poll class: fast, normal or slow."""
-        return point_class(self.data)
-
-    @property
-    def read_only(self) -> bool:
-        """True when Home Assistant must never write the point."""
-        return bool(self.data.get(CONF_READ_ONLY, False))
+    def pulse_seconds(self) -> float:
+        """The point's pulse in seconds, kept within 0.1-60; 0 for a single write."""
+        pulse = self.pulse or 0.0
+        return min(max(pulse, PULSE_MIN), PULSE_MAX) if pulse else 0.0
 
 
 @lru_cache(maxsize=65536)
@@ -104,12 +271,6 @@ def entry_points(entry: ConfigEntry[Any]) -> dict[str, PointConfig]:
         if subentry.subentry_type == SUBENTRY_DEVICE
         for point_id, data in subentry.data.get(CONF_POINTS, {}).items()
     }
-
-
-def pulse_seconds(data: Mapping[str, Any]) -> float:
-    """Return a point's pulse in seconds, kept within 0.1-60; 0 for a single write."""
-    pulse = float(data.get(CONF_PULSE) or 0.0)
-    return min(max(pulse, PULSE_MIN), PULSE_MAX) if pulse else 0.0
 
 
 def point_key(data: Mapping[str, Any]) -> Point:

@@ -133,6 +133,7 @@ class PointEntities:
                 [pid for pid in old.keys() | new.keys() if old.get(pid) != new.get(pid)], old, new
             )
             gone = [pid for pid in old if pid in changed]
+            self.configs = new  # what the factories group composite entities from
             made = self._make([config for pid, config in new.items() if pid in changed])
             kept = {(platform, entity.unique_id) for _, platform, entity in made}
             registry = er.async_get(hass)
@@ -144,7 +145,6 @@ class PointEntities:
                         await entity.async_remove()  # keeps its registry entry: same id, history
                     elif registry.async_get(entity.entity_id):
                         registry.async_remove(entity.entity_id)  # a removed point or named bit
-            self.configs = new
             async_register_devices(hass, entry, plc_device, self.areas)
             entry.runtime_data.coordinator.async_set_points(new)
             self._add(made)

@@ -18,7 +18,7 @@ when the entity no longer has a supervision time). Unload and reload cancel pend
 
 from __future__ import annotations
 
-from collections.abc import Callable, Iterable, Mapping
+from collections.abc import Callable, Iterable
 from datetime import datetime
 import math
 from typing import Any, Final
@@ -30,7 +30,6 @@ from homeassistant.helpers.entity import Entity
 from homeassistant.helpers.event import async_call_later
 
 from ..const import DOMAIN, LOGGER
-from ..model.kinds import CONF_SUPERVISION
 from .issues import FEEDBACK_TIMEOUT
 
 EVENT_FEEDBACK_TIMEOUT: Final = f"{DOMAIN}_feedback_timeout"
@@ -42,14 +41,10 @@ type Follows = Callable[[str], bool | None]
 """Whether the state read follows a command; None while it cannot be told."""
 
 
-def seconds_of(parts: Iterable[Mapping[str, Any]], key: str = CONF_SUPERVISION) -> float | None:
-    """Return the time the parts store under `key` (the first that is one), None without one."""
-    for data in parts:
-        try:
-            seconds = float(data[key])
-        except (KeyError, TypeError, ValueError):
-            continue
-        if math.isfinite(seconds) and seconds > 0:
+def seconds_of(stored: Iterable[float | None]) -> float | None:
+    """Return the first of the parts' stored times that is one (supervision, travel), else None."""
+    for value in stored:
+        if value is not None and math.isfinite(seconds := float(value)) and seconds > 0:
             return seconds
     return None
 
