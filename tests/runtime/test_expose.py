@@ -284,8 +284,10 @@ async def test_edited_expose_writes_its_new_address(
     await set_up(hass, entry)
     result = await entry.start_subentry_reconfigure_flow(hass, subentry_id)
     result = await hass.config_entries.subentries.async_configure(
-        result["flow_id"],
-        {"entity_id": LEVEL, "address": "vw130", "data_type": "signed", "send_on_start": True},
+        result["flow_id"], {"entity_id": LEVEL}
+    )
+    result = await hass.config_entries.subentries.async_configure(
+        result["flow_id"], {"address": "vw130", "data_type": "signed", "send_on_start": True}
     )
     assert result["reason"] == "reconfigure_successful"
     await settle(hass, freezer)
