@@ -114,3 +114,29 @@ async def test_fan(
     assert hass.states.get("fan.s7_200_smart_vent").state == STATE_ON
     with pytest.raises(ServiceValidationError):
         await act(hass, FAN_DOMAIN, SERVICE_SET_PRESET_MODE, "vent", **{ATTR_PRESET_MODE: "Max"})
+
+
+async def test_own_device_class(hass: HomeAssistant, s7_smart_ha_sim: S7SmartSimulator) -> None:
+    """The device class the entity's page stores on its parts is the valve's and the cover's;
+    a limit switch's own class of another kind (opening) is not taken for it."""
+    points = [
+        point("w1", "Inlet", "valve", "Q1.0", "signed", role="open", device_class="water"),
+        point("w2", "Inlet", "valve", "Q1.1", "signed", role="close", device_class="water"),
+        point("c1", "Gate", "cover", "Q1.2", "signed", role="open", device_class="garage"),
+        point(
+            "c2",
+            "Hatch",
+            "cover",
+            "I1.0",
+            "signed",
+            role="closed_limit",
+            read_only=True,
+            device_class="opening",
+        ),
+    ]
+    entry = make_entry(hass, s7_smart_ha_sim, points)
+    assert await hass.config_entries.async_setup(entry.entry_id)
+    await hass.async_block_till_done()
+    assert hass.states.get("valve.s7_200_smart_inlet").attributes["device_class"] == "water"
+    assert hass.states.get("cover.s7_200_smart_gate").attributes["device_class"] == "garage"
+    assert "device_class" not in hass.states.get("cover.s7_200_smart_hatch").attributes

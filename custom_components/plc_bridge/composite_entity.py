@@ -117,6 +117,15 @@ def async_setup_composites(
     entry.runtime_data.points.async_setup_platform(platform, make, add)
 
 
+def own_class(platform: str, parts: dict[str, Part]) -> str | None:
+    """Return the entity's device class: a part's that is one of its kind's (a shutter)."""
+    classes = KINDS[platform].device_class
+    if classes is None:
+        return None
+    found = (p.config.device_class for p in parts.values() if p.config.device_class)
+    return next((classes(name) for name in found if name in set(classes)), None)
+
+
 class PlcCompositeEntity(PlcEntity):
     """An entity of several points of one device, named by the rows it was built from."""
 
@@ -138,6 +147,8 @@ class PlcCompositeEntity(PlcEntity):
         self.outputs = {role: self._output(role) for role, part in parts.items() if part.pulse > 0}
         seconds = seconds_of(part.config.supervision for part in parts.values())
         self.supervisor = Supervisor(entry, self._key, self._label, seconds, self.follows)
+        if (own := own_class(group.platform, parts)) is not None:
+            self._attr_device_class = own
 
     def features(self) -> int:
         """The entity features its kind's description gives the parts it has, as flags.

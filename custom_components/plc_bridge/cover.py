@@ -23,7 +23,6 @@ from typing import Any
 from homeassistant.components.cover import (
     ATTR_POSITION,
     ATTR_TILT_POSITION,
-    CoverDeviceClass,
     CoverEntity,
     CoverEntityFeature,
 )
@@ -214,14 +213,6 @@ class PlcCover(Travel, CoverEntity):
         """Work out what the cover can do from the parts it has."""
         super().__init__(entry, group, parts)
         self._attr_supported_features = CoverEntityFeature(self.features())
-        for part in parts.values():
-            if part.config.device_class is None:
-                continue
-            try:
-                self._attr_device_class = CoverDeviceClass(part.config.device_class)
-                break
-            except ValueError:
-                continue
 
     @property
     def current_cover_position(self) -> int | None:
