@@ -219,6 +219,15 @@ _RANGED = ("invert", "raw_min", "raw_max")
 """What the read and set 0-100 % values of one section share: the direction and raw range."""
 _MAPPED = ("value_map",)
 _INVERTED = ("invert",)
+
+
+def _percent(key: str, checked_as: str, section: str, **more: Any) -> Role:
+    """Return a cover's or valve's position or tilt role: 0-100 %, its direction and raw range
+    shared by its section.
+    """
+    return _role(key, checked_as, section, invertible=True, shares=_RANGED, percent=True, **more)
+
+
 COVER = Kind(
     key="cover",
     device_class=CoverDeviceClass,
@@ -227,50 +236,16 @@ COVER = Kind(
     feature=CoverEntityFeature,
     open_sections=("commands", "limits"),
     roles=(
-        _role(
-            "position",
-            "sensor",
-            "position",
-            shows=True,
-            invertible=True,
-            features=_MOVES,
-            shares=_RANGED,
-            percent=True,
-        ),
-        _role(
-            "set_position",
-            "number",
-            "position",
-            shows=True,
-            invertible=True,
-            features=_MOVES,
-            shares=_RANGED,
-            percent=True,
-        ),
+        _percent("position", "sensor", "position", shows=True, features=_MOVES),
+        _percent("set_position", "number", "position", shows=True, features=_MOVES),
         _role("open", "button", "commands", shows=True, features=("OPEN",), shares=_PULSED),
         _role("close", "button", "commands", shows=True, features=("CLOSE",), shares=_PULSED),
         _role("stop", "button", "commands", features=("STOP",), shares=_PULSED),
         _role("open_limit", "binary_sensor", "limits", shows=True, asks=_INVERTED),
         _role("closed_limit", "binary_sensor", "limits", shows=True, asks=_INVERTED),
         _role("status", "sensor", "limits", shows=True, labels=COVER_STATES, asks=_MAPPED),
-        _role(
-            "tilt_position",
-            "sensor",
-            "tilt",
-            invertible=True,
-            features=("SET_TILT_POSITION",),
-            shares=_RANGED,
-            percent=True,
-        ),
-        _role(
-            "set_tilt_position",
-            "number",
-            "tilt",
-            invertible=True,
-            features=("SET_TILT_POSITION",),
-            shares=_RANGED,
-            percent=True,
-        ),
+        _percent("tilt_position", "sensor", "tilt", features=("SET_TILT_POSITION",)),
+        _percent("set_tilt_position", "number", "tilt", features=("SET_TILT_POSITION",)),
         _role(
             "step",
             "button",
