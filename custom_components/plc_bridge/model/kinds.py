@@ -222,9 +222,7 @@ _INVERTED = ("invert",)
 
 
 def _percent(key: str, checked_as: str, section: str, **more: Any) -> Role:
-    """Return a cover's or valve's position or tilt role: 0-100 %, its direction and raw range
-    shared by its section.
-    """
+    """Return a position or tilt role: 0-100 %, with the direction and raw range of its section."""
     return _role(key, checked_as, section, invertible=True, shares=_RANGED, percent=True, **more)
 
 
