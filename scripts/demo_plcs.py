@@ -42,7 +42,8 @@ class Journey:
 
     table: str = ""  # pasted points (CSV with a header), when not picked
     pick: str = ""  # the browse filter whose first listed variable becomes the point
-    machines: tuple[tuple[str, str], ...] = ()  # more devices: (name, pasted table)
+    machines: tuple[tuple[str, str | dict[str, Any]], ...] = ()
+    """More devices: (name, a pasted table or an entity's page values, as the frontend posts)."""
     drives: tuple[Drive, ...] = ()  # the actions the check takes on those devices' entities
 
 
@@ -50,8 +51,11 @@ HEADER = "name,address,data_type,platform,min,max\n"
 KINDS = "name,address,data_type,platform,unit,scale,min,max,step,read_only,role,value_map,bits\n"
 
 
-def machines(word: str, bit: str, at: dict[str, str]) -> tuple[tuple[str, str], ...]:
-    """Return the boiler, shutter and pump as tables, at one simulator's addresses and types."""
+def machines(
+    word: str, bit: str, at: dict[str, str]
+) -> tuple[tuple[str, str | dict[str, Any]], ...]:
+    """Return the boiler and pump as tables and the shutter as its one page's values, at one
+    simulator's addresses and types."""
     w, b = f"{word},", f"{bit},"
     return (
         (
@@ -64,10 +68,19 @@ def machines(word: str, bit: str, at: dict[str, str]) -> tuple[tuple[str, str], 
         ),
         (
             "Shutter",
-            KINDS + f"Shutter,{at['open']},{b}cover,,1,,,,no,open,,\n"
-            f"Shutter,{at['close']},{b}cover,,1,,,,no,close,,\n"
-            f"Shutter,{at['opened']},{b}cover,,1,,,,yes,open_limit,,\n"
-            f"Shutter,{at['closed']},{b}cover,,1,,,,yes,closed_limit,,",
+            {
+                "platform": "cover",
+                "name": "Shutter",
+                "device_class": "shutter",
+                "commands": {
+                    **{"open": at["open"], "open_data_type": bit},
+                    **{"close": at["close"], "close_data_type": bit},
+                },
+                "limits": {
+                    **{"open_limit": at["opened"], "open_limit_data_type": bit},
+                    **{"closed_limit": at["closed"], "closed_limit_data_type": bit},
+                },
+            },
         ),
         (
             "Pump",
@@ -223,6 +236,27 @@ def add_device(hass: Hass, entry_id: str, journey: Journey, name: str = "Demo de
         raise RuntimeError(f"saving the device ended with {flow}")
 
 
+def add_entity(hass: Hass, entry_id: str, name: str, page: dict[str, Any]) -> None:
+    """Add a device with one entity of several addresses, built on its one page."""
+    flow = hass.call("POST", SUBENTRY_FLOW, {"handler": [entry_id, "device"]})
+    step = f"{SUBENTRY_FLOW}/{flow['flow_id']}"
+    hass.call("POST", step, {"name": name})
+    hass.call("POST", step, {"next_step_id": "composite"})
+    flow = hass.call("POST", step, {"next_step_id": f"entity_{page['platform']}"})
+    if flow.get("step_id") != "composite_entity":
+        raise RuntimeError(f"the kinds' menu led to {flow}")
+    shown = flow["data_schema"]
+    sections = {field["name"]: {} for field in shown if field.get("type") == "expandable"}
+    values = {key: value for key, value in page.items() if key != "platform"}
+    flow = hass.call("POST", step, sections | values)  # a section's fields come nested
+    if flow.get("type") != "menu":
+        words = flow.get("description_placeholders")
+        raise RuntimeError(f"the entity's page refused: {flow.get('errors')} {words}")
+    flow = hass.call("POST", step, {"next_step_id": "save"})
+    if flow.get("type") != "create_entry":
+        raise RuntimeError(f"saving the device ended with {flow}")
+
+
 def wait_for(ready: Callable[[], Any], timeout: float) -> Any:
     """Return the first true answer of `ready` within `timeout` seconds (else the last one)."""
     deadline = time.monotonic() + timeout
@@ -259,8 +293,12 @@ def plc_value(hass: Hass, entry_id: str, drive: Drive) -> Any:
 def drive_kinds(hass: Hass, ws: Socket, entry_id: str, vendor: str) -> list[str]:
     """Add the journey's machines, take each action as the frontend does, see the PLC change."""
     plan = JOURNEYS[vendor]
-    for name, table in plan.machines:
-        add_device(hass, entry_id, Journey(table=table), name)
+    for name, made in plan.machines:
+        if isinstance(made, dict):
+            add_entity(hass, entry_id, name, made)
+            print(f"demo: {vendor}: {name} added on its entity's page", flush=True)
+        else:
+            add_device(hass, entry_id, Journey(table=made), name)
     alarm = wait_for(lambda: overheat(ws, entry_id), 30) if plan.machines else None
     before = _state(hass, alarm) if alarm else None
     problems = []
