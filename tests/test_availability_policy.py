@@ -28,7 +28,7 @@ from custom_components.plc_bridge.model.config_file import dump_config
 from custom_components.plc_bridge.model.point_table import export_points, parse_points
 from simulators.s7_smart import S7SmartSimulator
 from tests.entries import add_entry, device, make_entry, point, poll, sim_data
-from tests.flows.forms import entity_page, on_page, step, strings_at
+from tests.flows.forms import entity_page, on_page, page_shown, step, strings_at
 from tests.flows.test_command_layouts import SMART, key_only, machines
 from tests.test_config_file import CONFIG, paste
 
@@ -353,10 +353,10 @@ async def test_composite_edit_changes_every_part(
     (marker,) = result["data_schema"].schema
     first = result["data_schema"].schema[marker].config["options"][0]
     result = await step(hass, result, {"point": first["value"]})
-    assert result["step_id"] == "composite_edit"
+    assert result["step_id"] == "composite_entity"
     assert offered(result) == ["plc", "keep"]
-    address, role = (result["description_placeholders"][key] for key in ("address", "role"))
-    result = await step(hass, result, {"address": address, "availability": "keep"})
-    result = await step(hass, result, {"read_only": role == "state"})
+    page = page_shown(result)
+    page["entity_options"]["availability"] = "keep"
+    result = await step(hass, result, page)
     await step(hass, result, {"next_step_id": "save"})
     assert [data.get("availability") for data in machines(smart_entry)] == ["keep", "keep"]

@@ -235,3 +235,19 @@ def on_page(platform: str, values: Mapping[str, Any]) -> dict[str, Any]:
         else:
             page[key] = value
     return page
+
+
+def page_shown(result: Any) -> dict[str, Any]:
+    """Return the page's suggested values, each section's fields nested in it."""
+    values: dict[str, Any] = {}
+    for marker, field in result["data_schema"].schema.items():
+        if isinstance(field, form_section):
+            inner = {
+                str(key): key.description["suggested_value"]
+                for key in field.schema.schema
+                if key.description and "suggested_value" in key.description
+            }
+            values[str(marker)] = inner
+        elif marker.description and "suggested_value" in marker.description:
+            values[str(marker)] = marker.description["suggested_value"]
+    return values

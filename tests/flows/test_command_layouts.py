@@ -25,7 +25,15 @@ from custom_components.plc_bridge.plc import Point
 from custom_components.plc_bridge.plc.vendors import client_class
 from simulators.softplc import SoftplcSimulator
 from tests.entries import PointData, call, point
-from tests.flows.forms import MACHINE, entity_page, error_message, on_page, step, strings_at
+from tests.flows.forms import (
+    MACHINE,
+    entity_page,
+    error_message,
+    on_page,
+    page_shown,
+    step,
+    strings_at,
+)
 from tests.harness import make_softplc_entry, softplc_data
 from tests.test_config_file import CONFIG, paste
 
@@ -331,12 +339,11 @@ async def test_edited_part_sets_the_whole_entitys_travel_time(
     result = await step(hass, menu, {"next_step_id": "edit"})
     part = next(iter(flow_entry.subentries[subentry_id].data[CONF_POINTS]))
     result = await step(hass, result, {"point": part})
-    assert result["step_id"] == "composite_edit"
-    stored = flow_entry.subentries[subentry_id].data[CONF_POINTS][part]
-    where = {"address": stored["address"], "data_type": stored["data_type"]}
-    result = await step(hass, result, {**where, "travel_time": 601})
+    assert result["step_id"] == "composite_entity"
+    page = page_shown(result)
+    assert page["travel_time"] == 20
+    result = await step(hass, result, {**page, "travel_time": 601})
     assert result["errors"] == {"travel_time": "travel_time_out_of_range"}
-    result = await step(hass, result, {**where, "travel_time": 40})
-    menu = await step(hass, result, {"read_only": False})
+    menu = await step(hass, result, {**page, "travel_time": 40})
     await step(hass, menu, {"next_step_id": "save"})
     assert {data["travel_time"] for data in machines(flow_entry)} == {40.0}

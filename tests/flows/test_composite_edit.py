@@ -1,8 +1,10 @@
 """Editing and removing the parts of an entity of several addresses from the device menu.
 
-A part's address and data type can change (checked as a new part is); the entity keeps its
-unique id and entity id, and reads the new address. A bad address is refused on its field
-and changes nothing. Removing parts may not leave an entity with none that shows it.
+Editing a part opens its entity's page with every part as stored: a part's address and data
+type can change (checked as a new part is), a role can be added or cleared; the entity keeps
+its unique id and entity id, each kept role its point id, and reads the new address. What the
+page does not ask (a part's codes, its scale) stays as stored. A bad address is refused on its
+section and changes nothing. Removing parts may not leave an entity with none that shows it.
 """
 
 from __future__ import annotations
@@ -24,7 +26,7 @@ from custom_components.plc_bridge.const import CONF_POINTS, SUBENTRY_DEVICE
 from simulators.s7_smart import S7SmartSimulator
 from simulators.tecomat import TecomatSimulator
 from tests.entries import DEVICE_ID, make_entry, point, poll, read_edits
-from tests.flows.forms import MACHINE, error_message, step, suggested
+from tests.flows.forms import MACHINE, error_message, page_shown, step, strings_at
 from tests.harness import make_tecomat_entry
 
 pytestmark = pytest.mark.no_pacing
@@ -38,6 +40,7 @@ SHUTTER = [
     point("s4", "Shutter", "cover", "Q0.6", "signed", role="stop", pulse=1.0, **KEY),
 ]
 SHUTTER[0][1].update(KEY)
+SHUTTER[0][1]["precision"] = 0  # a setting the page does not ask
 BLIND = [point("b1", "Blind", "cover", "VW60", "signed", role="position", entity="b0", **RANGE)]
 SHUTTER_ID, BLIND_ID = "cover.s7_200_smart_shutter", "cover.s7_200_smart_blind"
 
@@ -51,15 +54,20 @@ async def set_up(hass: HomeAssistant, sim: S7SmartSimulator) -> MockConfigEntry:
 
 
 async def edit(hass: HomeAssistant, entry: MockConfigEntry, point_id: str) -> Any:
-    """Open the machine's menu, choose edit and the part; return the part's address form."""
+    """Open the machine's menu, choose edit and the part; return its entity's page."""
     menu = await hass.config_entries.subentries.async_init(
         (entry.entry_id, SUBENTRY_DEVICE),
         context={"source": SOURCE_RECONFIGURE, "subentry_id": DEVICE_ID},
     )
     result = await step(hass, menu, {"next_step_id": "edit"})
     result = await step(hass, result, {"point": point_id})
-    assert result["step_id"] == "composite_edit"
+    assert result["step_id"] == "composite_entity"
     return result
+
+
+def error_text(key: str) -> str:
+    """Return an error's English message (one without placeholders)."""
+    return str(strings_at(*MACHINE, "error", key))
 
 
 def stored(entry: MockConfigEntry) -> dict[str, Any]:
@@ -84,13 +92,19 @@ async def test_move_a_part(
     before = registered(hass, SHUTTER_ID)
     assert hass.states.get(SHUTTER_ID).attributes[ATTR_CURRENT_POSITION] == 50
     result = await edit(hass, entry, "s1")
-    assert (suggested(result, "address"), suggested(result, "data_type")) == ("VW40", "signed")
-    result = await step(hass, result, {"address": " vw48 ", "data_type": "signed"})
-    assert result["step_id"] == "composite_part"
-    assert result["description_placeholders"]["address"] == "VW48"
-    assert suggested(result, "raw_max") == 27648  # the part's settings, as they were
-    menu = await step(hass, result, {**RANGE, "scale": 1, "offset": 0, "read_only": True})
-    assert menu["type"] is FlowResultType.MENU
+    assert result["description_placeholders"]["title"] == "Cover: Shutter"
+    page = page_shown(result)
+    assert page["position"] == {
+        "position": "VW40",
+        "position_data_type": "signed",
+        "raw_min": 0,
+        "raw_max": 27648,  # the part's settings, as they were
+    }
+    assert page["commands"]["stop"] == "Q0.6"
+    assert page["commands"]["pulse"] == 1.0
+    page["position"]["position"] = " vw48 "
+    menu = await step(hass, result, page)
+    assert menu["type"] is FlowResultType.MENU, menu.get("errors")
     result = await step(hass, menu, {"next_step_id": "save"})
     assert result["type"] is FlowResultType.ABORT
     await read_edits(hass, freezer)
@@ -118,8 +132,10 @@ async def test_a_lone_part_keeps_its_entity(
     before = registered(hass, BLIND_ID)
     assert before[1].endswith("_b0")
     result = await edit(hass, entry, "b1")
-    result = await step(hass, result, {"address": "VW62"})  # the type: the first that fits
-    menu = await step(hass, result, {**RANGE, "scale": 1, "offset": 0, "read_only": False})
+    page = page_shown(result)
+    page["position"] = {"position": "VW62", "raw_min": 0, "raw_max": 27648}  # the first type
+    menu = await step(hass, result, page)
+    assert menu["type"] is FlowResultType.MENU, menu.get("errors")
     await step(hass, menu, {"next_step_id": "save"})
     await read_edits(hass, freezer)
     assert stored(entry)["b1"]["entity"] == "b0"
@@ -130,16 +146,26 @@ async def test_a_lone_part_keeps_its_entity(
 async def test_a_part_edited_in_place(
     hass: HomeAssistant, s7_smart_ha_sim: S7SmartSimulator
 ) -> None:
-    """A part keeps its own address (its own, not one in use) while its settings change."""
+    """Parts keep their own addresses (their own, not in use) while a shared setting changes
+    for all of them; a cleared role goes, a new one joins with the entity's key."""
     entry = await set_up(hass, s7_smart_ha_sim)
     before = registered(hass, SHUTTER_ID)
+    points = stored(entry)
     result = await edit(hass, entry, "s4")
-    result = await step(hass, result, {"address": "Q0.6", "data_type": "signed"})
-    assert result["step_id"] == "composite_part"
-    assert suggested(result, "pulse") == 1.0
-    menu = await step(hass, result, {"pulse": 2.5, "read_only": False})
+    page = page_shown(result)
+    page["commands"]["pulse"] = 2.5
+    page["commands"].pop("close")
+    page["limits"] = {"closed_limit": "I0.1", "closed_limit_invert": True}
+    menu = await step(hass, result, page)
+    assert menu["type"] is FlowResultType.MENU, menu.get("errors")
     await step(hass, menu, {"next_step_id": "save"})
-    assert (stored(entry)["s4"]["address"], stored(entry)["s4"]["pulse"]) == ("Q0.6", 2.5)
+    after = stored(entry)
+    assert (after["s4"]["address"], after["s4"]["pulse"]) == ("Q0.6", 2.5)
+    assert after["s2"]["pulse"] == 2.5  # the commands' pulse is asked once for all
+    assert "s3" not in after  # the close command was cleared
+    (limit,) = (data for data in after.values() if data.get("role") == "closed_limit")
+    assert (limit["entity"], limit["read_only"], limit["invert"]) == ("s0", True, True)
+    assert after["s1"]["precision"] == points["s1"]["precision"] == 0  # not asked: kept
     assert registered(hass, SHUTTER_ID) == before
 
 
@@ -151,18 +177,25 @@ async def test_bad_addresses_are_refused(
     entry = await set_up(hass, s7_smart_ha_sim)
     points = stored(entry)
     result = await edit(hass, entry, "s1")
-    result = await step(hass, result, {"address": "VW4x", "data_type": "signed"})
-    assert result["errors"] == {"address": "invalid_address"}
-    assert "VW4x" in error_message(result, "address", *MACHINE)
-    result = await step(hass, result, {"address": "VW60", "data_type": "signed"})
-    assert result["errors"] == {"address": "already_configured"}  # the blind's position
+    page = page_shown(result)
+
+    async def refused(section_name: str, **fields: str) -> str:
+        """Submit the page with these fields changed; return the section's message."""
+        changed = {**page, section_name: {**page[section_name], **fields}}
+        answer = await step(hass, result, changed)
+        assert answer["errors"] == {section_name: f"in_{section_name}"}
+        return str(answer["description_placeholders"][f"{section_name}_problem"])
+
+    assert "VW4x" in await refused("position", position="VW4x")
+    assert await refused("position", position="VW60") == error_text("already_configured")
     with pytest.raises(InvalidData):  # the S7-200 SMART's field offers its modes only
-        await step(hass, result, {"address": "VW40", "data_type": "text"})
-    result = await edit(hass, entry, "s2")
-    result = await step(hass, result, {"address": "I0.3", "data_type": "signed"})
-    assert result["errors"] == {"address": "address_not_writable"}  # an input cannot open
-    result = await step(hass, result, {"address": "VD80", "data_type": "float"})
-    assert result["errors"] == {"data_type": "needs_bool_or_integer"}
+        await refused("position", position_data_type="text")
+    assert (await refused("commands", open="I0.3")).startswith("I0.3 can never be written")
+    data_type = {"open": "VD80", "open_data_type": "float"}
+    assert "VD80 as float" in await refused("commands", **data_type)
+    empty = {name: {} for name, value in page.items() if isinstance(value, dict)}
+    cleared = await step(hass, result, {**page, **empty})
+    assert cleared["errors"] == {"base": "role_missing"}
     assert stored(entry) == points
     await read_edits(hass, freezer)
     assert hass.states.get(SHUTTER_ID).attributes[ATTR_CURRENT_POSITION] == 50
@@ -204,10 +237,13 @@ async def test_move_a_command_on_a_tecomat(
     ]
     before = registered(hass, switch)
     result = await edit(hass, entry, "p2")
-    result = await step(hass, result, {"address": "plcData.var Bool0", "data_type": "BOOL"})
-    assert result["errors"] == {"address": "invalid_address"}
-    result = await step(hass, result, {"address": "plcData.varBool0", "data_type": "BOOL"})
-    menu = await step(hass, result, {"read_only": False})
+    page = page_shown(result)
+    page["on_off"]["command"] = "plcData.var Bool0"
+    answer = await step(hass, result, page)
+    assert answer["errors"] == {"on_off": "in_on_off"}
+    page["on_off"]["command"] = "plcData.varBool0"
+    menu = await step(hass, result, page)
+    assert menu["type"] is FlowResultType.MENU, menu.get("errors")
     await step(hass, menu, {"next_step_id": "save"})
     await read_edits(hass, freezer)
     assert registered(hass, switch) == before

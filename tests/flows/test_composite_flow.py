@@ -23,7 +23,7 @@ from pytest_homeassistant_custom_component.common import MockConfigEntry
 from custom_components.plc_bridge.const import CONF_POINTS, SUBENTRY_DEVICE
 from custom_components.plc_bridge.flows.composite_flow import filled
 from custom_components.plc_bridge.model.kinds import COMPOSITE_PLATFORMS, KINDS
-from tests.flows.forms import MACHINE, step, strings_at
+from tests.flows.forms import MACHINE, page_shown, step, strings_at
 
 pytestmark = pytest.mark.no_pacing
 
@@ -340,10 +340,18 @@ async def test_edit_a_part(hass: HomeAssistant, flow_entry: MockConfigEntry) -> 
     )
     result = await step(hass, menu, {"next_step_id": "edit"})
     result = await step(hass, result, {"point": command})
-    assert result["step_id"] == "composite_edit"
-    result = await step(hass, result, {"address": "M1.1"})  # its own address is not taken
-    assert result["step_id"] == "composite_part"
-    menu = await step(hass, result, {"read_only": False})
+    assert result["step_id"] == "composite_entity"
+    page = page_shown(result)
+    assert page["on_off"] == {
+        "state": "Q0.3",
+        "state_data_type": points[next(iter(points))]["data_type"],
+        "command": "M1.1",  # its own address is not taken
+        "command_data_type": points[command]["data_type"],
+        "pulse": 0.5,
+    }
+    page["on_off"].pop("pulse")
+    menu = await step(hass, result, page)
+    assert menu["type"] is FlowResultType.MENU, menu.get("errors")
     points = await saved(hass, flow_entry, menu)
     assert "pulse" not in points[command]
     assert points[command]["role"] == "command"

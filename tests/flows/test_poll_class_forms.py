@@ -20,7 +20,15 @@ from custom_components.plc_bridge.plc.vendors import client_class
 from custom_components.plc_bridge.plc.vendors.s7_smart import S7SmartClient
 from simulators.s7_smart import S7SmartSimulator
 from tests.entries import PointData, device, point, sim_data
-from tests.flows.forms import MACHINE, entity_page, error_message, on_page, polling_form, translated
+from tests.flows.forms import (
+    MACHINE,
+    entity_page,
+    error_message,
+    on_page,
+    page_shown,
+    polling_form,
+    translated,
+)
 from tests.flows.test_command_layouts import page_fields
 
 pytestmark = pytest.mark.no_pacing
@@ -179,12 +187,10 @@ async def test_composite_form_sets_every_part(
     result = await step(hass, menu, {"next_step_id": "edit"})
     part = next(iter(points))
     result = await step(hass, result, {"point": part})
-    assert fields(result) == {"address", "data_type", "travel_time", "availability"}
-    where = {key: points[part][key] for key in ("address", "data_type")}
-    result = await step(hass, result, where)
-    assert "poll" in fields(result)
-    values = {"scale": 1, "offset": 0} if "scale" in fields(result) else {}
-    menu = await step(hass, result, {**values, "read_only": True, "poll": "slow"})
+    page = page_shown(result)
+    assert page["entity_options"]["poll"] == "fast"
+    page["entity_options"]["poll"] = "slow"  # one field, for every part
+    menu = await step(hass, result, page)
     points = await saved(hass, entry, menu)
     assert {data.get("poll") for data in points.values()} == {"slow"}
 

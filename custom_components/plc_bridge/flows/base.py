@@ -295,10 +295,6 @@ class DeviceFlowBase(ConfigSubentryFlow):
     (composite_flow.py) build on it; subentry_flow.py joins them with the point pages.
     """
 
-    _composite: dict[str, Any]
-    _parts: list[dict[str, Any]]
-    _part_ids: list[str]
-
     def __init__(self) -> None:
         """Start with an unnamed device and no points."""
         self._name = ""
@@ -311,7 +307,8 @@ class DeviceFlowBase(ConfigSubentryFlow):
         self._items: list[BrowseItem] = []
         self._ticked: list[str] = []
         self._confirmed = ""  # a pasted table whose assumed data types were shown
-        self._composite, self._parts, self._part_ids = {}, [], []
+        self._composite: dict[str, Any] = {}  # the entity on its page: its kind, as checked
+        self._edited: dict[str, str] = {}  # the edited entity's point ids by role
 
     @property
     def _client(self) -> type[PlcClient]:
@@ -328,7 +325,7 @@ class DeviceFlowBase(ConfigSubentryFlow):
             if subentry.subentry_id != subentry_id
             for data in subentry.data.get(CONF_POINTS, {}).values()
         }
-        taken |= {point_key(data) for pid, data in self._points.items() if pid != self._editing}
+        taken |= {point_key(data) for pid, data in self._points.items() if not self._edits(pid)}
         return {self._normal(point) for point in taken}
 
     def _plc_points(self) -> list[dict[str, Any]]:
@@ -341,8 +338,12 @@ class DeviceFlowBase(ConfigSubentryFlow):
                 if subentry.subentry_id != subentry_id
                 for data in subentry.data.get(CONF_POINTS, {}).values()
             ),
-            *(data for pid, data in self._points.items() if pid != self._editing),
+            *(data for pid, data in self._points.items() if not self._edits(pid)),
         ]
+
+    def _edits(self, point_id: str) -> bool:
+        """True for a point being edited: the point's own, or a part of the entity edited."""
+        return point_id == self._editing or point_id in self._edited.values()
 
     def _normal(self, point: Point) -> Point:
         """Return a stored point as the vendor spells it (a PLCnext path with its component)."""

@@ -68,10 +68,8 @@ from ..model.availability import (
 )
 from ..model.composite import (
     as_platform,
-    entity_time,
     group_errors,
     part_data,
-    role_of,
     supervision_data,
     travel_data,
 )
@@ -89,10 +87,9 @@ from ..model.point_table import first_type
 from ..model.points import check_point, data_type_selector, point_key
 from ..model.poll_classes import CONF_POLL, NORMAL, poll_field
 from ..model.write_rules import layout_conflicts
-from ..plc import PlcAddressError, PlcClient, Point
+from ..plc import PlcClient, Point
 from .base import DeviceFlowBase
 from .flow_lists import PointWords, async_point_words
-from .point_form import BASE_FIELDS, details_schema
 
 SHARED = (CONF_POLL, CONF_TRAVEL_TIME, CONF_SUPERVISION, CONF_AVAILABILITY_POLICY)
 """What every part of one entity has alike: its poll class, travel and supervision time, and
@@ -106,6 +103,11 @@ TYPE_SUFFIX = "_data_type"
 OPTIONS = "entity_options"
 """The folded section of the entity's page: its poll class and availability."""
 PERCENT = {CONF_SHOWN_MIN: 0.0, CONF_SHOWN_MAX: 100.0}
+ENTITY_KEYS = (
+    *(CONF_NAME, CONF_PLATFORM, CONF_ROLE, CONF_ADDRESS, CONF_DATA_TYPE, CONF_READ_ONLY),
+    *(CONF_POLL, CONF_AVAILABILITY_POLICY, CONF_TRAVEL_TIME, CONF_SUPERVISION, CONF_ENTITY),
+)
+"""What the entity's page sets on every part, whatever the role."""
 """What a raw range maps onto for a role read or set in percent."""
 _NUMBER = NumberSelector(NumberSelectorConfig(mode=NumberSelectorMode.BOX, step="any"))
 SETTINGS: dict[str, Any] = {
@@ -131,7 +133,7 @@ SECTIONS = tuple(dict.fromkeys(role.section for kind in KINDS.values() for role 
 """Every section an entity's page may have."""
 PLACEHOLDERS = (
     "error", "name", "role", "address", "data_type", "roles", "point", "written", "pair",
-    "units", "labels", "seconds", "platform", "kind", "needs",
+    "units", "labels", "seconds", "platform", "kind", "needs", "title",
     *(f"{name}_{what}" for name in (*SECTIONS, OPTIONS) for what in ("role", "problem")),
 )  # fmt: skip
 """What the entity page's texts and errors may name; each is given, empty when unused."""
@@ -156,7 +158,18 @@ class CompositeSteps(DeviceFlowBase):
 
     async def async_add_entity(self, platform: str) -> SubentryFlowResult:
         """Open the page of a new entity of this kind."""
-        self._composite = {CONF_PLATFORM: platform}
+        self._composite, self._edited = {CONF_PLATFORM: platform}, {}
+        return await self.async_step_composite_entity()
+
+    async def async_edit_part(self, point_id: str) -> SubentryFlowResult:
+        """Edit the entity a part belongs to, on its page; its parts keep their point ids."""
+        entity = entity_of(self._points[point_id])
+        self._edited = {
+            str(data.get(CONF_ROLE)): pid
+            for pid, data in self._points.items()
+            if entity_of(data) == entity
+        }
+        self._composite = {CONF_PLATFORM: entity[0]}
         return await self.async_step_composite_entity()
 
     async def async_step_composite_entity(
@@ -169,23 +182,41 @@ class CompositeSteps(DeviceFlowBase):
         placeholders = dict.fromkeys(PLACEHOLDERS, "")
         placeholders["kind"] = words.kinds.get(kind.key, kind.key)
         placeholders["needs"] = ", ".join(words.roles.get(r, r) for r in kind.needs_one_of)
+        stored = {role: self._points[pid] for role, pid in self._edited.items()}
+        name = next(iter(stored.values()))[CONF_NAME] if stored else ""
+        placeholders["title"] = filled(words.page["edit" if stored else "new"], {
+            "kind": placeholders["kind"], "name": name
+        })  # fmt: skip
         if user_input is not None:
             values = flattened(user_input)
             roles: dict[str, str] = {}
             parts = self._entity_parts(kind, values, errors, placeholders, roles)
             if not errors:
-                self._points |= {secrets.token_hex(6): part for part in parts}
-                self._composite = {}
+                self._keep(parts)
                 return await self.async_step_menu()
             await self._word_sections(errors, placeholders, roles, words)
         return self.async_show_form(
             step_id="composite_entity",
             data_schema=self.add_suggested_values_to_schema(
-                self._entity_schema(kind, errors), user_input or {}
+                self._entity_schema(kind, errors), user_input or page_values(kind, stored)
             ),
             errors=errors,
             description_placeholders=placeholders,
         )
+
+    def _keep(self, parts: list[dict[str, Any]]) -> None:
+        """Store the page's parts: an edited role keeps its point id, a cleared one goes."""
+        kept = [
+            {**part, CONF_ENTITY: self._points[pid][CONF_ENTITY]}
+            if (pid := self._edited.get(part[CONF_ROLE])) and CONF_ENTITY in self._points[pid]
+            else part
+            for part in parts
+        ]
+        for pid in self._edited.values():
+            del self._points[pid]
+        for part in kept:
+            self._points[self._edited.get(part[CONF_ROLE]) or secrets.token_hex(6)] = part
+        self._composite, self._edited = {}, {}
 
     def _entity_schema(self, kind: Kind, errors: Mapping[str, str]) -> vol.Schema:
         """Return the entity's page: name, own class and time, a section per function."""
@@ -236,7 +267,8 @@ class CompositeSteps(DeviceFlowBase):
         name = str(values.get(CONF_NAME) or "").strip()
         taken = any(
             (data[CONF_NAME], data[CONF_PLATFORM]) == (name, kind.key)
-            for data in self._points.values()
+            for pid, data in self._points.items()
+            if pid not in self._edited.values()
         )
         if not name:
             errors[CONF_NAME] = "name_required"
@@ -268,7 +300,8 @@ class CompositeSteps(DeviceFlowBase):
             at, found, details = self._part_at(role.key, address, data_type, given)
             if at is not None:
                 settings = {CONF_READ_ONLY: not role.written} | _settings(role, values)
-                made, found, details = part_data(self._client, at | settings)
+                kept = self._unasked(kind, role)
+                made, found, details = part_data(self._client, kept | at | settings)
                 made |= policy  # the point checks leave it out: it is the entity's
             if found or at is None:
                 errors[role.section] = next(iter(found.values()))
@@ -277,6 +310,10 @@ class CompositeSteps(DeviceFlowBase):
                 continue
             parts.append(made)
         if errors:
+            return []
+        if not parts:  # nothing given: an entity needs a part that shows it
+            errors["base"] = "role_missing"
+            placeholders |= {CONF_NAME: name, "roles": placeholders["needs"]}
             return []
         if problems := group_errors(parts):
             errors["base"] = problems[0][1]
@@ -290,6 +327,18 @@ class CompositeSteps(DeviceFlowBase):
             roles.setdefault(name, str(conflict[CONF_ROLE]))
             placeholders |= found_words
         return [] if errors else parts
+
+    def _unasked(self, kind: Kind, role: Role) -> dict[str, Any]:
+        """Return what an edited role's stored part holds that its page does not ask.
+
+        Its on and off codes, a precision, ...: kept, and checked again with the page's values.
+        """
+        pid = self._edited.get(role.key)
+        if pid is None:
+            return {}
+        asked = {*ENTITY_KEYS, *role.asks, *role.shares, *(PERCENT if role.percent else ())}
+        asked |= {CONF_DEVICE_CLASS} if kind.device_class is not None else set()
+        return {k: v for k, v in self._points[pid].items() if k not in asked}
 
     async def _word_sections(
         self,
@@ -348,120 +397,6 @@ class CompositeSteps(DeviceFlowBase):
             self._client, [*self._plc_points(), *map(defaulted, others)], map(defaulted, new)
         )
 
-    async def async_step_composite_part(
-        self, user_input: dict[str, Any] | None = None
-    ) -> SubentryFlowResult:
-        """The settings of an edited part, as its resembling kind has them; then the menu."""
-        values = self._parts[0]
-        role, platform = values[CONF_ROLE], values[CONF_PLATFORM]
-        errors: dict[str, str] = {}
-        placeholders = {"role": role, "units": "", "pair": "", "error": "", "platform": platform}
-        placeholders |= {"point": "", "written": ""}
-        placeholders |= {key: values[key] for key in (CONF_ADDRESS, CONF_DATA_TYPE, CONF_NAME)}
-        if user_input is not None:
-            base = {key: values[key] for key in (*BASE_FIELDS, CONF_ROLE, *SHARED) if key in values}
-            data, errors, found = part_data(self._client, base | user_input)
-            data |= {k: base[k] for k in (CONF_AVAILABILITY_POLICY,) if k in base}
-            placeholders |= found
-            for _part, key, details in self._layout_errors([data], []) if not errors else []:
-                errors[CONF_READ_ONLY] = key
-                placeholders |= details
-            if not errors:
-                if values.get(CONF_ENTITY):  # an edited part stays a part of its entity
-                    data[CONF_ENTITY] = values[CONF_ENTITY]
-                self._points[self._part_ids[0]] = data
-                self._share(data)  # an edited part's class and travel are its entity's
-                self._parts, self._part_ids = [], []
-                self._editing = None
-                return await self.async_step_menu()
-        shown = as_platform(platform, role)
-        try:
-            kind = self._client.value_kind(Point(values[CONF_ADDRESS], values[CONF_DATA_TYPE]))
-        except PlcAddressError:
-            kind = None
-        schema = details_schema(shown, kind)
-        schema = vol.Schema({k: v for k, v in schema.schema.items() if k != CONF_POLL})
-        schema = schema.extend(poll_field())
-        if (described := role_of(platform, role)) is not None and described.invertible:
-            schema = schema.extend({vol.Required(CONF_INVERT, default=False): BooleanSelector()})
-        return self.async_show_form(
-            step_id="composite_part",
-            data_schema=self.add_suggested_values_to_schema(schema, user_input or values),
-            errors=errors,
-            description_placeholders=placeholders,
-        )
-
-    def _share(self, part: dict[str, Any]) -> None:
-        """Give every part of the edited part's entity the part's poll class and travel time."""
-        shared = {key: part[key] for key in SHARED if key in part}
-        for point_id, data in self._points.items():
-            if (data[CONF_NAME], data[CONF_PLATFORM]) == (part[CONF_NAME], part[CONF_PLATFORM]):
-                kept = {key: value for key, value in data.items() if key not in SHARED}
-                self._points[point_id] = kept | shared
-
-    async def async_edit_part(self, point_id: str) -> SubentryFlowResult:
-        """Edit one part: its address and data type, then its settings; its entity stays."""
-        data = self._points[point_id]
-        self._composite = {CONF_NAME: data[CONF_NAME], CONF_PLATFORM: data[CONF_PLATFORM]}
-        self._parts, self._part_ids = [dict(data)], [point_id]
-        self._editing = point_id  # its own address is not taken
-        return await self.async_step_composite_edit()
-
-    async def async_step_composite_edit(
-        self, user_input: dict[str, Any] | None = None
-    ) -> SubentryFlowResult:
-        """A part's address and data type, checked as the import checks them."""
-        values = self._parts[0]
-        errors: dict[str, str] = {}
-        placeholders = {key: str(values[key]) for key in (CONF_NAME, CONF_ROLE, CONF_ADDRESS)}
-        placeholders |= {CONF_DATA_TYPE: str(values[CONF_DATA_TYPE]), "error": "", "roles": ""}
-        placeholders |= {"point": "", "written": "", "seconds": ""}
-        platform = str(values[CONF_PLATFORM])
-        if user_input is not None:
-            address = str(user_input.get(CONF_ADDRESS) or "")
-            data_type = str(user_input.get(CONF_DATA_TYPE) or "")
-            travel, errors = travel_data(platform, user_input)
-            supervision, wrong = supervision_data(platform, user_input)
-            errors |= wrong
-            policy, refused = check_policy(user_input, data_valid=self._data_valid)
-            errors |= {CONF_AVAILABILITY_POLICY: refused} if refused else {}
-            kept = {k: v for k, v in values.items() if k not in (*TIMES, CONF_AVAILABILITY_POLICY)}
-            part, found_errors, found = self._part_at(
-                values[CONF_ROLE], address, data_type, self._taken()
-            )
-            errors |= found_errors
-            placeholders |= found
-            if part is not None and not errors:
-                part = {**kept, **part, **travel, **supervision, **policy}
-                rows = [
-                    {k: v for k, v in row.items() if k not in TIMES}
-                    for row in self._entity_rows(self._part_ids[0])
-                ]
-                if problems := group_errors([*rows, part]):
-                    errors["base"] = problems[0][1]
-                    placeholders |= problems[0][2]
-                for _part, key, details in self._layout_errors([part], []):
-                    errors[CONF_ADDRESS] = key
-                    placeholders |= details
-            if not errors and part is not None:
-                self._parts = [part]
-                return await self.async_step_composite_part()
-        schema = vol.Schema(
-            {
-                vol.Required(CONF_ADDRESS): TextSelector(),
-                vol.Optional(CONF_DATA_TYPE): data_types(self._client),
-            }
-        )
-        if time := entity_time(platform):
-            schema = schema.extend({vol.Optional(time): _SECONDS})
-        schema = schema.extend(policy_field(data_valid=self._data_valid))
-        return self.async_show_form(
-            step_id="composite_edit",
-            data_schema=self.add_suggested_values_to_schema(schema, user_input or values),
-            errors=errors,
-            description_placeholders=placeholders,
-        )
-
     def removal_errors(self, chosen: list[str]) -> tuple[dict[str, str], dict[str, str]]:
         """Refuse to remove parts of an entity that leave it none that shows (all may go)."""
         entities = {entity_of(self._points[point_id]) for point_id in chosen}
@@ -475,20 +410,42 @@ class CompositeSteps(DeviceFlowBase):
                 return {"base": "role_left_missing"}, placeholders
         return {}, {}
 
-    def _entity_rows(self, point_id: str) -> list[dict[str, Any]]:
-        """Return the other parts of the entity a part belongs to."""
-        entity = entity_of(self._points[point_id])
-        return [
-            data
-            for other, data in self._points.items()
-            if other != point_id and entity_of(data) == entity
-        ]
-
 
 def filled(message: str, placeholders: Mapping[str, str]) -> str:
     """Return a message with its placeholders filled in, as the frontend would show it."""
     text = re.sub(r"\{(\w+)\}", lambda found: placeholders.get(found[1], found[0]), message)
     return text.replace("''", "'")
+
+
+def page_values(kind: Kind, parts: Mapping[str, Mapping[str, Any]]) -> dict[str, Any]:
+    """Return an entity's stored parts as its page shows them, each field in its section."""
+    if not parts:
+        return {}
+    first = next(iter(parts.values()))
+    values: dict[str, Any] = {CONF_NAME: first[CONF_NAME]}
+    classes = {str(member) for member in kind.device_class or ()}
+    for stored in parts.values():
+        if stored.get(CONF_DEVICE_CLASS) in classes:
+            values.setdefault(CONF_DEVICE_CLASS, stored[CONF_DEVICE_CLASS])
+        if kind.entity_time and stored.get(kind.entity_time):
+            values.setdefault(kind.entity_time, stored[kind.entity_time])
+    for name, roles in kind.sections.items():
+        shown: dict[str, Any] = {}
+        for role in roles:
+            if (part := parts.get(role.key)) is None:
+                continue
+            shown |= {
+                role.key: part[CONF_ADDRESS],
+                f"{role.key}{TYPE_SUFFIX}": part[CONF_DATA_TYPE],
+            }
+            shown |= {f"{role.key}_{s}": part[s] for s in role.asks if s in part}
+            for setting in role.shares:
+                if setting in part:
+                    shown.setdefault(setting, part[setting])
+        values[name] = shown
+    options = {CONF_POLL: first.get(CONF_POLL, NORMAL)}
+    options |= {k: first[k] for k in (CONF_AVAILABILITY_POLICY,) if k in first}
+    return values | {OPTIONS: options}
 
 
 def flattened(user_input: Mapping[str, Any]) -> dict[str, Any]:

@@ -60,6 +60,8 @@ class PointWords:
     types: Mapping[str, str]
     kinds: Mapping[str, str]
     roles: Mapping[str, str]
+    page: Mapping[str, str]
+    """The entity page's titles: `new` and `edit`, with `{kind}` and `{name}` to fill."""
 
 
 async def async_point_words(hass: HomeAssistant) -> PointWords:
@@ -72,7 +74,7 @@ async def async_point_words(hass: HomeAssistant) -> PointWords:
         return {k.removeprefix(prefix): text for k, text in texts.items() if k.startswith(prefix)}
 
     kinds = {**options("composite_platform"), **options(CONF_PLATFORM)}
-    return PointWords(options(CONF_DATA_TYPE), kinds, options(LISTING))
+    return PointWords(options(CONF_DATA_TYPE), kinds, options(LISTING), options("entity_page"))
 
 
 def lowered(label: str) -> str:
