@@ -1,6 +1,7 @@
 """The demo's machines on the Tecomat and PLCnext simulators, as scripts/demo_plcs.py adds them.
 
-Each machine's table is pasted into a new device, each entity is driven by the action the
+Each machine's table is pasted into a new device (the shutter is built on its entity's page),
+each entity is driven by the action the
 frontend sends and the simulator's variable must change; then the demo program runs one step
 and the entities show what it did (the Overheat bit, the pump's contactor, the shutter's limit).
 """
@@ -23,7 +24,7 @@ from custom_components.plc_bridge.const import SUBENTRY_DEVICE
 from simulators.plcnext import PlcnextSimulator
 from simulators.tecomat import TecomatSimulator
 from tests.entries import point, poll, read_edits, set_up
-from tests.flows.forms import step
+from tests.flows.forms import entity_page, step
 from tests.harness import make_plcnext_entry, make_tecomat_entry
 
 sys.path.insert(0, str(Path(__file__).parents[1] / "scripts"))
@@ -36,14 +37,22 @@ FIRST = {
 """The point a first user adds to each PLC before the machines (the journey's pick)."""
 
 
-async def add_machine(hass: HomeAssistant, entry: MockConfigEntry, name: str, table: str) -> None:
-    """Add a device through the device flow by pasting its table, as the demo check does."""
+async def add_machine(
+    hass: HomeAssistant, entry: MockConfigEntry, name: str, made: str | dict[str, Any]
+) -> None:
+    """Add a device through the device flow by pasting its table or filling its entity's
+    page, as the demo check does."""
     result = await hass.config_entries.subentries.async_init(
         (entry.entry_id, SUBENTRY_DEVICE), context={"source": SOURCE_USER}
     )
     menu = await step(hass, result, {"name": name})
-    result = await step(hass, menu, {"next_step_id": "import_points"})
-    menu = await step(hass, result, {"table": table})
+    if isinstance(made, dict):
+        page = await entity_page(hass, menu, made["platform"])
+        values = {key: value for key, value in made.items() if key != "platform"}
+        menu = await step(hass, page, values)
+    else:
+        result = await step(hass, menu, {"next_step_id": "import_points"})
+        menu = await step(hass, result, {"table": made})
     assert menu["type"] is FlowResultType.MENU, menu.get("errors")
     result = await step(hass, menu, {"next_step_id": "save"})
     assert result["type"] is FlowResultType.CREATE_ENTRY
@@ -86,8 +95,8 @@ async def drive_machines(
     """Every drive of the demo check changes the PLC; the program's answers show."""
     journey = JOURNEYS[vendor]
     assert [name for name, _ in journey.machines] == ["Boiler", "Shutter", "Pump"]
-    for name, table in journey.machines:
-        await add_machine(hass, entry, name, table)
+    for name, made in journey.machines:
+        await add_machine(hass, entry, name, made)
     await read_edits(hass, freezer)
     for drive in journey.drives:
         entity_id = first_of(hass, entry, drive.domain)
