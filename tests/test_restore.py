@@ -20,7 +20,6 @@ from freezegun.api import FrozenDateTimeFactory
 from homeassistant.const import EVENT_STATE_CHANGED, STATE_UNAVAILABLE
 from homeassistant.core import Event, EventStateChangedData, HomeAssistant, State, callback
 from homeassistant.helpers import entity_registry as er
-from homeassistant.helpers.restore_state import async_get as async_restore_data
 import pytest
 from pytest_homeassistant_custom_component.common import (
     MockConfigEntry,
@@ -299,26 +298,3 @@ async def test_commands_before_the_first_read_send_nothing(
     await poll(hass, freezer)
     assert s7_smart_ha_sim.calls["write"] == 0
     assert "restored" not in hass.states.get(ids["pump"]).attributes  # type: ignore[union-attr]
-
-
-async def test_loaded_states_let_go_once_running(
-    hass: HomeAssistant,
-    s7_smart_ha_sim: S7SmartSimulator,
-    freezer: FrozenDateTimeFactory,
-    monkeypatch: pytest.MonkeyPatch,
-) -> None:
-    """Home Assistant's copy of a running entity's stored state is let go (memory per point);
-    an entity unloaded is stored again by Home Assistant and restored once more after that."""
-    hold(s7_smart_ha_sim, BEFORE)
-    entry = await set_up(hass, make_entry(hass, s7_smart_ha_sim, [*FIRST, *KINDS]))
-    ids = set(entity_ids(hass, entry).values())
-    hold(s7_smart_ha_sim, AFTER)
-    written = await restart(hass, entry, monkeypatch, freezer)
-    assert any("restored" in states[0].attributes for states in written.values())
-    loaded = async_restore_data(hass).last_states
-    assert not ids & set(loaded)
-    assert await hass.config_entries.async_unload(entry.entry_id)
-    await hass.async_block_till_done()
-    assert ids <= set(loaded)  # stored anew at removal, as Home Assistant does
-    await async_mock_restore_state_shutdown_restart(hass)
-    assert ids <= set(async_restore_data(hass).last_states)  # and dumped for the next start

@@ -23,7 +23,7 @@ from .model.availability import POLICY_DATA_VALID, POLICY_KEEP, has_data_valid, 
 from .model.conversion import Conversion
 from .model.points import PointConfig
 from .plc import PlcError, Point, PointResult, TlsMode, Value, ValueKind
-from .runtime.restore import extra_data, forget_stored, restored_result, stored_values
+from .runtime.restore import extra_data, restored_result, stored_values
 
 MANUFACTURERS = {
     "s7_smart": "Siemens",
@@ -297,7 +297,6 @@ class PlcEntity(CoordinatorEntity[PlcCoordinator], RestoreEntity):
         read = self.coordinator.data.values
         if unread := [point for point in self.restored_points() if point not in read]:
             self._restored = stored_values(await self.async_get_last_extra_data(), unread)
-        forget_stored(self.hass, self.entity_id)
         self._shown_available, self._shown, self._shown_note = self._shown_now()
 
     def _shown_now(self) -> tuple[bool, Any, str | None]:

@@ -12,12 +12,7 @@ from collections.abc import Iterable, Mapping
 from datetime import datetime, timedelta
 from typing import Any, Final
 
-from homeassistant.core import HomeAssistant
-from homeassistant.helpers.restore_state import (
-    ExtraStoredData,
-    RestoredExtraData,
-    async_get as async_restore_data,
-)
+from homeassistant.helpers.restore_state import ExtraStoredData, RestoredExtraData
 
 from ..plc import Point, PointResult, Value
 
@@ -89,14 +84,3 @@ def extra_data(
         elif result is None and restored is not None and key in restored:
             values[key] = restored[key]
     return RestoredExtraData({VALUES: values}) if values else None
-
-
-def forget_stored(hass: HomeAssistant, entity_id: str) -> None:
-    """Let go of the state Home Assistant loaded for an entity now running (it has read it).
-
-    Home Assistant keeps every stored state it loaded at start for the whole run, though it
-    never stores that copy again while the entity runs (its dump takes the running state; an
-    entity removed is stored anew from its last state). Per point entity that copy is a State,
-    its attributes, its times and the raw values: RSS and objects every full collection walks.
-    """
-    async_restore_data(hass).last_states.pop(entity_id, None)
