@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import asyncio
 from collections.abc import AsyncGenerator
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Any
 
 from homeassistant.config_entries import SOURCE_USER
@@ -194,4 +194,23 @@ async def test_pages_and_file_refuse_alike(
     assert key == file_error
     assert message.startswith(f"Line {line_of(text, f'{bad.line_key}:')}:")
     assert not hass.config_entries.async_entries(DOMAIN)
+    assert listener.accepted == []
+
+
+async def test_reauth_refuses_as_the_model(hass: HomeAssistant, listener: Listener) -> None:
+    """The reauth page of a PLC that authenticates by certificate decides by the same model:
+    the same value refused on its field with the same error; nothing stored, nothing sent."""
+    bad = CASES["certificate outside the config folder"]
+    stored = entry_data(replace(bad, options={}), listener.port)
+    entry = MockConfigEntry(domain=DOMAIN, title="Boiler house", data=stored, version=2)
+    entry.add_to_hass(hass)
+    result = await entry.start_reauth_flow(hass)
+    assert result["step_id"] == "reauth_softplc"
+    given = bad.options | {"client_key": "/etc/ssl/private/plc.key"}
+    result = translated(
+        await hass.config_entries.flow.async_configure(result["flow_id"], given), *CONFIG
+    )
+    field_name, form_error, _ = model_error(hass, stored | {CONF_OPTIONS: given})
+    assert result["errors"] == {field_name: form_error} == {bad.error[0]: bad.error[1]}
+    assert dict(entry.data) == stored
     assert listener.accepted == []

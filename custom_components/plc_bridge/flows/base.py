@@ -111,17 +111,6 @@ class PlcFlowBase(ConfigFlow):
             },
         )
 
-    async def _resolved(
-        self, vendor: str, user_input: Mapping[str, Any], stored: Mapping[str, Any]
-    ) -> dict[str, str]:
-        """Return the submitted options that name files, resolved in the config folder."""
-        return await self.hass.async_add_executor_job(
-            client_class(vendor).resolve_options,
-            self.hass.config.config_dir,
-            user_input,
-            stored,
-        )
-
     async def _connection_step(self, user_input: Input = None) -> ConfigFlowResult:
         """Take a vendor's connection page; go on to its second page, if it has one.
 

@@ -31,7 +31,6 @@ from ..plc import (
     PlcClient,
     PlcConnectionError,
     PlcError,
-    PlcOptionError,
     PlcSessionRefusedError,
     PlcTimeoutError,
     PlcTlsError,
@@ -209,8 +208,3 @@ def error_for(err: PlcError, client: type[PlcClient] | None = None) -> dict[str,
     if isinstance(err, PlcConnectionError):
         return {CONF_HOST: "cannot_connect"}
     return {"base": "protocol_error"}
-
-
-def option_error(err: PlcOptionError) -> dict[str, str]:
-    """Return the form error of a vendor option that cannot be used, on its own field."""
-    return {err.option: "pem_outside_config" if err.outside else "invalid_pem"}

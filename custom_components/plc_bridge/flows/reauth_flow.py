@@ -10,11 +10,11 @@ from homeassistant.const import CONF_USERNAME
 import voluptuous as vol
 
 from ..const import CONF_OPTIONS, CONF_VENDOR
+from ..model.plc_config import Connection, file_problems
 from ..model.vendor_fields import VENDOR_FIELDS
-from ..plc import PlcOptionError
 from ..plc.vendors import client_class
 from .base import PlcFlowBase
-from .connection_form import CREDENTIALS_SCHEMA, fields_schema, on_form, option_error
+from .connection_form import CREDENTIALS_SCHEMA, fields_schema, on_form
 from .vendor_steps import Input
 
 
@@ -36,13 +36,16 @@ class ReauthSteps(PlcFlowBase):
         errors: dict[str, str] = {}
         if user_input is not None:
             stored = entry.data.get(CONF_OPTIONS, {})
-            try:
-                submitted = await self._resolved(vendor, user_input, stored)
-                options = client_class(vendor).validate_options(stored | submitted)
-            except PlcOptionError as err:
-                self._problem, errors = str(err), option_error(err)
+            folder = self.hass.config.config_dir
+            submitted, problems = await self.hass.async_add_executor_job(
+                file_problems, vendor, folder, user_input, stored
+            )
+            data = {**entry.data, CONF_OPTIONS: {**stored, **submitted}}
+            problems = problems or list(Connection.from_data(data).problems())
+            if problems:  # the model's checks, as the connection pages and the pasted file
+                errors = self._errors_of(problems)
             else:
-                data = {**entry.data, CONF_OPTIONS: options}
+                data[CONF_OPTIONS] = client_class(vendor).validate_options(data[CONF_OPTIONS])
                 device, errors = await self._connect(data)
                 if device is not None:
                     return self._store(entry, "reauth_successful", data)
