@@ -24,6 +24,7 @@ ROOT = Path(__file__).resolve().parent.parent
 INTEGRATION = ROOT / "custom_components" / "plc_bridge"
 SKIP_DIRS = {".git", ".venv", "config", "node_modules", "htmlcov", "__pycache__"}
 SKIP_DIRS |= {".mypy_cache", ".ruff_cache", ".pytest_cache"}
+SKIP_DIRS |= {".demo-check", ".wt"}  # the demo check's throwaway config; helpers' worktrees
 
 # Home Assistant's own lists (script/hassfest, not shipped in the homeassistant package).
 IOT_CLASSES = ["assumed_state", "calculated", "cloud_polling", "cloud_push", "local_polling"]
