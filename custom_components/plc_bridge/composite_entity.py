@@ -119,11 +119,10 @@ def async_setup_composites(
 
 def own_class(platform: str, parts: dict[str, Part]) -> str | None:
     """Return the entity's device class: a part's that is one of its kind's (a shutter)."""
-    classes = KINDS[platform].device_class
-    if classes is None:
-        return None
-    found = (p.config.device_class for p in parts.values() if p.config.device_class)
-    return next((classes(name) for name in found if name in set(classes)), None)
+    kind = KINDS[platform]
+    found = (kind.own_class(part.config.device_class) for part in parts.values())
+    own = next((name for name in found if name), "")
+    return kind.device_class(own) if kind.device_class is not None and own else None
 
 
 class PlcCompositeEntity(PlcEntity):

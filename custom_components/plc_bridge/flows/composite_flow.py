@@ -15,7 +15,6 @@ it keeps its point id and its entity's key, so the entity keeps its unique id an
 from __future__ import annotations
 
 from collections.abc import Awaitable, Callable, Iterable, Mapping
-import re
 import secrets
 from typing import Any
 
@@ -89,27 +88,21 @@ from ..model.poll_classes import CONF_POLL, NORMAL, poll_field
 from ..model.write_rules import layout_conflicts
 from ..plc import PlcClient, Point
 from .base import DeviceFlowBase
-from .flow_lists import PointWords, async_point_words
+from .flow_lists import PointWords, async_point_words, filled
 
-SHARED = (CONF_POLL, CONF_TRAVEL_TIME, CONF_SUPERVISION, CONF_AVAILABILITY_POLICY)
-"""What every part of one entity has alike: its poll class, travel and supervision time, and
-its availability policy."""
-TIMES = (CONF_TRAVEL_TIME, CONF_SUPERVISION)
-"""The entity's times the first form (or a part's address form) asks, stored on every part."""
-_SECONDS = NumberSelector(NumberSelectorConfig(mode=NumberSelectorMode.BOX, step="any"))
+_NUMBER = NumberSelector(NumberSelectorConfig(mode=NumberSelectorMode.BOX, step="any"))
 
 TYPE_SUFFIX = "_data_type"
 """A part's data type field: its role's name and this."""
 OPTIONS = "entity_options"
 """The folded section of the entity's page: its poll class and availability."""
 PERCENT = {CONF_SHOWN_MIN: 0.0, CONF_SHOWN_MAX: 100.0}
+"""What a raw range maps onto for a role read or set in percent."""
 ENTITY_KEYS = (
     *(CONF_NAME, CONF_PLATFORM, CONF_ROLE, CONF_ADDRESS, CONF_DATA_TYPE, CONF_READ_ONLY),
     *(CONF_POLL, CONF_AVAILABILITY_POLICY, CONF_TRAVEL_TIME, CONF_SUPERVISION, CONF_ENTITY),
 )
 """What the entity's page sets on every part, whatever the role."""
-"""What a raw range maps onto for a role read or set in percent."""
-_NUMBER = NumberSelector(NumberSelectorConfig(mode=NumberSelectorMode.BOX, step="any"))
 SETTINGS: dict[str, Any] = {
     CONF_PULSE: NumberSelector(
         NumberSelectorConfig(
@@ -230,7 +223,7 @@ class CompositeSteps(DeviceFlowBase):
                 )
             )
         if kind.entity_time:
-            fields[vol.Optional(kind.entity_time)] = _SECONDS
+            fields[vol.Optional(kind.entity_time)] = _NUMBER
         for name, roles in kind.sections.items():
             inner: dict[vol.Marker, Any] = {}
             for role in roles:
@@ -411,22 +404,15 @@ class CompositeSteps(DeviceFlowBase):
         return {}, {}
 
 
-def filled(message: str, placeholders: Mapping[str, str]) -> str:
-    """Return a message with its placeholders filled in, as the frontend would show it."""
-    text = re.sub(r"\{(\w+)\}", lambda found: placeholders.get(found[1], found[0]), message)
-    return text.replace("''", "'")
-
-
 def page_values(kind: Kind, parts: Mapping[str, Mapping[str, Any]]) -> dict[str, Any]:
     """Return an entity's stored parts as its page shows them, each field in its section."""
     if not parts:
         return {}
     first = next(iter(parts.values()))
     values: dict[str, Any] = {CONF_NAME: first[CONF_NAME]}
-    classes = {str(member) for member in kind.device_class or ()}
     for stored in parts.values():
-        if stored.get(CONF_DEVICE_CLASS) in classes:
-            values.setdefault(CONF_DEVICE_CLASS, stored[CONF_DEVICE_CLASS])
+        if own := kind.own_class(stored.get(CONF_DEVICE_CLASS)):
+            values.setdefault(CONF_DEVICE_CLASS, own)
         if kind.entity_time and stored.get(kind.entity_time):
             values.setdefault(kind.entity_time, stored[kind.entity_time])
     for name, roles in kind.sections.items():

@@ -224,3 +224,9 @@ def picked_points(
         else:
             points.append(data)
     return points, refused
+
+
+def filled(message: str, placeholders: Mapping[str, str]) -> str:
+    """Return a message with its placeholders filled in (one not given: empty), as shown."""
+    text = re.sub(r"\{(\w+)\}", lambda found: placeholders.get(found[1], ""), message)
+    return text.replace("''", "'")

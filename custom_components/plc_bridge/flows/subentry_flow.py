@@ -7,7 +7,6 @@ pasted table, edit or remove a point, save. Reconfigure opens the same menu.
 
 from __future__ import annotations
 
-from collections import defaultdict
 from collections.abc import Mapping
 from dataclasses import replace
 import secrets
@@ -51,6 +50,7 @@ from .flow_lists import (
     MAX_LISTED,
     async_point_words,
     async_type_names,
+    filled,
     listing,
     matching,
     pick_schema,
@@ -368,11 +368,11 @@ def problem_words(problem: Problem, texts: Mapping[str, str]) -> str:
     else:
         key = problem.field_key
         found = next((texts[prefix + key] for prefix in ERROR_TEXTS if prefix + key in texts), None)
-        filled = {
+        given = {
             **words,
             "written": words.get("address", ""),
             "point": words.get("other") or point,
             "fast_minimum": words.get("minimum", ""),
         }
-        text = plain(key, words) if found is None else found.format_map(defaultdict(str, filled))
+        text = plain(key, words) if found is None else filled(found, given)
     return f"{point}: {text}" if point and point not in text else text

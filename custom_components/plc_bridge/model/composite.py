@@ -201,10 +201,7 @@ def part_data(
 
 def _own_class(kind: Kind | None, values: Mapping[str, Any]) -> str:
     """Return a part's device class where it is one of its entity's kind (a cover's shutter)."""
-    given = str(values.get(CONF_DEVICE_CLASS) or "")
-    if kind is None or kind.device_class is None or not given:
-        return ""
-    return given if given in set(kind.device_class) else ""
+    return "" if kind is None else kind.own_class(values.get(CONF_DEVICE_CLASS))
 
 
 def travel_data(platform: str, values: Mapping[str, Any]) -> tuple[dict[str, Any], dict[str, str]]:

@@ -193,6 +193,12 @@ class Kind:
         """The settings a section of its page asks once for all its roles, in form order."""
         return tuple(dict.fromkeys(s for role in self.sections[section] for s in role.shares))
 
+    def own_class(self, given: Any) -> str:
+        """Return `given` where it is one of the kind's own device classes (a shutter), else ""."""
+        if self.device_class is None or not given:
+            return ""
+        return str(given) if str(given) in set(self.device_class) else ""
+
     def features(self, written: Iterable[str]) -> int:
         """Return the feature flags an entity has with these roles written (its enum's value)."""
         if self.feature is None:
