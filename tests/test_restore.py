@@ -1,8 +1,8 @@
 """Restored values: after a restart every entity shows its last value until a poll reads it.
 
 Home Assistant is restarted in the harness as core's restore tests do it: the entry is unloaded
-(each entity hands its state and extra data to the restore store, as at a stop), the store is
-dumped to storage and loaded back from it (`async_mock_restore_state_shutdown_restart`), then
+(its values go to its file, in the harness's storage), Home Assistant's restore store is dumped
+and loaded back (`async_mock_restore_state_shutdown_restart`: the event restores from it), then
 the entry is set up again. The S7-200 SMART is paced (one request a second, 32 nodes each):
 the setup's first poll reads the first 32 points only, so the entities of every kind (placed
 after them) are shown before their first poll, then polled by the poll that follows at once.
@@ -17,7 +17,11 @@ from datetime import timedelta
 from typing import Any
 
 from freezegun.api import FrozenDateTimeFactory
-from homeassistant.const import EVENT_STATE_CHANGED, STATE_UNAVAILABLE
+from homeassistant.const import (
+    EVENT_HOMEASSISTANT_FINAL_WRITE,
+    EVENT_STATE_CHANGED,
+    STATE_UNAVAILABLE,
+)
 from homeassistant.core import Event, EventStateChangedData, HomeAssistant, State, callback
 from homeassistant.helpers import entity_registry as er
 import pytest
@@ -25,9 +29,11 @@ from pytest_homeassistant_custom_component.common import (
     MockConfigEntry,
     async_fire_time_changed,
     async_mock_restore_state_shutdown_restart,
+    mock_restore_cache_with_extra_data,
 )
 
 from custom_components.plc_bridge.plc.vendors.s7_smart import S7SmartClient
+from custom_components.plc_bridge.runtime.restore import SAVE_DELAY, storage_key
 from simulators.s7_smart import S7SmartSimulator
 from tests.entries import PointData, edit_point, make_entry, point, poll, read_edits, set_up
 
@@ -205,6 +211,122 @@ async def test_every_kind_shows_its_last_value_until_polled(
     assert s7_smart_ha_sim.calls["write"] == 0
     await poll(hass, freezer)
     assert s7_smart_ha_sim.calls["write"] == 0
+    assert entry.runtime_data.coordinator.stored.restored is None  # every point read: dropped
+
+
+def kept(hass_storage: dict[str, Any], entry: MockConfigEntry) -> dict[str, Any]:
+    """Return the values in the entry's file (what the harness's storage holds of it)."""
+    return dict(hass_storage[storage_key(entry.entry_id)]["data"]["values"])
+
+
+async def test_values_are_kept_when_home_assistant_stops(
+    hass: HomeAssistant,
+    hass_storage: dict[str, Any],
+    s7_smart_ha_sim: S7SmartSimulator,
+    freezer: FrozenDateTimeFactory,
+) -> None:
+    """Home Assistant's last write at a stop writes the values of the last poll; nothing before."""
+    hold(s7_smart_ha_sim, BEFORE)
+    entry = await set_up(hass, make_entry(hass, s7_smart_ha_sim, KINDS))
+    hold(s7_smart_ha_sim, AFTER)
+    await poll(hass, freezer)
+    assert storage_key(entry.entry_id) not in hass_storage
+    hass.bus.async_fire(EVENT_HOMEASSISTANT_FINAL_WRITE)
+    await hass.async_block_till_done()
+    values = kept(hass_storage, entry)
+    assert (values["VD100|float"], values["VW20|signed"], values["VB200|string"]) == (
+        23.0,
+        55,
+        "Line 2",
+    )
+
+
+async def test_values_are_written_a_quarter_of_an_hour_after_a_poll(
+    hass: HomeAssistant,
+    hass_storage: dict[str, Any],
+    s7_smart_ha_sim: S7SmartSimulator,
+    freezer: FrozenDateTimeFactory,
+) -> None:
+    """For a stop that writes nothing, the values are written SAVE_DELAY after a poll, and again."""
+    hold(s7_smart_ha_sim, BEFORE)
+    entry = await set_up(hass, make_entry(hass, s7_smart_ha_sim, KINDS))
+    freezer.tick(timedelta(seconds=SAVE_DELAY - 1))
+    async_fire_time_changed(hass)
+    await hass.async_block_till_done(wait_background_tasks=True)
+    assert storage_key(entry.entry_id) not in hass_storage
+    freezer.tick(timedelta(seconds=1))
+    async_fire_time_changed(hass)
+    await hass.async_block_till_done(wait_background_tasks=True)
+    assert kept(hass_storage, entry)["VW20|signed"] == 40
+    hold(s7_smart_ha_sim, AFTER)
+    freezer.tick(timedelta(seconds=SAVE_DELAY + 60))
+    async_fire_time_changed(hass)
+    await hass.async_block_till_done(wait_background_tasks=True)
+    await poll(hass, freezer)
+    freezer.tick(timedelta(seconds=SAVE_DELAY))
+    async_fire_time_changed(hass)
+    await hass.async_block_till_done(wait_background_tasks=True)
+    assert kept(hass_storage, entry)["VW20|signed"] == 55
+
+
+async def test_a_removed_plc_leaves_no_file(
+    hass: HomeAssistant,
+    hass_storage: dict[str, Any],
+    s7_smart_ha_sim: S7SmartSimulator,
+) -> None:
+    """Removing a PLC deletes its file of values with it."""
+    entry = await set_up(hass, make_entry(hass, s7_smart_ha_sim, KINDS))
+    assert await hass.config_entries.async_unload(entry.entry_id)
+    assert storage_key(entry.entry_id) in hass_storage
+    await hass.config_entries.async_remove(entry.entry_id)
+    await hass.async_block_till_done()
+    assert storage_key(entry.entry_id) not in hass_storage
+
+
+async def test_the_first_start_after_0_10_takes_its_values_from_home_assistant(
+    hass: HomeAssistant,
+    hass_storage: dict[str, Any],
+    s7_smart_ha_sim: S7SmartSimulator,
+    freezer: FrozenDateTimeFactory,
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    """0.10 stored the values with each entity's state: with no file yet, they are taken there.
+
+    Only the entry's own entities are taken: another integration's state of the same shape
+    gives nothing. Once the file exists Home Assistant's restore data is not read again.
+    """
+    hold(s7_smart_ha_sim, BEFORE)
+    entry = await set_up(hass, make_entry(hass, s7_smart_ha_sim, [*FIRST, *KINDS]))
+    ids = entity_ids(hass, entry)
+    assert await hass.config_entries.async_unload(entry.entry_id)
+    await hass.async_block_till_done()
+    del hass_storage[storage_key(entry.entry_id)]
+    mock_restore_cache_with_extra_data(
+        hass,
+        [
+            (State(ids["temp"], "21.5"), {"values": {"VD100|float": 21.5}}),
+            (State(ids["set"], "40"), {"values": {"VW20|signed": 40}}),
+            (State("sensor.elsewhere", "7"), {"values": {"VW30|signed": 1}}),
+        ],
+    )
+    paced_after_connect(monkeypatch)
+    await set_up(hass, entry)
+    shown = {key: hass.states.get(ids[key]) for key in ("temp", "set", "kmode")}
+    assert {
+        key: (state.state, state.attributes.get("restored")) for key, state in shown.items()
+    } == {
+        "temp": ("21.5", True),
+        "set": ("40", True),
+        "kmode": (STATE_UNAVAILABLE, None),
+    }
+    assert await hass.config_entries.async_unload(entry.entry_id)  # the file keeps them unread
+    await hass.async_block_till_done()
+    mock_restore_cache_with_extra_data(
+        hass, [(State(ids["temp"], "99.0"), {"values": {"VD100|float": 99.0}})]
+    )
+    monkeypatch.setattr(S7SmartClient, "request_interval", 0.0)
+    await set_up(hass, entry)
+    assert hass.states.get(ids["temp"]).state == "21.5"  # type: ignore[union-attr]
 
 
 async def test_event_restores_as_home_assistant_does(

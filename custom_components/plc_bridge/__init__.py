@@ -27,6 +27,7 @@ from .runtime.issues import (
     async_clear_issue,
     async_raise_issue,
 )
+from .runtime.restore import async_remove_values
 from .services import async_setup_services
 
 CONFIG_SCHEMA = cv.config_entry_only_config_schema(DOMAIN)
@@ -57,6 +58,8 @@ async def async_setup_entry(hass: HomeAssistant, entry: PlcBridgeConfigEntry) ->
     async_clear_issue(hass, entry, CERTIFICATE_CHANGED)
     points = PointEntities(entry)
     coordinator = PlcCoordinator(hass, entry, client, points.configs)
+    await coordinator.stored.async_load()
+    entry.async_on_unload(coordinator.stored.async_save)  # after the entities are gone
     await coordinator.async_first_poll()
     settings = (dict(entry.data), dict(entry.options))
     entry.runtime_data = PlcRuntimeData(
@@ -81,10 +84,11 @@ async def async_update_entry(hass: HomeAssistant, entry: PlcBridgeConfigEntry) -
 
 
 async def async_unload_entry(hass: HomeAssistant, entry: PlcBridgeConfigEntry) -> bool:
-    """Remove the entities; the client logs out and closes as the entry unloads."""
+    """Remove the entities; the points' values are kept, the client logs out and closes."""
     return await hass.config_entries.async_unload_platforms(entry, PLATFORMS)
 
 
 async def async_remove_entry(hass: HomeAssistant, entry: ConfigEntry) -> None:
-    """Delete the issues of a removed PLC."""
+    """Delete the issues and the kept values of a removed PLC."""
     async_clear_all(hass, entry)
+    await async_remove_values(hass, entry.entry_id)

@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from collections import deque
-from collections.abc import Iterable, Mapping
+from collections.abc import Collection, Iterable, Mapping
 from datetime import datetime, timedelta
 from typing import TYPE_CHECKING
 
@@ -44,6 +44,7 @@ from .runtime.issues import (
     async_raise_point_issue,
 )
 from .runtime.polling import PollingCoordinator
+from .runtime.restore import StoredValues
 from .runtime.write_guard import WriteGuard
 
 if TYPE_CHECKING:
@@ -106,6 +107,9 @@ class PlcCoordinator(PollingCoordinator):
         """Collect the points and choose the poll interval the vendor's request rate allows."""
         super().__init__(hass, entry, client)
         self.availability = MachineAvailability(entry.title)
+        self.stored = StoredValues(hass, entry)
+        """The points' values kept across restarts (runtime/restore.py)."""
+        self.stored.follow(self._kept)
         self._set_points(points)
         self._failing: set[Point] = set()
         # The others stay open until their point reads, even those a previous setup raised.
@@ -139,6 +143,10 @@ class PlcCoordinator(PollingCoordinator):
         # A removed point's issue goes with it.
         async_clear_point_issues(self.hass, self.config_entry, keep=self.points)
 
+    def _kept(self) -> tuple[Mapping[Point, PointResult], Collection[Point]]:
+        """The last poll's results, and the points whose values are kept across restarts."""
+        return (self.data.values if self.data is not None else {}), self.points.values()
+
     @callback
     def async_set_points(self, points: Mapping[str, PointConfig]) -> None:
         """Follow edited points; the new ones are read together once the edits pause."""
@@ -169,6 +177,7 @@ class PlcCoordinator(PollingCoordinator):
         for machine in self.availability.invalid:
             # Read whatever their class, so the poll that finds its data valid again reads them.
             self._asked.update(self._machines.get(machine, set()) & result.values.keys())
+        self.stored.polled(result.values.keys())
         return result
 
     def _watch_points(self, result: ReadResult) -> None:

@@ -13,7 +13,6 @@ from homeassistant.core import HomeAssistant, callback
 from homeassistant.helpers import device_registry as dr, entity_registry as er
 from homeassistant.helpers.device_registry import CONNECTION_NETWORK_MAC, DeviceInfo, format_mac
 from homeassistant.helpers.entity import EntityDescription
-from homeassistant.helpers.restore_state import ExtraStoredData, RestoreEntity
 from homeassistant.helpers.update_coordinator import BaseCoordinatorEntity, CoordinatorEntity
 from yarl import URL
 
@@ -23,7 +22,7 @@ from .model.availability import POLICY_DATA_VALID, POLICY_KEEP, has_data_valid, 
 from .model.conversion import Conversion
 from .model.points import PointConfig
 from .plc import PlcError, Point, PointResult, TlsMode, Value, ValueKind
-from .runtime.restore import extra_data, restored_result, stored_values
+from .runtime.restore import restored_result
 
 MANUFACTURERS = {
     "s7_smart": "Siemens",
@@ -185,19 +184,19 @@ def entity_policy(entry: PlcBridgeConfigEntry, subentry_id: str, policy: str | N
     return policy_of(policy, data_valid=data_valid)
 
 
-class PlcEntity(CoordinatorEntity[PlcCoordinator], RestoreEntity):
+class PlcEntity(CoordinatorEntity[PlcCoordinator]):
     """An entity of one PLC's device: unique id and device set once.
 
-    An entity of points shows the values it stored at the last stop, marked restored, until a
-    poll reads its points; they are seen only while its state is written (`_showing`), so no
-    command is ever decided from them.
+    An entity of points shows the values its PLC kept at the last stop (runtime/restore.py),
+    marked restored, until a poll reads its points; they are seen only while its state is
+    written (`_showing`), so no command is ever decided from them.
     """
 
     _attr_has_entity_name = True
     _policy: str = POLICY_DATA_VALID
     """The availability policy (model/availability.py); the PLC's own entities follow the PLC."""
     _restored: Mapping[str, Any] | None = None
-    """The raw values by point stored at the last stop, until a poll reads every point."""
+    """The raw values by point kept at the last stop, until a poll reads every point."""
     _restores = True
     """False where the platform restores its own state (an event its last event)."""
     _showing = False
@@ -237,7 +236,7 @@ class PlcEntity(CoordinatorEntity[PlcCoordinator], RestoreEntity):
         return None
 
     def restored_points(self) -> list[Point]:
-        """The points whose values the entity stores across restarts: those it shows."""
+        """The points whose kept values the entity shows before they are read: those it shows."""
         return self.read_points() if self._restores else []
 
     def point_result(self, point: Point) -> PointResult | None:
@@ -246,15 +245,6 @@ class PlcEntity(CoordinatorEntity[PlcCoordinator], RestoreEntity):
         if result is None and self._showing:
             return restored_result(self._restored, point)
         return result
-
-    @property
-    def extra_restore_state_data(self) -> ExtraStoredData | None:
-        """The raw value of each point: the last read, else the one restored."""
-        points = self.restored_points()
-        if not points:
-            return super().extra_restore_state_data
-        values = self.coordinator.data.values
-        return extra_data({point: values.get(point) for point in points}, self._restored)
 
     def _note(self) -> str | None:
         """What the attributes say beside the state: restored, kept, or nothing."""
@@ -285,7 +275,7 @@ class PlcEntity(CoordinatorEntity[PlcCoordinator], RestoreEntity):
     async def async_added_to_hass(self) -> None:
         """Follow the coordinator's polls; restore what is not read yet; note the first state.
 
-        Values stored at the last stop are taken for the points not read yet. The coordinator's
+        Values kept at the last stop are taken for the points not read yet. The coordinator's
         one dispatch updates the entity: the base's listener would keep a callback, a remover
         and their arguments per entity.
         """
@@ -296,7 +286,7 @@ class PlcEntity(CoordinatorEntity[PlcCoordinator], RestoreEntity):
             self._attr_unique_id = stored.unique_id  # the registry's string: one for both
         read = self.coordinator.data.values
         if unread := [point for point in self.restored_points() if point not in read]:
-            self._restored = stored_values(await self.async_get_last_extra_data(), unread)
+            self._restored = self.coordinator.stored.restored_for(unread)
         self._shown_available, self._shown, self._shown_note = self._shown_now()
 
     def _shown_now(self) -> tuple[bool, Any, str | None]:

@@ -61,8 +61,7 @@ async def async_setup_entry(
     entry.runtime_data.points.async_setup_platform("event", point_event, async_add_entities)
 
 
-# PlcEntity's restore data hands over to EventEntity's (the event restores no point values).
-class PlcAlarmEvent(PlcPointEntity, EventEntity):  # type: ignore[misc]
+class PlcAlarmEvent(PlcPointEntity, EventEntity):
     """Fires when a named bit of the word is set (`<name> raised`) or reset (`<name> cleared`).
 
     The first value read is the baseline: bits already set when Home Assistant starts fire
@@ -70,7 +69,7 @@ class PlcAlarmEvent(PlcPointEntity, EventEntity):  # type: ignore[misc]
     """
 
     entity_description: PlcEventDescription
-    _restores = False  # its last event, as Home Assistant's event entities restore it
+    _restores = False  # its last event, restored by Home Assistant's event entity
     _last: int | None = None
 
     async def async_added_to_hass(self) -> None:
