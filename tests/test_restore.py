@@ -219,21 +219,34 @@ def kept(hass_storage: dict[str, Any], entry: MockConfigEntry) -> dict[str, Any]
     return dict(hass_storage[storage_key(entry.entry_id)]["data"]["values"])
 
 
-async def test_values_are_kept_when_home_assistant_stops(
-    hass: HomeAssistant,
-    hass_storage: dict[str, Any],
-    s7_smart_ha_sim: S7SmartSimulator,
-    freezer: FrozenDateTimeFactory,
-) -> None:
-    """Home Assistant's last write at a stop writes the values of the last poll; nothing before."""
+async def later(hass: HomeAssistant, freezer: FrozenDateTimeFactory, seconds: float) -> None:
+    """Let `seconds` pass and wait for what they start."""
+    freezer.tick(timedelta(seconds=seconds))
+    async_fire_time_changed(hass)
+    await hass.async_block_till_done(wait_background_tasks=True)
+
+
+@pytest.fixture
+async def kinds_entry(hass: HomeAssistant, s7_smart_ha_sim: S7SmartSimulator) -> MockConfigEntry:
+    """An entry of every kind, set up while the PLC holds BEFORE; then it holds AFTER."""
     hold(s7_smart_ha_sim, BEFORE)
     entry = await set_up(hass, make_entry(hass, s7_smart_ha_sim, KINDS))
     hold(s7_smart_ha_sim, AFTER)
+    return entry
+
+
+async def test_values_are_kept_when_home_assistant_stops(
+    hass: HomeAssistant,
+    hass_storage: dict[str, Any],
+    kinds_entry: MockConfigEntry,
+    freezer: FrozenDateTimeFactory,
+) -> None:
+    """Home Assistant's last write at a stop writes the values of the last poll; nothing before."""
     await poll(hass, freezer)
-    assert storage_key(entry.entry_id) not in hass_storage
+    assert storage_key(kinds_entry.entry_id) not in hass_storage
     hass.bus.async_fire(EVENT_HOMEASSISTANT_FINAL_WRITE)
     await hass.async_block_till_done()
-    values = kept(hass_storage, entry)
+    values = kept(hass_storage, kinds_entry)
     assert (values["VD100|float"], values["VW20|signed"], values["VB200|string"]) == (
         23.0,
         55,
@@ -244,43 +257,35 @@ async def test_values_are_kept_when_home_assistant_stops(
 async def test_values_are_written_a_quarter_of_an_hour_after_a_poll(
     hass: HomeAssistant,
     hass_storage: dict[str, Any],
+    kinds_entry: MockConfigEntry,
     s7_smart_ha_sim: S7SmartSimulator,
     freezer: FrozenDateTimeFactory,
 ) -> None:
-    """For a stop that writes nothing, the values are written SAVE_DELAY after a poll, and again."""
-    hold(s7_smart_ha_sim, BEFORE)
-    entry = await set_up(hass, make_entry(hass, s7_smart_ha_sim, KINDS))
-    freezer.tick(timedelta(seconds=SAVE_DELAY - 1))
-    async_fire_time_changed(hass)
-    await hass.async_block_till_done(wait_background_tasks=True)
-    assert storage_key(entry.entry_id) not in hass_storage
-    freezer.tick(timedelta(seconds=1))
-    async_fire_time_changed(hass)
-    await hass.async_block_till_done(wait_background_tasks=True)
-    assert kept(hass_storage, entry)["VW20|signed"] == 40
-    hold(s7_smart_ha_sim, AFTER)
-    freezer.tick(timedelta(seconds=SAVE_DELAY + 60))
-    async_fire_time_changed(hass)
-    await hass.async_block_till_done(wait_background_tasks=True)
-    await poll(hass, freezer)
-    freezer.tick(timedelta(seconds=SAVE_DELAY))
-    async_fire_time_changed(hass)
-    await hass.async_block_till_done(wait_background_tasks=True)
-    assert kept(hass_storage, entry)["VW20|signed"] == 55
+    """For a stop that writes nothing, the values are written SAVE_DELAY after a poll, and again.
+
+    The write after the setup's poll comes SAVE_DELAY later, whatever polls since, with the
+    values of the last one.
+    """
+    await later(hass, freezer, SAVE_DELAY - 1)
+    assert storage_key(kinds_entry.entry_id) not in hass_storage
+    await later(hass, freezer, 1)
+    assert kept(hass_storage, kinds_entry)["VW20|signed"] == 55
+    s7_smart_ha_sim.set("VW20", 70)
+    await later(hass, freezer, 60)  # a poll reads it and plans the next write
+    assert kept(hass_storage, kinds_entry)["VW20|signed"] == 55
+    await later(hass, freezer, SAVE_DELAY)
+    assert kept(hass_storage, kinds_entry)["VW20|signed"] == 70
 
 
 async def test_a_removed_plc_leaves_no_file(
-    hass: HomeAssistant,
-    hass_storage: dict[str, Any],
-    s7_smart_ha_sim: S7SmartSimulator,
+    hass: HomeAssistant, hass_storage: dict[str, Any], kinds_entry: MockConfigEntry
 ) -> None:
     """Removing a PLC deletes its file of values with it."""
-    entry = await set_up(hass, make_entry(hass, s7_smart_ha_sim, KINDS))
-    assert await hass.config_entries.async_unload(entry.entry_id)
-    assert storage_key(entry.entry_id) in hass_storage
-    await hass.config_entries.async_remove(entry.entry_id)
+    assert await hass.config_entries.async_unload(kinds_entry.entry_id)
+    assert storage_key(kinds_entry.entry_id) in hass_storage
+    await hass.config_entries.async_remove(kinds_entry.entry_id)
     await hass.async_block_till_done()
-    assert storage_key(entry.entry_id) not in hass_storage
+    assert storage_key(kinds_entry.entry_id) not in hass_storage
 
 
 async def test_the_first_start_after_0_10_takes_its_values_from_home_assistant(
