@@ -14,9 +14,11 @@ all point entities together: an object reached from half the entities or more co
 and is left out; one shared by a few (a device, a conversion equal for many points) counts once.
 It prints the objects and bytes per point entity, the types that hold most, the RSS per point
 (after the restart, against before the first setup) and the longest of a few full `gc.collect()`
-runs. Then the objects by who keeps them, ours or Home Assistant's, with the entity's State and
-the coordinator's listener entries, which the entity does not reach. `--trace`: what stays
-allocated per point, by the module that allocated it (RSS and collections then cost more).
+runs; what the test harness alone keeps (its parsed copy of each file Home Assistant writes, its
+captured log records) is left out. Then the objects by who keeps them, ours or Home Assistant's,
+with the entity's State and the coordinator's listener entries, which the entity does not reach.
+`--trace`: what stays allocated per point, by the module that allocated it (RSS and collections
+then cost more).
 `--against DIR`: the same first for other code (bench/against.py), so before and after come
 from one command.
 """
@@ -485,7 +487,8 @@ def run(points: int, trace: bool = False, tree: Path = ROOT) -> dict[str, Any] |
     """Run the Home Assistant part for one size in `tree`; its figures, or its output's tail."""
     env = os.environ | {"BENCH_POINTS": str(points), "BENCH_TRACE": "1" if trace else ""}
     command = [sys.executable, "-m", "pytest", "bench/test_objects.py", "-q", "-s"]
-    command += ["-p", "no:cacheprovider"]
+    # pytest's log capture keeps every record a test logs: a real Home Assistant keeps none.
+    command += ["-p", "no:cacheprovider", "-p", "no:logging"]
     done = subprocess.run(command, cwd=tree, env=env, capture_output=True, text=True, check=False)
     for line in done.stdout.splitlines():
         if line.startswith("BENCH "):
