@@ -23,7 +23,7 @@ from homeassistant.const import (
     STATE_UNAVAILABLE,
 )
 from homeassistant.core import Event, EventStateChangedData, HomeAssistant, State, callback
-from homeassistant.helpers import entity_registry as er
+from homeassistant.helpers import entity_registry as er, restore_state
 import pytest
 from pytest_homeassistant_custom_component.common import (
     MockConfigEntry,
@@ -275,6 +275,26 @@ async def test_values_are_written_a_quarter_of_an_hour_after_a_poll(
     assert kept(hass_storage, kinds_entry)["VW20|signed"] == 55
     await later(hass, freezer, SAVE_DELAY)
     assert kept(hass_storage, kinds_entry)["VW20|signed"] == 70
+
+
+async def test_home_assistant_keeps_no_copy_of_the_states(
+    hass: HomeAssistant, kinds_entry: MockConfigEntry, freezer: FrozenDateTimeFactory
+) -> None:
+    """Home Assistant's restore data holds the event's state alone, before and after a restart.
+
+    A restore entity's state is copied there, kept for the whole run and written every quarter
+    of an hour: 10,000 points would cost 10,000 copies.
+    """
+    registry = er.async_get(hass)
+    ours = {e.entity_id for e in er.async_entries_for_config_entry(registry, kinds_entry.entry_id)}
+    data = restore_state.async_get(hass)
+    events = {entity_id for entity_id in ours if entity_id.startswith("event.")}
+    assert {s.state.entity_id for s in data.async_get_stored_states()} & ours == events
+    assert await hass.config_entries.async_unload(kinds_entry.entry_id)
+    await hass.async_block_till_done()
+    await set_up(hass, kinds_entry)
+    await poll(hass, freezer)
+    assert {s.state.entity_id for s in data.async_get_stored_states()} & ours == events
 
 
 async def test_a_removed_plc_leaves_no_file(
