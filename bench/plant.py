@@ -9,6 +9,8 @@ available, the event loop's lag (max, p99, stalls of 250 ms or more with the GC 
 state writes inside them), how long each poll's state writes hold the loop, full collections,
 and the RSS from the end of the start-up to N minutes later, and per point against before setup.
 `--against DIR` runs the same first for other code (bench/against.py), then both side by side.
+What the harness alone keeps (its parsed copy of each file Home Assistant writes) is dropped
+before each measure, and loggers log warnings only, as Home Assistant's do by default.
 """
 
 from __future__ import annotations
