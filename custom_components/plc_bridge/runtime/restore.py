@@ -2,11 +2,11 @@
 
 The coordinator keeps each point's raw value (by address and data type, so that a value is
 never shown for another address after an edit) in one file per PLC: written when the entry
-unloads, when Home Assistant stops, and a quarter of an hour after a poll changed anything (as
-Home Assistant dumps its restored states, for a stop that writes nothing). At the next start an
-entity shows its points' values, marked restored, until a poll reads them; once every point has
-been read the values are dropped. They are only ever shown: nothing decides a write from them
-(entity.py).
+unloads, when Home Assistant stops, and a quarter of an hour after a poll (one write in each
+quarter of an hour, as Home Assistant dumps its restored states, for a stop that writes
+nothing). At the next start an entity shows its points' values, marked restored, until a poll
+reads them; once every point has been read the values are dropped. They are only ever shown:
+nothing decides a write from them (entity.py).
 
 Version 0.10 stored the values with each entity's state in Home Assistant's restore data, which
 keeps a copy of every entity's state for the whole run: the first start without the file takes
@@ -34,7 +34,7 @@ type Source = Callable[[], tuple[Mapping[Point, PointResult], Collection[Point]]
 """What the values kept come from: the last poll's results, and the points kept."""
 STORAGE_VERSION: Final = 1
 SAVE_DELAY: Final = 900
-"""Seconds from a poll that changed a value to the file's write (Home Assistant's own dump
+"""Seconds from a poll to the file's write; polls meanwhile plan none (Home Assistant's own dump
 interval of restored states)."""
 DATETIME: Final = "datetime"
 SECONDS: Final = "seconds"
